@@ -1,0 +1,20 @@
+"""Writing rendered images to disk with Pillow."""
+
+from pathlib import Path
+
+import numpy as np
+from PIL import Image
+
+
+def save_png(image: np.ndarray, path: str | Path) -> Path:
+    """Write float RGBA (height, width, 4), row 0 at the top, as an 8-bit RGBA PNG.
+
+    Values are clamped to [0, 1] and written as they are, with no transfer curve: the way the
+    report's program wrote its PNGs.
+    """
+    rgba = np.clip(np.asarray(image, np.float32), 0.0, 1.0)
+    data = np.round(rgba * 255.0).astype(np.uint8)
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    Image.fromarray(data, "RGBA").save(path)
+    return path

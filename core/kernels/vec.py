@@ -1,0 +1,87 @@
+"""3-vectors as tuples of floats: they live in registers, so kernels never allocate for them."""
+
+import math
+
+from core.jit import kernel
+
+
+@kernel
+def add(a, b):
+    return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
+
+
+@kernel
+def sub(a, b):
+    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
+
+
+@kernel
+def scale(a, s):
+    return (a[0] * s, a[1] * s, a[2] * s)
+
+
+@kernel
+def mul(a, b):
+    """Component-wise product (colour times colour)."""
+    return (a[0] * b[0], a[1] * b[1], a[2] * b[2])
+
+
+@kernel
+def dot(a, b):
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+@kernel
+def normalize(a):
+    length = math.sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2])
+    if length == 0.0:
+        return a
+    return (a[0] / length, a[1] / length, a[2] / length)
+
+
+@kernel
+def max_abs(a):
+    return max(abs(a[0]), abs(a[1]), abs(a[2]))
+
+
+@kernel
+def as_tuple(array):
+    """A (3,) array as a tuple."""
+    return (array[0], array[1], array[2])
+
+
+@kernel
+def row(array, i):
+    """Row i of an (n, 3) array as a tuple."""
+    return (array[i, 0], array[i, 1], array[i, 2])
+
+
+@kernel
+def affine_point(m, p):
+    """m (3, 4) affine rows applied to point p."""
+    return (
+        m[0, 0] * p[0] + m[0, 1] * p[1] + m[0, 2] * p[2] + m[0, 3],
+        m[1, 0] * p[0] + m[1, 1] * p[1] + m[1, 2] * p[2] + m[1, 3],
+        m[2, 0] * p[0] + m[2, 1] * p[1] + m[2, 2] * p[2] + m[2, 3],
+    )
+
+
+@kernel
+def affine_vector(m, v):
+    """The linear part of m (3, 4) applied to direction v."""
+    return (
+        m[0, 0] * v[0] + m[0, 1] * v[1] + m[0, 2] * v[2],
+        m[1, 0] * v[0] + m[1, 1] * v[1] + m[1, 2] * v[2],
+        m[2, 0] * v[0] + m[2, 1] * v[1] + m[2, 2] * v[2],
+    )
+
+
+@kernel
+def affine_transpose_vector(m, v):
+    """The transpose of m's linear part applied to v: maps an object-space normal to world
+    space when m is object_from_world (normals go through the inverse transpose)."""
+    return (
+        m[0, 0] * v[0] + m[1, 0] * v[1] + m[2, 0] * v[2],
+        m[0, 1] * v[0] + m[1, 1] * v[1] + m[2, 1] * v[2],
+        m[0, 2] * v[0] + m[1, 2] * v[1] + m[2, 2] * v[2],
+    )
