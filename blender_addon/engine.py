@@ -1,0 +1,60 @@
+"""The RenderEngine: export, render in tiles, stream each tile back, report progress.
+
+It only coordinates; the work is in `export` (Blender -> core.Scene) and in `core`.
+"""
+
+import bpy
+import numpy as np
+
+import core
+
+from . import export
+
+
+class WhittedRenderEngine(bpy.types.RenderEngine):
+    bl_idname = "WHITTED"
+    bl_label = "Whitted"
+    bl_use_preview = False
+
+    def render(self, depsgraph):
+        try:
+            scene, settings, warnings = export.convert(depsgraph)
+            for warning in warnings:
+                self.report({"WARNING"}, warning)
+            self.update_stats("", "Whitted | Preparing kernels")
+            layer = depsgraph.view_layer.name
+
+            def stream(tile, pixels, done, total):
+                self._write_tile(layer, settings.height, tile, pixels)
+                self.update_progress(done / total)
+                self.update_stats("", f"Whitted | Tile {done}/{total}")
+
+            output = core.render(scene, settings, on_tile=stream, should_cancel=self.test_break)
+        except core.SceneError as error:
+            self.report({"ERROR"}, f"Whitted: {error}")
+            return
+        stats = output.stats
+        summary = (
+            f"Whitted | {settings.width}x{settings.height} | kernels {stats.kernel_source} "
+            f"{stats.kernel_s:.2f} s | render {stats.render_s:.2f} s | "
+            f"{stats.tiles_done}/{stats.tiles_total} tiles | {stats.threads} threads"
+            + (" | cancelled" if output.cancelled else "")
+        )
+        self.update_stats("", summary)
+        print(summary)
+
+    def _write_tile(self, layer, image_height, tile, pixels):
+        """Hand one finished tile to Blender, whose rows count from the bottom of the image."""
+        y = image_height - tile.y - tile.height
+        result = self.begin_result(tile.x, y, tile.width, tile.height, layer=layer)
+        flipped = np.ascontiguousarray(pixels[::-1]).reshape(-1, 4)
+        result.layers[0].passes["Combined"].rect = flipped
+        self.end_result(result)
+
+
+def register():
+    bpy.utils.register_class(WhittedRenderEngine)
+
+
+def unregister():
+    bpy.utils.unregister_class(WhittedRenderEngine)

@@ -1,0 +1,159 @@
+"""Blender depsgraph -> core.Scene. The only module that reads Blender scene data.
+
+Mapping of Blender's values onto the report's model:
+- camera: eye, view (-Z), up (+Y) from the camera's world matrix; the vertical field of view
+  from Blender's own projection matrix, so sensor size, sensor fit and lens all count;
+- point light: intensity = colour * power / (4 pi^2). With attenuation (0, 0, 1) a white
+  diffuse surface facing the light then has the brightness Cycles gives it: a point light of
+  power P has radiant intensity P / (4 pi) W/sr and a Lambertian surface divides by pi;
+- material: diffuse = the Principled BSDF's base colour (or the viewport colour without
+  nodes); specular and shininess from the Whitted material panel;
+- world: its colour (Background node colour times strength) is both the ambient term and the
+  background.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+import core
+
+_WATTS_TO_INTENSITY = 1.0 / (4.0 * math.pi**2)
+
+
+def convert(depsgraph) -> tuple[core.Scene, core.RenderSettings, list[str]]:
+    """Export the evaluated scene. Returns (scene, settings, warnings); raises SceneError."""
+    scene = depsgraph.scene
+    settings = render_settings(scene)
+    world = world_colour(scene.world)
+    shapes, lights, skipped = [], [], []
+    materials: dict[str, core.Material] = {}
+    for instance in depsgraph.object_instances:
+        obj = instance.object
+        if obj.type == "MESH" and obj.whitted.shape == "SPHERE":
+            material = _material(obj, materials)
+            matrix = np.array(instance.matrix_world, dtype=float)
+            shapes.append(core.Sphere(name=obj.name, material=material, world_from_object=matrix))
+        elif obj.type == "LIGHT" and obj.data.type == "POINT":
+            lights.append(_point_light(obj, instance.matrix_world))
+        elif obj.type in {"MESH", "LIGHT", "CURVE", "SURFACE", "META", "FONT"}:
+            skipped.append(obj.name)
+    warnings = []
+    if skipped:
+        names = ", ".join(f"'{name}'" for name in sorted(set(skipped))[:5])
+        warnings.append(
+            f"Whitted skipped {len(skipped)} object(s) it cannot render yet ({names}); "
+            "tag meshes as Sphere in Object Properties > Whitted Shape; only point lights light"
+        )
+    if scene.render.use_border:
+        warnings.append("Whitted ignores the render border for now and renders the whole frame")
+    camera = export_camera(scene, depsgraph, settings)
+    result = core.Scene(camera=camera, shapes=shapes, lights=lights, ambient=world, background=world)
+    return result, settings, warnings
+
+
+def render_settings(scene) -> core.RenderSettings:
+    render = scene.render
+    scale = render.resolution_percentage / 100.0
+    width = int(render.resolution_x * scale)
+    height = int(render.resolution_y * scale)
+    for field, value in (("resolution_x", width), ("resolution_y", height)):
+        if value < 1:
+            raise core.SceneError(
+                f"scene '{scene.name}'",
+                f"render {field}",
+                f"{value} pixels after the {render.resolution_percentage}% scale; "
+                "set Output Properties > Format > Resolution to at least 1",
+            )
+    threads = render.threads if render.threads_mode == "FIXED" else 0
+    return core.RenderSettings(
+        width=width, height=height, tile_size=scene.whitted.tile_size, threads=threads
+    )
+
+
+def export_camera(scene, depsgraph, settings: core.RenderSettings) -> core.Camera:
+    if scene.camera is None:
+        raise core.SceneError(
+            f"scene '{scene.name}'",
+            "camera",
+            "there is no active camera; add a camera and set it in Scene Properties > Camera",
+        )
+    camera = scene.camera.evaluated_get(depsgraph)
+    owner = f"camera '{camera.name}'"
+    if camera.type != "CAMERA":
+        raise core.SceneError(owner, "type", f"is a {camera.type} object; use a camera object")
+    if camera.data.type != "PERSP":
+        raise core.SceneError(
+            owner,
+            "lens type",
+            f"is {camera.data.type}; Whitted renders perspective cameras only: "
+            "set Camera Properties > Lens > Type to Perspective",
+        )
+    projection = camera.calc_matrix_camera(
+        depsgraph,
+        x=settings.width,
+        y=settings.height,
+        scale_x=scene.render.pixel_aspect_x,
+        scale_y=scene.render.pixel_aspect_y,
+    )
+    fovy = math.degrees(2.0 * math.atan(1.0 / projection[1][1]))
+    rotation = camera.matrix_world.to_3x3().normalized()
+    return core.Camera(
+        eye=tuple(camera.matrix_world.translation),
+        view=tuple(-rotation.col[2]),
+        up=tuple(rotation.col[1]),
+        fovy=fovy,
+        name=camera.name,
+    )
+
+
+def world_colour(world) -> tuple[float, float, float]:
+    if world is None:
+        return (0.0, 0.0, 0.0)
+    if world.use_nodes and world.node_tree is not None:
+        for node in world.node_tree.nodes:
+            if node.type == "BACKGROUND":
+                colour, strength = node.inputs[0].default_value, node.inputs[1].default_value
+                return tuple(float(c) * strength for c in colour[:3])
+    return tuple(float(c) for c in world.color)
+
+
+def _point_light(obj, matrix_world) -> core.PointLight:
+    light = obj.data
+    intensity = tuple(float(c) * light.energy * _WATTS_TO_INTENSITY for c in light.color)
+    return core.PointLight(
+        position=tuple(matrix_world.translation),
+        intensity=intensity,
+        attenuation=tuple(light.whitted.attenuation),
+        name=obj.name,
+    )
+
+
+def _material(obj, cache: dict[str, core.Material]) -> core.Material:
+    blender_material = obj.active_material
+    key = blender_material.name if blender_material is not None else ""
+    if key not in cache:
+        cache[key] = _convert_material(blender_material)
+    return cache[key]
+
+
+def _convert_material(material) -> core.Material:
+    if material is None:
+        return core.Material(name="(no material)")
+    settings = material.whitted
+    return core.Material(
+        diffuse=_base_colour(material),
+        specular=tuple(settings.specular),
+        shininess=settings.shininess,
+        name=material.name,
+    )
+
+
+def _base_colour(material) -> tuple[float, float, float]:
+    if material.use_nodes and material.node_tree is not None:
+        for node in material.node_tree.nodes:
+            if node.type == "BSDF_PRINCIPLED":
+                return tuple(float(c) for c in node.inputs["Base Color"].default_value[:3])
+    return tuple(float(c) for c in material.diffuse_color[:3])

@@ -1,0 +1,160 @@
+"""Panels, shown only while Whitted is the render engine.
+
+Blender's own panels for things Whitted reads as they are (output size, camera lens, light
+colour and power, material slots) are opened to Whitted by adding it to their COMPAT_ENGINES.
+"""
+
+import bpy
+
+from .engine import WhittedRenderEngine
+
+ENGINE = WhittedRenderEngine.bl_idname
+
+# Blender panels whose settings Whitted honours as they are.
+_BLENDER_PANELS = (
+    "RENDER_PT_format",
+    "RENDER_PT_frame_range",
+    "RENDER_PT_output",
+    "RENDER_PT_encoding",
+    "RENDER_PT_post_processing",
+    "RENDER_PT_color_management",
+    "DATA_PT_context_camera",
+    "DATA_PT_lens",
+    "DATA_PT_camera",
+    "DATA_PT_camera_display",
+    "DATA_PT_context_light",
+    "DATA_PT_light",
+    "DATA_PT_EEVEE_light",
+    "EEVEE_MATERIAL_PT_context_material",
+    "MATERIAL_PT_preview",
+    "WORLD_PT_context_world",
+)
+
+
+class WhittedPanel:
+    bl_space_type = "PROPERTIES"
+    bl_region_type = "WINDOW"
+    COMPAT_ENGINES = {ENGINE}
+
+    @classmethod
+    def poll(cls, context):
+        return context.engine in cls.COMPAT_ENGINES
+
+
+class WHITTED_PT_render(WhittedPanel, bpy.types.Panel):
+    bl_label = "Whitted"
+    bl_context = "render"
+
+    def draw(self, context):
+        self.layout.use_property_split = True
+        self.layout.prop(context.scene.whitted, "tile_size")
+
+
+class WHITTED_PT_object_shape(WhittedPanel, bpy.types.Panel):
+    bl_label = "Whitted Shape"
+    bl_context = "object"
+
+    @classmethod
+    def poll(cls, context):
+        return super().poll(context) and context.object is not None and context.object.type == "MESH"
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.prop(context.object.whitted, "shape")
+        if context.object.whitted.shape == "SPHERE":
+            layout.label(text="Exact sphere, radius 1, under the object transform", icon="INFO")
+
+
+class WHITTED_PT_material(WhittedPanel, bpy.types.Panel):
+    bl_label = "Whitted Material"
+    bl_context = "material"
+
+    @classmethod
+    def poll(cls, context):
+        return super().poll(context) and context.material is not None
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        material = context.material
+        principled = None
+        if material.use_nodes and material.node_tree is not None:
+            principled = next(
+                (n for n in material.node_tree.nodes if n.type == "BSDF_PRINCIPLED"), None
+            )
+        if principled is not None:
+            layout.prop(principled.inputs["Base Color"], "default_value", text="Diffuse")
+        else:
+            layout.prop(material, "diffuse_color", text="Diffuse")
+        layout.prop(material.whitted, "specular")
+        layout.prop(material.whitted, "shininess")
+
+
+class WHITTED_PT_light(WhittedPanel, bpy.types.Panel):
+    bl_label = "Whitted Light"
+    bl_context = "data"
+
+    @classmethod
+    def poll(cls, context):
+        return super().poll(context) and context.light is not None
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        if context.light.type != "POINT":
+            layout.label(text="Whitted renders point lights only so far", icon="ERROR")
+            return
+        layout.prop(context.light.whitted, "attenuation")
+
+
+class WHITTED_PT_world(WhittedPanel, bpy.types.Panel):
+    bl_label = "Whitted World"
+    bl_context = "world"
+
+    @classmethod
+    def poll(cls, context):
+        return super().poll(context) and context.world is not None
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        world = context.world
+        background = None
+        if world.use_nodes and world.node_tree is not None:
+            background = next((n for n in world.node_tree.nodes if n.type == "BACKGROUND"), None)
+        if background is not None:
+            layout.prop(background.inputs[0], "default_value", text="Ambient and Background")
+            layout.prop(background.inputs[1], "default_value", text="Strength")
+        else:
+            layout.prop(world, "color", text="Ambient and Background")
+
+
+_classes = (
+    WHITTED_PT_render,
+    WHITTED_PT_object_shape,
+    WHITTED_PT_material,
+    WHITTED_PT_light,
+    WHITTED_PT_world,
+)
+
+
+def _blender_panels():
+    for name in _BLENDER_PANELS:
+        panel = getattr(bpy.types, name, None)
+        if panel is not None and hasattr(panel, "COMPAT_ENGINES"):
+            yield panel
+
+
+def register():
+    for cls in _classes:
+        bpy.utils.register_class(cls)
+    for panel in _blender_panels():
+        panel.COMPAT_ENGINES.add(ENGINE)
+
+
+def unregister():
+    for panel in _blender_panels():
+        panel.COMPAT_ENGINES.discard(ENGINE)
+    for cls in reversed(_classes):
+        bpy.utils.unregister_class(cls)
