@@ -1,0 +1,73 @@
+# Whitted: every command a developer or a newcomer needs. All targets are idempotent.
+#   make render [SCENE=path/to.blend]   set everything up, render headless, print the PNG path
+#   make test                           set everything up, lint, run the whole test suite
+#   make bench                          run the benchmarks in tests/benchmarks/
+SHELL := /bin/bash
+PYTHON ?= python3
+VENV := .venv
+BUILD := .build
+SITE := $(VENV)/lib/python3.11/site-packages
+SCENE ?= sample_blends/spheres.blend
+RENDERS := $(CURDIR)/build/renders
+
+# One numba kernel cache shared by tests, benchmarks and Blender subprocesses.
+export WHITTED_CACHE_DIR ?= $(CURDIR)/.cache/kernels
+# Blender finds the add-on (a link to blender_addon/) here, and numpy/numba in the venv.
+export BLENDER_USER_SCRIPTS := $(CURDIR)/$(BUILD)/blender_scripts
+BLENDER_RUN := PYTHONPATH=$(CURDIR):$(CURDIR)/$(SITE) blender -b --python-use-system-env
+
+.PHONY: setup render test bench samples lint format clean
+
+setup: $(VENV)/.installed $(BUILD)/blender.ok $(BLENDER_USER_SCRIPTS)/addons/whitted
+
+$(VENV)/.installed: pyproject.toml
+	@$(PYTHON) -c 'import sys; sys.exit(sys.version_info[:2] != (3, 11))' || \
+	  { echo "Whitted needs Python 3.11 (Blender's Python); set PYTHON=python3.11"; exit 1; }
+	$(PYTHON) -m venv $(VENV)
+	$(VENV)/bin/pip install --quiet --upgrade pip
+	$(VENV)/bin/pip install --quiet -e ".[test,bench]"
+	touch $@
+
+# Debian's blender package when no blender is on PATH and we may install it.
+$(BUILD)/blender.ok:
+	@if ! command -v blender >/dev/null; then \
+	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
+	    echo "Installing Debian's blender package (no blender on PATH)"; \
+	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq blender >/dev/null; \
+	  else \
+	    echo "Whitted needs Blender 3.4 or newer as 'blender' on PATH."; \
+	    echo "Install it (Debian/Ubuntu: sudo apt-get install blender) and run make again."; \
+	    exit 1; \
+	  fi; \
+	fi
+	@mkdir -p $(BUILD) && blender --version | head -n 1 && touch $@
+
+$(BLENDER_USER_SCRIPTS)/addons/whitted:
+	mkdir -p $(BLENDER_USER_SCRIPTS)/addons
+	ln -sfn ../../../blender_addon $@
+
+render: setup
+	@mkdir -p $(RENDERS)
+	$(BLENDER_RUN) "$(SCENE)" --addons whitted -E WHITTED \
+	  -o "$(RENDERS)/$(basename $(notdir $(SCENE)))_####" -F PNG -f 1
+	@echo "Rendered: $(RENDERS)/$(basename $(notdir $(SCENE)))_0001.png"
+
+samples: setup
+	$(BLENDER_RUN) --factory-startup --addons whitted --python sample_blends/build_samples.py
+
+lint: setup
+	$(VENV)/bin/ruff check .
+	$(VENV)/bin/ruff format --check .
+
+format: setup
+	$(VENV)/bin/ruff format .
+	$(VENV)/bin/ruff check --fix .
+
+test: lint
+	$(VENV)/bin/python -m pytest
+
+bench: setup
+	$(VENV)/bin/python -m tests.benchmarks
+
+clean:
+	rm -rf $(VENV) $(BUILD) .cache build

@@ -1,0 +1,66 @@
+"""Bad input raises SceneError naming the object and the field, before any rendering."""
+
+import numpy as np
+import pytest
+
+from core import Camera, Material, PointLight, RenderSettings, Scene, SceneError, Sphere, render
+from tests.core.scenes import ball_on_ground
+
+
+def render_tiny(scene, settings=None):
+    return render(scene, settings or RenderSettings(4, 4))
+
+
+def test_zero_scale_sphere_is_named():
+    scene = ball_on_ground()
+    scene.shapes[0].world_from_object = np.diag([1.0, 0.0, 1.0, 1.0])
+    with pytest.raises(SceneError, match=r"sphere 'Ball': world_from_object: .*non-zero scale"):
+        render_tiny(scene)
+
+
+@pytest.mark.parametrize("field", ["width", "height"])
+def test_zero_resolution(field):
+    settings = RenderSettings(4, 4)
+    setattr(settings, field, 0)
+    with pytest.raises(SceneError, match=rf"render settings: {field}: got 0; use a whole number"):
+        render_tiny(ball_on_ground(), settings)
+
+
+@pytest.mark.parametrize(
+    "change, message",
+    [
+        (lambda s: setattr(s.camera, "fovy", 0.0), r"camera 'Camera': fovy: got 0.0"),
+        (lambda s: setattr(s.camera, "fovy", 180.0), r"camera 'Camera': fovy"),
+        (lambda s: setattr(s.camera, "up", (0.0, 14.0, -5.0)), r"camera 'Camera': up: .*parallel"),
+        (lambda s: setattr(s.camera, "view", (0, 0, 0)), r"camera 'Camera': view: .*non-zero"),
+        (lambda s: setattr(s.camera, "eye", (0, float("nan"), 0)), r"camera 'Camera': eye: .*finite"),
+        (lambda s: setattr(s.lights[0], "attenuation", (0, 0, 0)), r"light 'Key': attenuation"),
+        (lambda s: setattr(s.lights[0], "intensity", (1, -1, 1)), r"light 'Key': intensity: .*>= 0"),
+        (
+            lambda s: setattr(s.shapes[0].material, "shininess", -2.0),
+            r"material 'ball' \(on sphere 'Ball'\): shininess",
+        ),
+        (lambda s: setattr(s.shapes[1].material, "diffuse", (1, 2)), r"material 'ground'.*diffuse"),
+        (lambda s: setattr(s.shapes[0], "material", "red"), r"sphere 'Ball': material: got str"),
+        (lambda s: setattr(s, "ambient", (-1, 0, 0)), r"scene: ambient"),
+    ],
+)
+def test_bad_fields_are_named(change, message):
+    scene = ball_on_ground()
+    change(scene)
+    with pytest.raises(SceneError, match=message):
+        render_tiny(scene)
+
+
+def test_nan_in_transform_and_non_affine_rows():
+    scene = Scene(Camera(), [Sphere("S", Material(), np.full((4, 4), np.nan))], [PointLight()])
+    with pytest.raises(SceneError, match="sphere 'S': world_from_object: contains NaN"):
+        render_tiny(scene)
+    scene.shapes[0].world_from_object = np.ones((4, 4))
+    with pytest.raises(SceneError, match="bottom row"):
+        render_tiny(scene)
+
+
+def test_region_outside_image():
+    with pytest.raises(SceneError, match="render settings: region"):
+        render_tiny(ball_on_ground(), RenderSettings(4, 4, region=(2, 2, 3, 3)))
