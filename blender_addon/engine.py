@@ -24,12 +24,14 @@ class WhittedRenderEngine(bpy.types.RenderEngine):
             self.update_stats("", "Whitted | Preparing kernels")
             layer = depsgraph.view_layer.name
 
+            region = settings.pixel_region()
+
             def stream(tile, pixels, done, total):
-                self._write_tile(layer, settings.height, tile, pixels)
+                self._write_tile(layer, region, tile, pixels)
                 self.update_progress(done / total)
                 self.update_stats("", f"Whitted | Tile {done}/{total}")
 
-            output = core.render(scene, settings, on_tile=stream, should_cancel=self.test_break)
+            output = core.render(scene, settings, on_tile=stream, should_cancel=self._cancelled)
         except core.SceneError as error:
             self.report({"ERROR"}, f"Whitted: {error}")
             return
@@ -43,10 +45,17 @@ class WhittedRenderEngine(bpy.types.RenderEngine):
         self.update_stats("", summary)
         print(summary)
 
-    def _write_tile(self, layer, image_height, tile, pixels):
-        """Hand one finished tile to Blender, whose rows count from the bottom of the image."""
-        y = image_height - tile.y - tile.height
-        result = self.begin_result(tile.x, y, tile.width, tile.height, layer=layer)
+    def _cancelled(self):
+        """Esc in the UI, or a cancelled job; polled by the driver between tiles."""
+        return self.test_break()
+
+    def _write_tile(self, layer, region, tile, pixels):
+        """Hand one finished tile to Blender. Blender counts rows from the bottom, and from the
+        render border's corner when there is one; `region` is that border (y from the top)."""
+        region_x, region_y, _, region_height = region
+        x = tile.x - region_x
+        y = region_y + region_height - tile.y - tile.height
+        result = self.begin_result(x, y, tile.width, tile.height, layer=layer)
         flipped = np.ascontiguousarray(pixels[::-1]).reshape(-1, 4)
         result.layers[0].passes["Combined"].rect = flipped
         self.end_result(result)

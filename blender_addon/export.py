@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import math
 
+import bpy
 import numpy as np
 
 import core
@@ -47,10 +48,10 @@ def convert(depsgraph) -> tuple[core.Scene, core.RenderSettings, list[str]]:
             f"Whitted skipped {len(skipped)} object(s) it cannot render yet ({names}); "
             "tag meshes as Sphere in Object Properties > Whitted Shape; only point lights light"
         )
-    if scene.render.use_border:
-        warnings.append("Whitted ignores the render border for now and renders the whole frame")
     camera = export_camera(scene, depsgraph, settings)
-    result = core.Scene(camera=camera, shapes=shapes, lights=lights, ambient=world, background=world)
+    result = core.Scene(
+        camera=camera, shapes=shapes, lights=lights, ambient=world, background=world
+    )
     return result, settings, warnings
 
 
@@ -69,8 +70,28 @@ def render_settings(scene) -> core.RenderSettings:
             )
     threads = render.threads if render.threads_mode == "FIXED" else 0
     return core.RenderSettings(
-        width=width, height=height, tile_size=scene.whitted.tile_size, threads=threads
+        width=width,
+        height=height,
+        tile_size=scene.whitted.tile_size,
+        threads=threads,
+        region=_border_region(render, width, height),
     )
+
+
+def _border_region(render, width, height):
+    """The render border as core's region (y from the top), in whole pixels as Blender counts
+    them: float32 border fraction times size, truncated."""
+    if not render.use_border:
+        return None
+
+    def pixel(fraction, size):
+        return int(np.float32(fraction) * np.float32(size))
+
+    x_min, x_max = pixel(render.border_min_x, width), pixel(render.border_max_x, width)
+    y_min, y_max = pixel(render.border_min_y, height), pixel(render.border_max_y, height)
+    if x_max <= x_min or y_max <= y_min:
+        return None  # Blender renders the whole frame for an empty border
+    return (x_min, height - y_max, x_max - x_min, y_max - y_min)
 
 
 def export_camera(scene, depsgraph, settings: core.RenderSettings) -> core.Camera:
@@ -112,11 +133,10 @@ def export_camera(scene, depsgraph, settings: core.RenderSettings) -> core.Camer
 def world_colour(world) -> tuple[float, float, float]:
     if world is None:
         return (0.0, 0.0, 0.0)
-    if world.use_nodes and world.node_tree is not None:
-        for node in world.node_tree.nodes:
-            if node.type == "BACKGROUND":
-                colour, strength = node.inputs[0].default_value, node.inputs[1].default_value
-                return tuple(float(c) * strength for c in colour[:3])
+    background = find_node(world, "BACKGROUND")
+    if background is not None:
+        colour, strength = background.inputs[0].default_value, background.inputs[1].default_value
+        return tuple(float(c) * strength for c in colour[:3])
     return tuple(float(c) for c in world.color)
 
 
@@ -152,8 +172,23 @@ def _convert_material(material) -> core.Material:
 
 
 def _base_colour(material) -> tuple[float, float, float]:
-    if material.use_nodes and material.node_tree is not None:
-        for node in material.node_tree.nodes:
-            if node.type == "BSDF_PRINCIPLED":
-                return tuple(float(c) for c in node.inputs["Base Color"].default_value[:3])
+    principled = find_node(material, "BSDF_PRINCIPLED")
+    if principled is not None:
+        return tuple(float(c) for c in principled.inputs["Base Color"].default_value[:3])
     return tuple(float(c) for c in material.diffuse_color[:3])
+
+
+def node_tree_in_use(datablock):
+    """The node tree a material or world renders with, or None. Blender 5.0 always uses nodes
+    (and deprecates `use_nodes`); before 5.0 the flag decides."""
+    tree = datablock.node_tree
+    if tree is None or (bpy.app.version < (5, 0, 0) and not datablock.use_nodes):
+        return None
+    return tree
+
+
+def find_node(datablock, node_type):
+    tree = node_tree_in_use(datablock)
+    if tree is None:
+        return None
+    return next((node for node in tree.nodes if node.type == node_type), None)

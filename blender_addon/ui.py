@@ -7,6 +7,7 @@ colour and power, material slots) are opened to Whitted by adding it to their CO
 import bpy
 
 from .engine import WhittedRenderEngine
+from .export import find_node
 
 ENGINE = WhittedRenderEngine.bl_idname
 
@@ -56,7 +57,9 @@ class WHITTED_PT_object_shape(WhittedPanel, bpy.types.Panel):
 
     @classmethod
     def poll(cls, context):
-        return super().poll(context) and context.object is not None and context.object.type == "MESH"
+        return (
+            super().poll(context) and context.object is not None and context.object.type == "MESH"
+        )
 
     def draw(self, context):
         layout = self.layout
@@ -78,11 +81,7 @@ class WHITTED_PT_material(WhittedPanel, bpy.types.Panel):
         layout = self.layout
         layout.use_property_split = True
         material = context.material
-        principled = None
-        if material.use_nodes and material.node_tree is not None:
-            principled = next(
-                (n for n in material.node_tree.nodes if n.type == "BSDF_PRINCIPLED"), None
-            )
+        principled = find_node(material, "BSDF_PRINCIPLED")
         if principled is not None:
             layout.prop(principled.inputs["Base Color"], "default_value", text="Diffuse")
         else:
@@ -120,9 +119,7 @@ class WHITTED_PT_world(WhittedPanel, bpy.types.Panel):
         layout = self.layout
         layout.use_property_split = True
         world = context.world
-        background = None
-        if world.use_nodes and world.node_tree is not None:
-            background = next((n for n in world.node_tree.nodes if n.type == "BACKGROUND"), None)
+        background = find_node(world, "BACKGROUND")
         if background is not None:
             layout.prop(background.inputs[0], "default_value", text="Ambient and Background")
             layout.prop(background.inputs[1], "default_value", text="Strength")

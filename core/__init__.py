@@ -1,6 +1,6 @@
 """Whitted's renderer: scene model, packing, numba kernels and the tile driver. No bpy here.
 
-    from core import Camera, Material, PointLight, RenderSettings, Scene, Sphere, render
+from core import Camera, Material, PointLight, RenderSettings, Scene, Sphere, render
 """
 
 from core.errors import SceneError

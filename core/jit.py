@@ -17,7 +17,9 @@ from core.version import VERSION
 
 def kernel_cache_dir() -> Path:
     base = os.environ.get("WHITTED_CACHE_DIR") or Path.home() / ".cache" / "whitted"
-    tag = f"whitted-{VERSION}-numba-{numba.__version__}-py{sys.version_info[0]}{sys.version_info[1]}"
+    tag = (
+        f"whitted-{VERSION}-numba-{numba.__version__}-py{sys.version_info[0]}{sys.version_info[1]}"
+    )
     return Path(base) / tag
 
 

@@ -121,7 +121,9 @@ class Sphere:
         owner = f"sphere '{self.name}'"
         _check_affine(owner, "world_from_object", self.world_from_object)
         if not isinstance(self.material, Material):
-            raise SceneError(owner, "material", f"got {type(self.material).__name__}; need a Material")
+            raise SceneError(
+                owner, "material", f"got {type(self.material).__name__}; need a Material"
+            )
         self.material.validate(owner)
 
 

@@ -71,15 +71,15 @@ def shade_ray(spheres, lights, ambient, background, origin, direction):
     for light in lights:
         to_light = np.asarray(light["position"], float) - point
         distance = np.linalg.norm(to_light)
-        l = to_light / distance
-        n_dot_l = normal @ l
+        light_dir = to_light / distance
+        n_dot_l = normal @ light_dir
         if n_dot_l <= 0:
             continue
         start = point + normal * 1e-7 * max(1.0, np.abs(point).max())
-        if nearest(spheres, start, l, t_max=distance)[0] is not None:
+        if nearest(spheres, start, light_dir, t_max=distance)[0] is not None:
             continue
         c0, c1, c2 = light["attenuation"]
-        reflected = 2 * n_dot_l * normal - l
+        reflected = 2 * n_dot_l * normal - light_dir
         specular = max(0.0, reflected @ -direction) ** p
         colour = colour + (kd * n_dot_l + ks * specular) * np.asarray(light["intensity"]) / (
             c0 + c1 * distance + c2 * distance**2

@@ -34,15 +34,17 @@ def shade(ps, shape, p, n, d, ray_origin):
         distance = math.sqrt(dot(to_light, to_light))
         if distance == 0.0:
             continue
-        l = scale(to_light, 1.0 / distance)
-        n_dot_l = dot(n, l)
-        if n_dot_l <= 0.0 or occluded(ps, origin, l, distance):
+        light_dir = scale(to_light, 1.0 / distance)
+        n_dot_l = dot(n, light_dir)
+        if n_dot_l <= 0.0 or occluded(ps, origin, light_dir, distance):
             continue
         c0, c1, c2 = row(ps.light_attenuation, light)
-        radiance = scale(row(ps.light_intensity, light), 1.0 / (c0 + c1 * distance + c2 * distance**2))
+        radiance = scale(
+            row(ps.light_intensity, light), 1.0 / (c0 + c1 * distance + c2 * distance**2)
+        )
         reflectance = scale(kd, n_dot_l)
         if has_specular:
-            reflected = sub(scale(n, 2.0 * n_dot_l), l)
+            reflected = sub(scale(n, 2.0 * n_dot_l), light_dir)
             r_dot_v = dot(normalize(reflected), to_viewer)
             if r_dot_v > 0.0:
                 reflectance = add(reflectance, scale(ks, r_dot_v**shininess))

@@ -9,7 +9,9 @@ from core import RenderSettings, render, split_into_tiles
 from tests.core.scenes import ball_on_ground
 
 
-@pytest.mark.parametrize("region, tile", [((0, 0, 97, 41), 16), ((5, 3, 30, 70), 7), ((0, 0, 1, 1), 32)])
+@pytest.mark.parametrize(
+    "region, tile", [((0, 0, 97, 41), 16), ((5, 3, 30, 70), 7), ((0, 0, 1, 1), 32)]
+)
 def test_tiles_cover_the_region_exactly_once(region, tile):
     x0, y0, w, h = region
     counts = np.zeros((y0 + h, x0 + w), int)

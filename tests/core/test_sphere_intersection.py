@@ -71,4 +71,3 @@ def test_distant_sphere_is_hit_precisely():
     packed = pack_scene(Scene(shapes=[Sphere(world_from_object=matrix)]), RenderSettings(8, 8))
     shape, t = closest_hit(packed, (0.0, 0.0, 0.0), (0.0, 0.0, -1.0), math.inf)
     assert shape == 0 and t == pytest.approx(1e6 - 1.0, abs=1e-9)
-

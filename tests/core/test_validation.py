@@ -33,9 +33,15 @@ def test_zero_resolution(field):
         (lambda s: setattr(s.camera, "fovy", 180.0), r"camera 'Camera': fovy"),
         (lambda s: setattr(s.camera, "up", (0.0, 14.0, -5.0)), r"camera 'Camera': up: .*parallel"),
         (lambda s: setattr(s.camera, "view", (0, 0, 0)), r"camera 'Camera': view: .*non-zero"),
-        (lambda s: setattr(s.camera, "eye", (0, float("nan"), 0)), r"camera 'Camera': eye: .*finite"),
+        (
+            lambda s: setattr(s.camera, "eye", (0, float("nan"), 0)),
+            r"camera 'Camera': eye: .*finite",
+        ),
         (lambda s: setattr(s.lights[0], "attenuation", (0, 0, 0)), r"light 'Key': attenuation"),
-        (lambda s: setattr(s.lights[0], "intensity", (1, -1, 1)), r"light 'Key': intensity: .*>= 0"),
+        (
+            lambda s: setattr(s.lights[0], "intensity", (1, -1, 1)),
+            r"light 'Key': intensity: .*>= 0",
+        ),
         (
             lambda s: setattr(s.shapes[0].material, "shininess", -2.0),
             r"material 'ball' \(on sphere 'Ball'\): shininess",

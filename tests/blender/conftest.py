@@ -1,0 +1,28 @@
+"""Blender fixtures: the bpy 5.0 module with the add-on enabled the way Blender loads it."""
+
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+SAMPLE = ROOT / "sample_blends" / "spheres.blend"
+
+
+@pytest.fixture(scope="session")
+def bpy_with_whitted():
+    bpy = pytest.importorskip("bpy")
+    import addon_utils
+
+    module = addon_utils.enable("whitted", default_set=True, handle_error=None)
+    assert module is not None, "the whitted add-on did not load (see the traceback above)"
+    return bpy
+
+
+@pytest.fixture
+def sample_scene(bpy_with_whitted):
+    """The sample scene, freshly opened, rendered at half size for speed."""
+    bpy = bpy_with_whitted
+    bpy.ops.wm.open_mainfile(filepath=str(SAMPLE))
+    scene = bpy.context.scene
+    scene.render.resolution_percentage = 50
+    return scene

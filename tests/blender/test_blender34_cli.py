@@ -1,0 +1,57 @@
+"""Debian's Blender 3.4 as a farm runs it: `blender -b scene.blend -E WHITTED -f 1`."""
+
+import os
+import shutil
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from tests.blender.blender_reference import expected_pixels, sample_grid
+from tests.blender.conftest import ROOT, SAMPLE
+
+pytestmark = pytest.mark.blender34
+
+
+def blender_34(*args, timeout=300):
+    """Run `blender -b` the way `make render` does: add-on from BLENDER_USER_SCRIPTS, numpy
+    and numba from the project's virtual environment."""
+    blender = shutil.which("blender")
+    assert blender, "no `blender` on PATH: run `make test`, which installs Debian's package"
+    site = ROOT / ".venv" / "lib" / "python3.11" / "site-packages"
+    if not site.is_dir():  # running from some other environment: use its packages
+        site = next(p for p in sys.path if p.endswith("site-packages"))
+    env = dict(os.environ, PYTHONPATH=f"{ROOT}{os.pathsep}{site}")
+    command = [blender, "-b", "--python-use-system-env", *args]
+    return subprocess.run(command, env=env, capture_output=True, text=True, timeout=timeout)
+
+
+def test_headless_command_renders_the_sample(sample_scene, tmp_path):
+    run = blender_34(
+        str(SAMPLE), "--addons", "whitted", "-E", "WHITTED", "-o", f"{tmp_path}/out_####",
+        "-F", "PNG", "-f", "1",
+    )  # fmt: skip
+    assert run.returncode == 0, run.stdout + run.stderr
+    assert "Blender 3.4" in run.stdout
+    assert "Traceback" not in run.stdout + run.stderr
+    image = np.asarray(Image.open(tmp_path / "out_0001.png"), dtype=float)
+    assert image.shape == (240, 320, 4)
+    sample_scene.render.resolution_percentage = 100
+    pixels = sample_grid(320, 240, 11)
+    expected = expected_pixels(sample_scene, pixels)
+    got = np.array([image[py, px, :3] for px, py in pixels])
+    np.testing.assert_allclose(got, expected, atol=1.6)
+
+
+def test_bad_input_is_a_clear_message_not_a_traceback(tmp_path):
+    run = blender_34(
+        str(SAMPLE), "--addons", "whitted",
+        "--python-expr", "import bpy; bpy.data.objects['Blue'].scale = (0, 1, 1)",
+        "-E", "WHITTED", "-o", f"{tmp_path}/bad_####", "-F", "PNG", "-f", "1",
+    )  # fmt: skip
+    output = run.stdout + run.stderr
+    assert "Error: Whitted: sphere 'Blue': world_from_object: is singular" in output
+    assert "non-zero scale" in output
+    assert "Traceback" not in output

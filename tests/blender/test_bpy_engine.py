@@ -1,0 +1,128 @@
+"""The add-on inside Blender 5.0 (the bpy module): registration, pixels, tiles, cancel, errors."""
+
+import sys
+
+import numpy as np
+import pytest
+from PIL import Image
+
+import core
+from tests.blender.blender_reference import expected_pixels, sample_grid
+
+pytestmark = pytest.mark.bpy5
+
+
+def render_to_array(bpy, scene, path):
+    scene.render.filepath = str(path)
+    bpy.ops.render.render(write_still=True)
+    return np.asarray(Image.open(path), dtype=float)
+
+
+def engine_class():
+    return sys.modules["whitted.engine"].WhittedRenderEngine
+
+
+def test_engine_is_registered_and_listed(bpy_with_whitted):
+    bpy = bpy_with_whitted
+    assert bpy.app.version[0] == 5
+    scene = bpy.context.scene
+    # The engine enum is dynamic: Blender lists its valid items when given an invalid one
+    with pytest.raises(TypeError, match=r"'WHITTED'"):
+        scene.render.engine = "NOT_AN_ENGINE"
+    scene.render.engine = "WHITTED"
+    assert scene.render.engine == "WHITTED"
+    assert engine_class().bl_label == "Whitted"
+
+
+def test_sample_scene_pixels_match_the_reference(sample_scene, bpy_with_whitted, tmp_path):
+    image = render_to_array(bpy_with_whitted, sample_scene, tmp_path / "spheres.png")
+    assert image.shape == (120, 160, 4)
+    pixels = sample_grid(160, 120, 6)
+    expected = expected_pixels(sample_scene, pixels)
+    got = np.array([image[py, px, :3] for px, py in pixels])
+    np.testing.assert_allclose(got, expected, atol=1.6)
+    assert np.all(image[..., 3] == 255)
+
+
+def test_every_pixel_is_written_by_exactly_one_tile(sample_scene, bpy_with_whitted, monkeypatch):
+    cls = engine_class()
+    written = np.zeros((120, 160), int)
+    original = cls._write_tile
+
+    def record(self, layer, region, tile, pixels):
+        written[tile.y : tile.y + tile.height, tile.x : tile.x + tile.width] += 1
+        original(self, layer, region, tile, pixels)
+
+    monkeypatch.setattr(cls, "_write_tile", record)
+    sample_scene.whitted.tile_size = 24  # does not divide 160 x 120: edge tiles are partial
+    bpy_with_whitted.ops.render.render()
+    assert np.all(written == 1)
+
+
+def test_render_border_is_rendered_in_place(sample_scene, bpy_with_whitted, tmp_path):
+    full = render_to_array(bpy_with_whitted, sample_scene, tmp_path / "full.png")
+    render = sample_scene.render
+    render.use_border, render.use_crop_to_border = True, True
+    render.border_min_x, render.border_max_x = 0.213, 0.77
+    render.border_min_y, render.border_max_y = 0.1, 0.633
+    cropped = render_to_array(bpy_with_whitted, sample_scene, tmp_path / "crop.png")
+    # Blender's border in pixels: x 34..122, rows 12..74 from the bottom = 45..107 from the top
+    assert cropped.shape == (63, 89, 4)
+    np.testing.assert_array_equal(cropped, full[45:108, 34:123])
+
+
+def test_cancel_from_test_break_stops_within_one_tile(sample_scene, bpy_with_whitted, monkeypatch):
+    cls = engine_class()
+    tiles = []
+    original = cls._write_tile
+
+    def record(self, layer, region, tile, pixels):
+        tiles.append(tile)
+        original(self, layer, region, tile, pixels)
+
+    monkeypatch.setattr(cls, "_write_tile", record)
+    # Blender's own test_break cannot be overridden from Python; patch the hook that calls it
+    monkeypatch.setattr(cls, "_cancelled", lambda self: len(tiles) >= 1)
+    sample_scene.whitted.tile_size = 8
+    sample_scene.render.threads_mode = "FIXED"
+    sample_scene.render.threads = 2
+    bpy_with_whitted.ops.render.render()
+    assert 1 <= len(tiles) <= 2  # the tile that saw the cancel, and the other thread's
+    monkeypatch.undo()
+    tiles.clear()
+    bpy_with_whitted.ops.render.render()  # Blender is still usable and renders in full
+
+
+def test_zero_scale_sphere_is_reported_by_name(sample_scene, bpy_with_whitted):
+    sample_scene.objects["Red"].scale = (1.0, 0.0, 1.0)
+    with pytest.raises(RuntimeError) as error:
+        bpy_with_whitted.ops.render.render()
+    message = str(error.value)
+    assert "sphere 'Red'" in message and "non-zero scale" in message
+    assert "Traceback" not in message
+    sample_scene.objects["Red"].scale = (1.0, 1.0, 1.0)
+    assert bpy_with_whitted.ops.render.render() == {"FINISHED"}
+
+
+def test_missing_camera_is_reported(sample_scene, bpy_with_whitted):
+    bpy = bpy_with_whitted
+    sample_scene.camera = None
+    # Blender itself refuses before any engine runs ...
+    with pytest.raises(RuntimeError, match="no camera"):
+        bpy.ops.render.render()
+    # ... and our exporter, called on its own, names the scene and the field
+    export = sys.modules["whitted.export"]
+    with pytest.raises(core.SceneError, match=r"scene 'Scene': camera: there is no active camera"):
+        export.convert(bpy.context.evaluated_depsgraph_get())
+
+
+def test_zero_resolution_is_reported(sample_scene, bpy_with_whitted):
+    export = sys.modules["whitted.export"]
+    # Blender clamps resolution to >= 4 pixels and the scale to >= 1 %: 4 px at 1 % is 0 pixels
+    sample_scene.render.resolution_x = 0
+    assert sample_scene.render.resolution_x >= 4
+    sample_scene.render.resolution_x, sample_scene.render.resolution_percentage = 4, 1
+    with pytest.raises(core.SceneError, match=r"render resolution_x: 0 pixels after the 1% scale"):
+        export.render_settings(sample_scene)
+    with pytest.raises(RuntimeError, match="Image too small|resolution"):
+        bpy_with_whitted.ops.render.render()
