@@ -126,3 +126,9 @@ def test_zero_resolution_is_reported(sample_scene, bpy_with_whitted):
         export.render_settings(sample_scene)
     with pytest.raises(RuntimeError, match="Image too small|resolution"):
         bpy_with_whitted.ops.render.render()
+
+
+def test_orthographic_camera_is_reported(sample_scene, bpy_with_whitted):
+    sample_scene.camera.data.type = "ORTHO"
+    with pytest.raises(RuntimeError, match=r"camera 'Camera': lens type: is ORTHO;.*Perspective"):
+        bpy_with_whitted.ops.render.render()
