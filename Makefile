@@ -55,15 +55,15 @@ render: setup
 samples: setup
 	$(BLENDER_RUN) --factory-startup --addons whitted --python sample_blends/build_samples.py
 
-lint: setup
+lint: $(VENV)/.installed
 	$(VENV)/bin/ruff check .
 	$(VENV)/bin/ruff format --check .
 
-format: setup
+format: $(VENV)/.installed
 	$(VENV)/bin/ruff format .
 	$(VENV)/bin/ruff check --fix .
 
-test: lint
+test: setup lint
 	$(VENV)/bin/python -m pytest
 
 bench: setup

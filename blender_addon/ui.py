@@ -36,10 +36,14 @@ class WhittedPanel:
     bl_space_type = "PROPERTIES"
     bl_region_type = "WINDOW"
     COMPAT_ENGINES = {ENGINE}
+    # The context member (e.g. "material") the panel edits; it shows only when there is one
+    context_member = None
 
     @classmethod
     def poll(cls, context):
-        return context.engine in cls.COMPAT_ENGINES
+        if context.engine not in cls.COMPAT_ENGINES:
+            return False
+        return cls.context_member is None or getattr(context, cls.context_member, None) is not None
 
 
 class WHITTED_PT_render(WhittedPanel, bpy.types.Panel):
@@ -72,10 +76,7 @@ class WHITTED_PT_object_shape(WhittedPanel, bpy.types.Panel):
 class WHITTED_PT_material(WhittedPanel, bpy.types.Panel):
     bl_label = "Whitted Material"
     bl_context = "material"
-
-    @classmethod
-    def poll(cls, context):
-        return super().poll(context) and context.material is not None
+    context_member = "material"
 
     def draw(self, context):
         layout = self.layout
@@ -93,10 +94,7 @@ class WHITTED_PT_material(WhittedPanel, bpy.types.Panel):
 class WHITTED_PT_light(WhittedPanel, bpy.types.Panel):
     bl_label = "Whitted Light"
     bl_context = "data"
-
-    @classmethod
-    def poll(cls, context):
-        return super().poll(context) and context.light is not None
+    context_member = "light"
 
     def draw(self, context):
         layout = self.layout
@@ -110,10 +108,7 @@ class WHITTED_PT_light(WhittedPanel, bpy.types.Panel):
 class WHITTED_PT_world(WhittedPanel, bpy.types.Panel):
     bl_label = "Whitted World"
     bl_context = "world"
-
-    @classmethod
-    def poll(cls, context):
-        return super().poll(context) and context.world is not None
+    context_member = "world"
 
     def draw(self, context):
         layout = self.layout

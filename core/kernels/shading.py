@@ -10,7 +10,7 @@ import math
 
 from core.jit import kernel
 from core.kernels.trace import occluded, spawn_point
-from core.kernels.vec import add, as_tuple, dot, mul, normalize, row, scale, sub
+from core.kernels.vec import add, as_tuple, dot, mul, row, scale, sub
 
 
 @kernel
@@ -44,8 +44,9 @@ def shade(ps, shape, p, n, d, ray_origin):
         )
         reflectance = scale(kd, n_dot_l)
         if has_specular:
+            # Unit length already: n and light_dir are unit vectors
             reflected = sub(scale(n, 2.0 * n_dot_l), light_dir)
-            r_dot_v = dot(normalize(reflected), to_viewer)
+            r_dot_v = dot(reflected, to_viewer)
             if r_dot_v > 0.0:
                 reflectance = add(reflectance, scale(ks, r_dot_v**shininess))
         colour = add(colour, mul(reflectance, radiance))

@@ -132,3 +132,11 @@ def test_orthographic_camera_is_reported(sample_scene, bpy_with_whitted):
     sample_scene.camera.data.type = "ORTHO"
     with pytest.raises(RuntimeError, match=r"camera 'Camera': lens type: is ORTHO;.*Perspective"):
         bpy_with_whitted.ops.render.render()
+
+
+def test_non_camera_object_as_scene_camera_is_reported(sample_scene, bpy_with_whitted):
+    export = sys.modules["whitted.export"]
+    sample_scene.camera = sample_scene.objects["Key"]  # Blender accepts any object here
+    depsgraph = bpy_with_whitted.context.evaluated_depsgraph_get()
+    with pytest.raises(core.SceneError, match=r"camera 'Key': type: is a LIGHT object"):
+        export.export_camera(sample_scene, depsgraph, export.render_settings(sample_scene))
