@@ -6,13 +6,33 @@ from core import Camera, Material, PointLight, RenderSettings, Scene, Sphere, re
 from core.errors import SceneError
 from core.image_io import save_png
 from core.render import RenderOutput, RenderStats, Tile, render, split_into_tiles
-from core.scene import Camera, Material, PointLight, RenderSettings, Scene, Sphere
+from core.scene import (
+    AreaLight,
+    Box,
+    Camera,
+    Cone,
+    Cylinder,
+    Material,
+    Mesh,
+    PointLight,
+    RenderSettings,
+    Scene,
+    Sphere,
+    Texture,
+    Torus,
+    TriangleMesh,
+)
 from core.version import VERSION
 
 __all__ = [
     "VERSION",
+    "AreaLight",
+    "Box",
     "Camera",
+    "Cone",
+    "Cylinder",
     "Material",
+    "Mesh",
     "PointLight",
     "RenderOutput",
     "RenderSettings",
@@ -20,7 +40,10 @@ __all__ = [
     "Scene",
     "SceneError",
     "Sphere",
+    "Texture",
     "Tile",
+    "Torus",
+    "TriangleMesh",
     "render",
     "save_png",
     "split_into_tiles",

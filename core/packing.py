@@ -1,8 +1,10 @@
 """Compile a `Scene` into `PackedScene`: the flat arrays that are all the kernels ever see.
 
-The order is fixed: validate, then camera, materials (shapes refer to them by index), shapes,
-lights. Every array has a fixed dtype and rank whatever the scene, so the kernels compile once
-and load from the cache for every scene after.
+The order is fixed: validate, then camera, materials and textures (shapes refer to them by
+index), meshes (each `TriangleMesh` once), shapes, the top-level BVH over the shapes, lights.
+Every array has a fixed dtype and rank whatever the scene, so the kernels compile once and
+load from the cache for every scene after. Scenes without some feature get empty arrays, and
+the kernels do no work for it.
 """
 
 from __future__ import annotations
@@ -12,10 +14,51 @@ from typing import NamedTuple
 
 import numpy as np
 
-from core.kernels.shapes import SHAPE_SPHERE
-from core.scene import RenderSettings, Scene, Sphere
+from core.kernels.bvh_build import build_bvh
+from core.kernels.options import (
+    OPTION_COUNT,
+    OPTION_MAX_DEPTH,
+    OPTION_PIXEL_JITTER,
+    OPTION_PIXEL_SAMPLES,
+    OPTION_SEED,
+    OPTION_SHADOW_SAMPLES,
+    OPTION_SHADOW_STRATIFIED,
+)
+from core.kernels.shapes import (
+    SHAPE_BOX,
+    SHAPE_CONE,
+    SHAPE_CYLINDER,
+    SHAPE_MESH,
+    SHAPE_SPHERE,
+    SHAPE_TORUS,
+)
+from core.mesh_packing import MeshTables, add_mesh, concatenated
+from core.scene import (
+    AreaLight,
+    Box,
+    Cone,
+    Cylinder,
+    Mesh,
+    PointLight,
+    RenderSettings,
+    Scene,
+    Sphere,
+    Torus,
+)
+from core.textures import load_texture
 
-SHAPE_KIND_OF_CLASS = {Sphere: SHAPE_SPHERE}
+SHAPE_KIND_OF_CLASS = {
+    Sphere: SHAPE_SPHERE,
+    Box: SHAPE_BOX,
+    Cylinder: SHAPE_CYLINDER,
+    Cone: SHAPE_CONE,
+    Torus: SHAPE_TORUS,
+    Mesh: SHAPE_MESH,
+}
+
+# Top-level leaves: shapes per leaf, and the node-visit cost relative to one shape test
+_TOP_MAX_LEAF = 2
+_TOP_TRAVERSAL_COST = 1.0
 
 
 class PackedScene(NamedTuple):
@@ -24,21 +67,71 @@ class PackedScene(NamedTuple):
     # rows: eye, forward (unit), right (scaled by the half-width of the image plane at
     # distance 1), up (scaled by its half-height)
     camera: np.ndarray  # float64 (4, 3)
+    lens: np.ndarray  # float64 (2,): aperture radius, focal distance
     ambient: np.ndarray  # float64 (3,)
     background: np.ndarray  # float64 (3,)
+    options: np.ndarray  # int64 (OPTION_COUNT,)
+    # shapes
     shape_kind: np.ndarray  # int32 (n,)
     shape_material: np.ndarray  # int32 (n,): row in material_*
     shape_object_from_world: np.ndarray  # float64 (n, 3, 4): affine rows, inverse transform
-    material_diffuse: np.ndarray  # float64 (m, 3)
-    material_specular: np.ndarray  # float64 (m, 3)
-    material_shininess: np.ndarray  # float64 (m,)
+    shape_param: np.ndarray  # float64 (n, 2): torus major and minor radius
+    shape_mesh: np.ndarray  # int32 (n,): row in mesh_* for meshes, else -1
+    # top-level BVH over shapes, world space (see core.kernels.bvh_build)
+    top_bounds: np.ndarray  # float64 (k, 6): lo xyz, hi xyz
+    top_info: np.ndarray  # int32 (k, 2)
+    top_order: np.ndarray  # int32 (n,): shapes in leaf order
+    # meshes: per mesh
+    mesh_root: np.ndarray  # int32 (m,): its BVH's root in node_*
+    mesh_tri_offset: np.ndarray  # int64 (m,): its first triangle in tri_*
+    mesh_normal_offset: np.ndarray  # int64 (m,): its first row in tri_normal_index, or -1
+    mesh_uv_offset: np.ndarray  # int64 (m,): its first row in tri_uv_index, or -1
+    # meshes: all BVH nodes, triangles and vertices, concatenated
+    node_bounds: np.ndarray  # float32 (nodes, 6)
+    node_info: np.ndarray  # int32 (nodes, 2): global node or triangle indices
+    tri_vertices: np.ndarray  # int32 (t, 3): rows of vertices
+    tri_smooth: np.ndarray  # uint8 (t,): 1 if the face is smooth shaded
+    vertices: np.ndarray  # float32 (v, 3), object space
+    tri_normal_index: np.ndarray  # int32 (rows, 3): rows of normals per corner
+    normals: np.ndarray  # float32 (r, 3)
+    tri_uv_index: np.ndarray  # int32 (rows, 3): rows of uvs per corner
+    uvs: np.ndarray  # float32 (r, 2)
+    # materials
+    material_diffuse: np.ndarray  # float64 (q, 3)
+    material_specular: np.ndarray  # float64 (q, 3)
+    material_shininess: np.ndarray  # float64 (q,)
+    material_reflectivity: np.ndarray  # float64 (q,)
+    material_transparency: np.ndarray  # float64 (q,)
+    material_ior: np.ndarray  # float64 (q, 2): outer, inner
+    material_texture: np.ndarray  # int32 (q,): row in texture_*, or -1
+    texture_pixels: np.ndarray  # float32 (texels, 3): all images, row-major, top row first
+    texture_offset: np.ndarray  # int64 (x,): each image's first texel
+    texture_size: np.ndarray  # int64 (x, 2): width, height
+    # lights
     light_position: np.ndarray  # float64 (l, 3)
     light_intensity: np.ndarray  # float64 (l, 3)
     light_attenuation: np.ndarray  # float64 (l, 3): c0, c1, c2
+    area_centre: np.ndarray  # float64 (a, 3)
+    area_edge_u: np.ndarray  # float64 (a, 3)
+    area_edge_v: np.ndarray  # float64 (a, 3)
+    area_intensity: np.ndarray  # float64 (a, 3)
+    area_attenuation: np.ndarray  # float64 (a, 3)
+
+
+class CompiledScene(NamedTuple):
+    packed: PackedScene
+    warnings: list[str]
+    triangles: int  # triangles packed, each mesh counted once
+    mesh_bytes: int  # bytes of all mesh arrays (BVH nodes, triangles, vertices, normals, UVs)
 
 
 def pack_scene(scene: Scene, settings: RenderSettings) -> PackedScene:
     """Validate `scene` and `settings`, then pack them. Raises `SceneError` on bad input."""
+    return compile_scene(scene, settings).packed
+
+
+def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
+    """Validate and pack, returning the warnings (such as degenerate triangles dropped)."""
     scene.validate()
     settings.validate()
 
@@ -46,27 +139,139 @@ def pack_scene(scene: Scene, settings: RenderSettings) -> PackedScene:
     for shape in scene.shapes:
         if id(shape.material) not in material_index:
             material_index[id(shape.material)] = len(materials)
-            materials.append(shape.material)
+            materials.append((shape.material, shape.owner))
+    textures, texture_index = [], {}
+    for material, user in materials:
+        texture = material.texture
+        if texture is not None and id(texture) not in texture_index:
+            owner = f"material '{material.name}' (on {user})"
+            texture_index[id(texture)] = len(textures)
+            textures.append(load_texture(texture, owner))
+
+    tables, mesh_index = MeshTables(), {}
+    for shape in scene.shapes:
+        if isinstance(shape, Mesh) and id(shape.mesh) not in mesh_index:
+            mesh_index[id(shape.mesh)] = add_mesh(tables, shape.mesh)
 
     n = len(scene.shapes)
     object_from_world = np.empty((n, 3, 4))
+    param = np.zeros((n, 2))
+    shape_mesh = np.full(n, -1, np.int32)
+    lo, hi = np.empty((n, 3)), np.empty((n, 3))
     for i, shape in enumerate(scene.shapes):
-        object_from_world[i] = np.linalg.inv(np.asarray(shape.world_from_object, float))[:3]
+        world_from_object = np.asarray(shape.world_from_object, float)
+        object_from_world[i] = np.linalg.inv(world_from_object)[:3]
+        box_lo, box_hi = np.full(3, -1.0), np.full(3, 1.0)
+        if isinstance(shape, Torus):
+            param[i] = shape.major_radius, shape.minor_radius
+            reach = shape.major_radius + shape.minor_radius
+            box_hi = np.array([reach, reach, shape.minor_radius])
+            box_lo = -box_hi
+        elif isinstance(shape, Mesh):
+            m = mesh_index[id(shape.mesh)]
+            shape_mesh[i] = m
+            box_lo, box_hi = tables.lo[m], tables.hi[m]
+        lo[i], hi[i] = _world_box(world_from_object, box_lo, box_hi)
+    top_lo, top_hi, top_info, top_order = build_bvh(lo, hi, _TOP_MAX_LEAF, _TOP_TRAVERSAL_COST)
+    if n == 0:
+        top_info = np.zeros((0, 2), np.int32)
 
-    return PackedScene(
+    point_lights = [lt for lt in scene.lights if isinstance(lt, PointLight)]
+    area_lights = [lt for lt in scene.lights if isinstance(lt, AreaLight)]
+
+    def rows(values, width=3):
+        return np.array(values, float).reshape(-1, width)
+
+    packed = PackedScene(
         camera=_pack_camera(scene, settings),
+        lens=np.array([scene.camera.aperture_radius, scene.camera.focal_distance], float),
         ambient=np.asarray(scene.ambient, float),
         background=np.asarray(scene.background, float),
+        options=_pack_options(settings),
         shape_kind=np.array([SHAPE_KIND_OF_CLASS[type(s)] for s in scene.shapes], np.int32),
         shape_material=np.array([material_index[id(s.material)] for s in scene.shapes], np.int32),
         shape_object_from_world=object_from_world,
-        material_diffuse=np.array([m.diffuse for m in materials], float).reshape(-1, 3),
-        material_specular=np.array([m.specular for m in materials], float).reshape(-1, 3),
-        material_shininess=np.array([m.shininess for m in materials], float),
-        light_position=np.array([lt.position for lt in scene.lights], float).reshape(-1, 3),
-        light_intensity=np.array([lt.intensity for lt in scene.lights], float).reshape(-1, 3),
-        light_attenuation=np.array([lt.attenuation for lt in scene.lights], float).reshape(-1, 3),
+        shape_param=param,
+        shape_mesh=shape_mesh,
+        top_bounds=np.ascontiguousarray(np.hstack([top_lo, top_hi])),
+        top_info=np.ascontiguousarray(top_info, np.int32),
+        top_order=np.ascontiguousarray(top_order, np.int32),
+        mesh_root=np.array(tables.root, np.int32),
+        mesh_tri_offset=np.array(tables.tri_offset, np.int64),
+        mesh_normal_offset=np.array(tables.normal_offset, np.int64),
+        mesh_uv_offset=np.array(tables.uv_offset, np.int64),
+        node_bounds=concatenated(tables.node_bounds, (0, 6), np.float32),
+        node_info=concatenated(tables.node_info, (0, 2), np.int32),
+        tri_vertices=concatenated(tables.tri_vertices, (0, 3), np.int32),
+        tri_smooth=concatenated(tables.tri_smooth, (0,), np.uint8),
+        vertices=concatenated(tables.vertices, (0, 3), np.float32),
+        tri_normal_index=concatenated(tables.tri_normal_index, (0, 3), np.int32),
+        normals=concatenated(tables.normals, (0, 3), np.float32),
+        tri_uv_index=concatenated(tables.tri_uv_index, (0, 3), np.int32),
+        uvs=concatenated(tables.uvs, (0, 2), np.float32),
+        material_diffuse=rows([m.diffuse for m, _ in materials]),
+        material_specular=rows([m.specular for m, _ in materials]),
+        material_shininess=np.array([m.shininess for m, _ in materials], float),
+        material_reflectivity=np.array([m.reflectivity for m, _ in materials], float),
+        material_transparency=np.array([m.transparency for m, _ in materials], float),
+        material_ior=rows([(m.outer_ior, m.inner_ior) for m, _ in materials], 2),
+        material_texture=np.array(
+            [texture_index.get(id(m.texture), -1) for m, _ in materials], np.int32
+        ),
+        texture_pixels=concatenated([t.reshape(-1, 3) for t in textures], (0, 3), np.float32),
+        texture_offset=np.cumsum([0] + [t.shape[0] * t.shape[1] for t in textures])[:-1].astype(
+            np.int64
+        ),
+        texture_size=np.array([(t.shape[1], t.shape[0]) for t in textures], np.int64).reshape(
+            -1, 2
+        ),
+        light_position=rows([lt.position for lt in point_lights]),
+        light_intensity=rows([lt.intensity for lt in point_lights]),
+        light_attenuation=rows([lt.attenuation for lt in point_lights]),
+        area_centre=rows([lt.centre for lt in area_lights]),
+        area_edge_u=rows([lt.edge_u for lt in area_lights]),
+        area_edge_v=rows([lt.edge_v for lt in area_lights]),
+        area_intensity=rows([lt.intensity for lt in area_lights]),
+        area_attenuation=rows([lt.attenuation for lt in area_lights]),
     )
+    warnings = [
+        f"mesh '{name}': dropped {count} degenerate (zero-area) triangle"
+        + ("s" if count != 1 else "")
+        for name, count in tables.dropped.items()
+    ]
+    mesh_fields = [
+        "node_bounds",
+        "node_info",
+        "tri_vertices",
+        "tri_smooth",
+        "vertices",
+        "tri_normal_index",
+        "normals",
+        "tri_uv_index",
+        "uvs",
+    ]
+    mesh_bytes = sum(getattr(packed, name).nbytes for name in mesh_fields)
+    return CompiledScene(packed, warnings, tables.counts["tris"], mesh_bytes)
+
+
+def _world_box(world_from_object, lo, hi):
+    """World box around the object box lo..hi, padded against rounding."""
+    corners = np.array(np.meshgrid(*zip(lo, hi, strict=True), indexing="ij")).reshape(3, 8).T
+    world = corners @ world_from_object[:3, :3].T + world_from_object[:3, 3]
+    w_lo, w_hi = world.min(axis=0), world.max(axis=0)
+    pad = 1e-12 * (np.abs(w_lo).max() + np.abs(w_hi).max())
+    return w_lo - pad, w_hi + pad
+
+
+def _pack_options(settings: RenderSettings) -> np.ndarray:
+    options = np.zeros(OPTION_COUNT, np.int64)
+    options[OPTION_MAX_DEPTH] = settings.max_depth
+    options[OPTION_PIXEL_SAMPLES] = settings.pixel_samples
+    options[OPTION_PIXEL_JITTER] = settings.pixel_sampling == "jittered"
+    options[OPTION_SHADOW_SAMPLES] = settings.shadow_samples
+    options[OPTION_SHADOW_STRATIFIED] = settings.shadow_sampling == "stratified"
+    options[OPTION_SEED] = settings.seed
+    return options
 
 
 def _pack_camera(scene: Scene, settings: RenderSettings) -> np.ndarray:

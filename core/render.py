@@ -19,7 +19,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from core.kernels.render_tile import render_tile
-from core.packing import PackedScene, pack_scene
+from core.kernels.workspace import new_workspace
+from core.packing import PackedScene, compile_scene
 from core.scene import RenderSettings, Scene
 
 # How often the driver asks "cancelled?" while tiles are still running.
@@ -51,6 +52,7 @@ class RenderOutput:
     image: np.ndarray  # float32 (height, width, 4) linear RGBA, row 0 at the top
     stats: RenderStats
     cancelled: bool
+    warnings: list[str]  # things the scene asked for that were left out (each once)
 
 
 TileCallback = Callable[[Tile, np.ndarray, int, int], None]
@@ -79,7 +81,8 @@ def prepare_kernels(packed: PackedScene) -> tuple[float, str]:
     already = bool(render_tile.signatures)
     hits_before = sum(render_tile.stats.cache_hits.values())
     start = time.perf_counter()
-    render_tile(packed, 1, 1, 0, 0, 0, 0, np.empty((0, 0, 4), np.float32))
+    empty = np.empty((0, 0, 4), np.float32)
+    render_tile(packed, 1, 1, 0, 0, 0, 0, empty, new_workspace(0))
     seconds = time.perf_counter() - start
     if already:
         return seconds, "memory"
@@ -100,7 +103,8 @@ def render(
     polled between tiles; once it says True no new tile starts and render returns with
     `cancelled` set and the unrendered pixels zero.
     """
-    packed = pack_scene(scene, settings)
+    compiled = compile_scene(scene, settings)
+    packed = compiled.packed
     kernel_s, kernel_source = prepare_kernels(packed)
     threads = settings.threads or available_threads()
     tiles = split_into_tiles(settings.pixel_region(), settings.tile_size)
@@ -108,8 +112,17 @@ def render(
 
     def render_one(tile: Tile) -> np.ndarray:
         pixels = np.empty((tile.height, tile.width, 4), np.float32)
+        workspace = new_workspace(settings.max_depth)
         render_tile(
-            packed, settings.width, settings.height, tile.x, tile.y, tile.width, tile.height, pixels
+            packed,
+            settings.width,
+            settings.height,
+            tile.x,
+            tile.y,
+            tile.width,
+            tile.height,
+            pixels,
+            workspace,
         )
         return pixels
 
@@ -148,4 +161,4 @@ def render(
         tiles_total=len(tiles),
         threads=threads,
     )
-    return RenderOutput(image=image, stats=stats, cancelled=cancelled)
+    return RenderOutput(image=image, stats=stats, cancelled=cancelled, warnings=compiled.warnings)

@@ -1,44 +1,93 @@
-"""The per-tile megakernel: camera rays for a rectangle of pixels, traced and shaded."""
+"""The per-tile megakernel: camera rays for a rectangle of pixels, traced and averaged.
 
-import numpy as np
+A pixel averages n x n camera rays, one per cell of an n x n grid over the pixel: at the
+cell centres ("grid", the report's 3 x 3 supersampling when n = 3) or at a random point in
+each cell ("jittered"). With a lens (aperture > 0) each ray starts at a point on the lens,
+also stratified over n x n cells of the lens (in a shuffled order, so that the pixel and
+lens positions are not correlated), and aims at where the pinhole ray meets the plane in
+focus. With aperture 0 the lens code does not run: the pinhole picture, exactly.
+"""
+
+import math
 
 from core.jit import kernel
-from core.kernels.shading import shade
-from core.kernels.trace import closest_hit, world_normal
-from core.kernels.vec import add, as_tuple, normalize, row, scale
+from core.kernels.integrator import trace_ray
+from core.kernels.options import OPTION_PIXEL_JITTER, OPTION_PIXEL_SAMPLES, OPTION_SEED
+from core.kernels.rng import PURPOSE_LENS, PURPOSE_PIXEL, sample_key, uniform2
+from core.kernels.vec import add, normalize, row, scale, sub
 
 
 @kernel
-def camera_ray_direction(ps, image_width, image_height, px, py):
-    """Unit direction through the centre of pixel (px, py), py counted from the top row."""
-    sx = 2.0 * (px + 0.5) / image_width - 1.0
-    sy = 1.0 - 2.0 * (py + 0.5) / image_height
-    d = add(row(ps.camera, 1), add(scale(row(ps.camera, 2), sx), scale(row(ps.camera, 3), sy)))
-    return normalize(d)
+def concentric_disk(a, b):
+    """Map the unit square onto the unit disk keeping strata compact (Shirley and Chiu)."""
+    x, y = 2.0 * a - 1.0, 2.0 * b - 1.0
+    if x == 0.0 and y == 0.0:
+        return 0.0, 0.0
+    if abs(x) > abs(y):
+        r, phi = x, (math.pi / 4.0) * (y / x)
+    else:
+        r, phi = y, math.pi / 2.0 - (math.pi / 4.0) * (x / y)
+    return r * math.cos(phi), r * math.sin(phi)
 
 
 @kernel
-def trace_camera_ray(ps, o, d):
-    shape, t = closest_hit(ps, o, d, np.inf)
-    if shape < 0:
-        return as_tuple(ps.background)
-    p = add(o, scale(d, t))
-    return shade(ps, shape, p, world_normal(ps, shape, p), d, o)
+def _lens_cell(sample, cells):
+    """A fixed shuffle of the cells: a stride coprime to their number, near its golden cut."""
+    stride = max(1, int(cells * 0.6180339887498949))
+    while math.gcd(stride, cells) != 1:
+        stride += 1
+    return (sample * stride + cells // 2) % cells
 
 
 @kernel
-def render_tile(ps, image_width, image_height, x0, y0, width, height, out):
+def camera_ray(ps, image_width, image_height, px, py, sample, key):
+    """(origin, unit direction) of camera sample `sample` of pixel (px, py), py from the top."""
+    n = ps.options[OPTION_PIXEL_SAMPLES]
+    cx, cy = sample % n, sample // n
+    jx, jy = 0.5, 0.5
+    if ps.options[OPTION_PIXEL_JITTER] != 0:
+        jx, jy = uniform2(key, PURPOSE_PIXEL, 0, 0)
+    sx = 2.0 * (px + (cx + jx) / n) / image_width - 1.0
+    sy = 1.0 - 2.0 * (py + (cy + jy) / n) / image_height
+    eye = row(ps.camera, 0)
+    right, up = row(ps.camera, 2), row(ps.camera, 3)
+    d = add(row(ps.camera, 1), add(scale(right, sx), scale(up, sy)))
+    aperture = ps.lens[0]
+    if aperture == 0.0:
+        return eye, normalize(d)
+    # d has unit length along the view direction, so eye + f d lies on the focal plane
+    focus = add(eye, scale(d, ps.lens[1]))
+    cell = _lens_cell(sample, n * n)
+    a, b = uniform2(key, PURPOSE_LENS, 0, 0)
+    lx, ly = concentric_disk(((cell % n) + a) / n, ((cell // n) + b) / n)
+    origin = add(
+        eye, add(scale(normalize(right), aperture * lx), scale(normalize(up), aperture * ly))
+    )
+    return origin, normalize(sub(focus, origin))
+
+
+@kernel
+def render_tile(ps, image_width, image_height, x0, y0, width, height, out, ws):
     """Fill out[:height, :width] (float32 RGBA) with pixels x0.. and y0.. of the image.
 
     Pixels depend only on their image coordinates, never on the tile, so any tiling of the
     image gives the same picture.
     """
-    eye = row(ps.camera, 0)
+    n = ps.options[OPTION_PIXEL_SAMPLES]
+    samples = n * n
+    seed = ps.options[OPTION_SEED]
     for j in range(height):
         for i in range(width):
-            d = camera_ray_direction(ps, image_width, image_height, x0 + i, y0 + j)
-            colour = trace_camera_ray(ps, eye, d)
-            out[j, i, 0] = colour[0]
-            out[j, i, 1] = colour[1]
-            out[j, i, 2] = colour[2]
+            px, py = x0 + i, y0 + j
+            r = g = b = 0.0
+            for s in range(samples):
+                key = sample_key(seed, px, py, s)
+                o, d = camera_ray(ps, image_width, image_height, px, py, s, key)
+                colour = trace_ray(ps, o, d, key, ws)
+                r += colour[0]
+                g += colour[1]
+                b += colour[2]
+            out[j, i, 0] = r / samples
+            out[j, i, 1] = g / samples
+            out[j, i, 2] = b / samples
             out[j, i, 3] = 1.0

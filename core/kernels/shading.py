@@ -1,53 +1,117 @@
-"""The report's lighting model: ambient + per light diffuse and Phong specular, hard shadows.
+"""The report's lighting model at one surface point: ambient + per light diffuse and Phong.
 
     colour = kd * ambient
-           + sum over lights of (kd (N.L) + ks (R.V)^p) * I / (c0 + c1 d + c2 d^2)
+           + sum over lights of (kd (N.L) + ks (R.V)^p) * I / (c0 + c1 d + c2 d^2) * visibility
 
-where a light contributes only if N.L > 0 and nothing lies between the point and the light.
+A point light's visibility is its shadow ray's transmittance (0 behind an opaque object).
+An area light is the average of that sum over points spread on its rectangle: N shadow
+rays, one in each of N equal-area cells ("stratified"), or at N independent random points
+("uniform", the report's way). A light contributes only where N.L > 0.
 """
 
 import math
 
 from core.jit import kernel
-from core.kernels.trace import occluded, spawn_point
+from core.kernels.options import OPTION_SHADOW_SAMPLES, OPTION_SHADOW_STRATIFIED
+from core.kernels.rng import PURPOSE_LIGHT, uniform2
+from core.kernels.trace import transmittance
 from core.kernels.vec import add, as_tuple, dot, mul, row, scale, sub
 
 
 @kernel
-def shade(ps, shape, p, n, d, ray_origin):
-    """Colour seen along unit direction d at point p of `shape` with unit outward normal n."""
-    material = ps.shape_material[shape]
-    kd = row(ps.material_diffuse, material)
-    ks = row(ps.material_specular, material)
-    shininess = ps.material_shininess[material]
-    has_specular = ks[0] > 0.0 or ks[1] > 0.0 or ks[2] > 0.0
+def light_from(ps, position, intensity, attenuation, origin, n, to_viewer, kd, ks, shininess, ws):
+    """What one point emitter at `position` adds at a point (spawned at `origin`)."""
+    to_light = sub(position, origin)
+    distance = math.sqrt(dot(to_light, to_light))
+    if distance == 0.0:
+        return 0.0, 0.0, 0.0
+    light_dir = scale(to_light, 1.0 / distance)
+    n_dot_l = dot(n, light_dir)
+    if n_dot_l <= 0.0:
+        return 0.0, 0.0, 0.0
+    visible = transmittance(ps, origin, light_dir, distance, ws)
+    if visible == 0.0:
+        return 0.0, 0.0, 0.0
+    c0, c1, c2 = attenuation
+    radiance = scale(intensity, visible / (c0 + c1 * distance + c2 * distance * distance))
+    reflectance = scale(kd, n_dot_l)
+    if ks[0] > 0.0 or ks[1] > 0.0 or ks[2] > 0.0:
+        # Unit length already: n and light_dir are unit vectors
+        reflected = sub(scale(n, 2.0 * n_dot_l), light_dir)
+        r_dot_v = dot(reflected, to_viewer)
+        if r_dot_v > 0.0:
+            reflectance = add(reflectance, scale(ks, r_dot_v**shininess))
+    return mul(reflectance, radiance)
 
-    # Shade the side the ray arrived from: a ray from inside sees the inner face
-    if dot(n, d) > 0.0:
-        n = scale(n, -1.0)
+
+@kernel
+def stratified_cell(j, count):
+    """Cell j of `count` equal-area cells tiling the unit square: (x0, y0, width, height).
+
+    Rows of ceil(sqrt(count)) cells; a short last row gets wider cells and a taller row, so
+    every cell has area 1/count and the cells cover the square exactly once."""
+    columns = int(math.ceil(math.sqrt(count)))
+    rows = (count + columns - 1) // columns
+    r = j // columns
+    in_row = columns if r < rows - 1 else count - columns * (rows - 1)
+    height = in_row / count
+    y0 = columns * r / count
+    return (j - r * columns) / in_row, y0, 1.0 / in_row, height
+
+
+@kernel
+def local_colour(ps, origin, n, d, kd, ks, shininess, key, event, ws):
+    """Colour at a point seen along unit d, with unit shading normal n facing the viewer;
+    shadow rays start at `origin` (the point lifted off the surface). `key` and `event`
+    select the area lights' random numbers."""
     to_viewer = scale(d, -1.0)
-    origin = spawn_point(p, n, ray_origin)
-
     colour = mul(kd, as_tuple(ps.ambient))
     for light in range(ps.light_position.shape[0]):
-        to_light = sub(row(ps.light_position, light), origin)
-        distance = math.sqrt(dot(to_light, to_light))
-        if distance == 0.0:
-            continue
-        light_dir = scale(to_light, 1.0 / distance)
-        n_dot_l = dot(n, light_dir)
-        if n_dot_l <= 0.0 or occluded(ps, origin, light_dir, distance):
-            continue
-        c0, c1, c2 = row(ps.light_attenuation, light)
-        radiance = scale(
-            row(ps.light_intensity, light), 1.0 / (c0 + c1 * distance + c2 * distance**2)
+        colour = add(
+            colour,
+            light_from(
+                ps,
+                row(ps.light_position, light),
+                row(ps.light_intensity, light),
+                row(ps.light_attenuation, light),
+                origin,
+                n,
+                to_viewer,
+                kd,
+                ks,
+                shininess,
+                ws,
+            ),
         )
-        reflectance = scale(kd, n_dot_l)
-        if has_specular:
-            # Unit length already: n and light_dir are unit vectors
-            reflected = sub(scale(n, 2.0 * n_dot_l), light_dir)
-            r_dot_v = dot(reflected, to_viewer)
-            if r_dot_v > 0.0:
-                reflectance = add(reflectance, scale(ks, r_dot_v**shininess))
-        colour = add(colour, mul(reflectance, radiance))
+    samples = ps.options[OPTION_SHADOW_SAMPLES]
+    stratified = ps.options[OPTION_SHADOW_STRATIFIED] != 0
+    for light in range(ps.area_centre.shape[0]):
+        centre = row(ps.area_centre, light)
+        edge_u, edge_v = row(ps.area_edge_u, light), row(ps.area_edge_v, light)
+        intensity = row(ps.area_intensity, light)
+        attenuation = row(ps.area_attenuation, light)
+        total = (0.0, 0.0, 0.0)
+        for j in range(samples):
+            a, b = uniform2(key, PURPOSE_LIGHT, event * 65536 + light, j)
+            if stratified:
+                x0, y0, w, h = stratified_cell(j, samples)
+                a, b = x0 + a * w, y0 + b * h
+            position = add(centre, add(scale(edge_u, a - 0.5), scale(edge_v, b - 0.5)))
+            total = add(
+                total,
+                light_from(
+                    ps,
+                    position,
+                    intensity,
+                    attenuation,
+                    origin,
+                    n,
+                    to_viewer,
+                    kd,
+                    ks,
+                    shininess,
+                    ws,
+                ),
+            )
+        colour = add(colour, scale(total, 1.0 / samples))
     return colour

@@ -1,19 +1,22 @@
-"""Rays against the whole scene: nearest hit, any hit, and where secondary rays start.
+"""Rays against the whole scene through the two-level BVH: nearest hit and shadow rays.
 
-The shape loop is linear for now; the BVH replaces it behind these same two functions.
+The top level is a BVH over the shapes' world-space boxes. At a leaf the ray is carried into
+each shape's object space; an analytic shape is solved there, a mesh instance descends into
+its own BVH (built once per `TriangleMesh`, shared by all its instances). Traversal is
+front-to-back with a fixed-size stack per level (from the `Workspace`), so nearer boxes are
+opened first and farther ones skipped once a nearer hit is known.
+
+Boxes are tested with the slab method; the far distance is widened by 2 gamma_3 (Ize 2013)
+so that rounding never culls a box a ray truly crosses. Mesh boxes are float32 corners of
+float32 vertices, so they are exact; the arithmetic is float64.
 """
 
 from core.jit import kernel
-from core.kernels.shapes import NO_HIT, intersect_shape, object_normal
-from core.kernels.vec import (
-    add,
-    affine_point,
-    affine_transpose_vector,
-    affine_vector,
-    max_abs,
-    normalize,
-    scale,
-)
+from core.kernels.shapes import NO_HIT, SHAPE_MESH, count_crossings, intersect_analytic
+from core.kernels.triangles import intersect_triangle, shear_setup
+from core.kernels.vec import add, affine_point, affine_vector, max_abs, scale
+
+_WIDEN = 1.0 + 6.0 * 2.0**-53
 
 # Secondary rays start this far off the surface, relative to the magnitude of the
 # coordinates involved: float64 hit points are accurate to a few ulps of that magnitude, so a
@@ -24,38 +27,224 @@ SPAWN_OFFSET_ABSOLUTE = 1e-30
 
 
 @kernel
-def closest_hit(ps, o, d, t_max):
-    """(shape index, t) of the nearest hit along o + t d with 0 < t < t_max; (-1, NO_HIT)."""
-    best_shape = -1
-    best_t = t_max
-    for i in range(ps.shape_kind.shape[0]):
-        m = ps.shape_object_from_world[i]
-        t = intersect_shape(ps.shape_kind[i], affine_point(m, o), affine_vector(m, d), 0.0, best_t)
-        if t < best_t:
-            best_t = t
-            best_shape = i
-    if best_shape < 0:
-        return -1, NO_HIT
-    return best_shape, best_t
+def box_entry(bounds, k, o, inv, t_max):
+    """Entry distance of the ray into box k of bounds (n, 6) = (lo xyz, hi xyz) within
+    [0, t_max]; NO_HIT when it misses. NaNs (a ray in a box's face plane) are ignored."""
+    t_near = 0.0
+    t_far = t_max
+    for a in range(3):
+        t0 = (bounds[k, a] - o[a]) * inv[a]
+        t1 = (bounds[k, a + 3] - o[a]) * inv[a]
+        if t0 > t1:
+            t0, t1 = t1, t0
+        if t0 > t_near:
+            t_near = t0
+        if t1 < t_far:
+            t_far = t1
+    if t_near <= t_far * _WIDEN:
+        return t_near
+    return NO_HIT
 
 
 @kernel
-def occluded(ps, o, d, t_max):
-    """Whether anything lies along o + t d with 0 < t < t_max (shadow rays)."""
-    for i in range(ps.shape_kind.shape[0]):
-        m = ps.shape_object_from_world[i]
-        t = intersect_shape(ps.shape_kind[i], affine_point(m, o), affine_vector(m, d), 0.0, t_max)
-        if t < t_max:
-            return True
-    return False
+def _inverse(d):
+    return (1.0 / d[0], 1.0 / d[1], 1.0 / d[2])
 
 
 @kernel
-def world_normal(ps, shape, p):
-    """Unit outward normal of `shape` at world point p (through the inverse transpose)."""
-    m = ps.shape_object_from_world[shape]
-    n_object = object_normal(ps.shape_kind[shape], affine_point(m, p))
-    return normalize(affine_transpose_vector(m, n_object))
+def mesh_closest(ps, mesh, o, d, t_max, stack, stack_t):
+    """Nearest triangle of `mesh` (object-space ray): (t, triangle, b1, b2)."""
+    inv = _inverse(d)
+    shear = shear_setup(d)
+    bounds, info, tris = ps.node_bounds, ps.node_info, ps.tri_vertices
+    best_t, best_tri, best_b1, best_b2 = t_max, -1, 0.0, 0.0
+    node = ps.mesh_root[mesh]
+    if box_entry(bounds, node, o, inv, best_t) == NO_HIT:
+        return NO_HIT, -1, 0.0, 0.0
+    top = 0
+    while True:
+        count = info[node, 1]
+        if count > 0:
+            first = info[node, 0]
+            for tri in range(first, first + count):
+                t, b1, b2 = intersect_triangle(
+                    ps.vertices, tris[tri, 0], tris[tri, 1], tris[tri, 2], o, shear, best_t
+                )
+                if t < best_t:
+                    best_t, best_tri, best_b1, best_b2 = t, tri, b1, b2
+        else:
+            child = info[node, 0]
+            t_left = box_entry(bounds, child, o, inv, best_t)
+            t_right = box_entry(bounds, child + 1, o, inv, best_t)
+            if t_left != NO_HIT and t_right != NO_HIT:
+                near, far, t_far = child, child + 1, t_right
+                if t_right < t_left:
+                    near, far, t_far = child + 1, child, t_left
+                stack[top] = far
+                stack_t[top] = t_far
+                top += 1
+                node = near
+                continue
+            if t_left != NO_HIT:
+                node = child
+                continue
+            if t_right != NO_HIT:
+                node = child + 1
+                continue
+        # Pop the nearest waiting node that could still hold a nearer hit
+        while top > 0:
+            top -= 1
+            if stack_t[top] < best_t:
+                break
+        else:
+            break
+        node = stack[top]
+    if best_tri < 0:
+        return NO_HIT, -1, 0.0, 0.0
+    return best_t, best_tri, best_b1, best_b2
+
+
+@kernel
+def mesh_crossings(ps, mesh, o, d, t_max, stop_at_first, stack):
+    """How many triangles of `mesh` the segment crosses (stopping at 1 if stop_at_first)."""
+    inv = _inverse(d)
+    shear = shear_setup(d)
+    bounds, info, tris = ps.node_bounds, ps.node_info, ps.tri_vertices
+    crossings = 0
+    stack[0] = ps.mesh_root[mesh]
+    top = 1
+    while top > 0:
+        top -= 1
+        node = stack[top]
+        if box_entry(bounds, node, o, inv, t_max) == NO_HIT:
+            continue
+        count = info[node, 1]
+        if count == 0:
+            stack[top] = info[node, 0]
+            stack[top + 1] = info[node, 0] + 1
+            top += 2
+            continue
+        first = info[node, 0]
+        for tri in range(first, first + count):
+            t, _, _ = intersect_triangle(
+                ps.vertices, tris[tri, 0], tris[tri, 1], tris[tri, 2], o, shear, t_max
+            )
+            if t < t_max:
+                crossings += 1
+                if stop_at_first:
+                    return crossings
+    return crossings
+
+
+@kernel
+def closest_hit(ps, o, d, t_max, ws):
+    """Nearest hit along o + t d with 0 < t < t_max: (shape, t, part, b1, b2).
+
+    part is the surface part for analytic shapes, the triangle for meshes; b1 and b2 are
+    barycentric weights on meshes. A miss returns (-1, NO_HIT, -1, 0, 0)."""
+    stack, stack_t = ws.top_stack, ws.top_stack_t
+    inv = _inverse(d)
+    best = (-1, t_max, -1, 0.0, 0.0)
+    if ps.top_info.shape[0] == 0 or box_entry(ps.top_bounds, 0, o, inv, t_max) == NO_HIT:
+        return -1, NO_HIT, -1, 0.0, 0.0
+    node = 0
+    top = 0
+    while True:
+        count = ps.top_info[node, 1]
+        if count > 0:
+            first = ps.top_info[node, 0]
+            for k in range(first, first + count):
+                shape = ps.top_order[k]
+                m = ps.shape_object_from_world[shape]
+                o_obj, d_obj = affine_point(m, o), affine_vector(m, d)
+                kind = ps.shape_kind[shape]
+                if kind == SHAPE_MESH:
+                    t, tri, b1, b2 = mesh_closest(
+                        ps, ps.shape_mesh[shape], o_obj, d_obj, best[1], ws.stack, ws.stack_t
+                    )
+                    if t < best[1]:
+                        best = (shape, t, tri, b1, b2)
+                else:
+                    major, minor = ps.shape_param[shape, 0], ps.shape_param[shape, 1]
+                    t, part = intersect_analytic(kind, major, minor, o_obj, d_obj, 0.0, best[1])
+                    if t < best[1]:
+                        best = (shape, t, part, 0.0, 0.0)
+        else:
+            child = ps.top_info[node, 0]
+            t_left = box_entry(ps.top_bounds, child, o, inv, best[1])
+            t_right = box_entry(ps.top_bounds, child + 1, o, inv, best[1])
+            if t_left != NO_HIT and t_right != NO_HIT:
+                near, far, t_far = child, child + 1, t_right
+                if t_right < t_left:
+                    near, far, t_far = child + 1, child, t_left
+                stack[top] = far
+                stack_t[top] = t_far
+                top += 1
+                node = near
+                continue
+            if t_left != NO_HIT:
+                node = child
+                continue
+            if t_right != NO_HIT:
+                node = child + 1
+                continue
+        while top > 0:
+            top -= 1
+            if stack_t[top] < best[1]:
+                break
+        else:
+            break
+        node = stack[top]
+    if best[0] < 0:
+        return -1, NO_HIT, -1, 0.0, 0.0
+    return best
+
+
+@kernel
+def transmittance(ps, o, d, t_max, ws):
+    """The fraction of light that passes along o + t d, 0 < t < t_max (shadow rays).
+
+    The rule for transparent objects: each crossing of a surface whose material has
+    transparency tau multiplies the light by tau, without bending or Fresnel loss (a shadow
+    ray cannot follow refraction to the light). Opaque surfaces (tau = 0) block it outright,
+    and the search stops at the first of them, as an any-hit query."""
+    stack = ws.top_stack
+    if ps.top_info.shape[0] == 0:
+        return 1.0
+    inv = _inverse(d)
+    light = 1.0
+    stack[0] = 0
+    top = 1
+    while top > 0:
+        top -= 1
+        node = stack[top]
+        if box_entry(ps.top_bounds, node, o, inv, t_max) == NO_HIT:
+            continue
+        count = ps.top_info[node, 1]
+        if count == 0:
+            stack[top] = ps.top_info[node, 0]
+            stack[top + 1] = ps.top_info[node, 0] + 1
+            top += 2
+            continue
+        first = ps.top_info[node, 0]
+        for k in range(first, first + count):
+            shape = ps.top_order[k]
+            tau = ps.material_transparency[ps.shape_material[shape]]
+            m = ps.shape_object_from_world[shape]
+            o_obj, d_obj = affine_point(m, o), affine_vector(m, d)
+            kind = ps.shape_kind[shape]
+            if kind == SHAPE_MESH:
+                crossings = mesh_crossings(
+                    ps, ps.shape_mesh[shape], o_obj, d_obj, t_max, tau == 0.0, ws.stack
+                )
+            else:
+                major, minor = ps.shape_param[shape, 0], ps.shape_param[shape, 1]
+                crossings = count_crossings(kind, major, minor, o_obj, d_obj, 0.0, t_max)
+            if crossings > 0:
+                if tau == 0.0:
+                    return 0.0
+                light *= tau**crossings
+    return light
 
 
 @kernel

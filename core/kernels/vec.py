@@ -85,3 +85,8 @@ def affine_transpose_vector(m, v):
         m[0, 1] * v[0] + m[1, 1] * v[1] + m[2, 1] * v[2],
         m[0, 2] * v[0] + m[1, 2] * v[1] + m[2, 2] * v[2],
     )
+
+
+@kernel
+def cross(a, b):
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])

@@ -1,13 +1,10 @@
 """Hit points and normals of transformed spheres against the closed-form quadric solution."""
 
-import math
-
 import numpy as np
 import pytest
 
-from core import RenderSettings, Scene, Sphere
-from core.kernels.trace import closest_hit, world_normal
-from core.packing import pack_scene
+from core import Sphere
+from tests.core.probe import hit, packed_shapes, surface
 from tests.reference_tracer import intersect_quadric, quadric_normal, sphere_quadric
 
 RNG = np.random.default_rng(20261121)
@@ -25,7 +22,7 @@ def random_affine(rng):
 @pytest.mark.parametrize("trial", range(5))
 def test_hits_and_normals_match_the_quadric(trial):
     matrix = random_affine(RNG)
-    packed = pack_scene(Scene(shapes=[Sphere(world_from_object=matrix)]), RenderSettings(8, 8))
+    packed = packed_shapes(Sphere(world_from_object=matrix))
     Q = sphere_quadric(matrix)
     centre = matrix[:3, 3]
     checked = 0
@@ -35,7 +32,7 @@ def test_hits_and_normals_match_the_quadric(trial):
         target = centre + matrix[:3, :3] @ RNG.uniform(-1.3, 1.3, size=3)
         direction = (target - origin) / np.linalg.norm(target - origin)
         roots = intersect_quadric(Q, origin, direction)
-        shape, t = closest_hit(packed, tuple(origin), tuple(direction), math.inf)
+        shape, t, *_ = hit(packed, origin, direction)
         expected = None
         if roots is not None:
             expected = next((r for r in roots if r > 0), None)
@@ -46,16 +43,14 @@ def test_hits_and_normals_match_the_quadric(trial):
             continue
         assert shape == 0
         assert t == pytest.approx(expected, rel=1e-9, abs=1e-9)
-        point = origin + t * direction
-        n = np.array(world_normal(packed, 0, tuple(point)))
+        _, _, point, n, _, _ = surface(packed, origin, direction)
         np.testing.assert_allclose(n, quadric_normal(Q, point), atol=1e-7)
         checked += 1
     assert checked > 100
 
 
 def test_ray_starting_inside_hits_the_far_side():
-    packed = pack_scene(Scene(shapes=[Sphere()]), RenderSettings(8, 8))
-    shape, t = closest_hit(packed, (0.0, 0.0, 0.0), (1.0, 0.0, 0.0), math.inf)
+    shape, t, *_ = hit(packed_shapes(Sphere()), (0.0, 0.0, 0.0), (1.0, 0.0, 0.0))
     assert shape == 0 and t == pytest.approx(1.0, abs=1e-15)
 
 
@@ -63,6 +58,6 @@ def test_distant_sphere_is_hit_precisely():
     """Far from the origin the stable discriminant keeps full precision (RTG chapter 7)."""
     matrix = np.eye(4)
     matrix[:3, 3] = (0.0, 0.0, -1e6)
-    packed = pack_scene(Scene(shapes=[Sphere(world_from_object=matrix)]), RenderSettings(8, 8))
-    shape, t = closest_hit(packed, (0.0, 0.0, 0.0), (0.0, 0.0, -1.0), math.inf)
+    packed = packed_shapes(Sphere(world_from_object=matrix))
+    shape, t, *_ = hit(packed, (0.0, 0.0, 0.0), (0.0, 0.0, -1.0))
     assert shape == 0 and t == pytest.approx(1e6 - 1.0, abs=1e-9)

@@ -1,0 +1,100 @@
+"""Argument checks shared by the scene model: each raises `SceneError` naming owner and field."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from core.errors import SceneError
+
+# A transform whose smallest singular value is below this fraction of its largest squashes
+# the shape flat: the inverse needed for object-space intersection would be meaningless.
+SINGULAR_RATIO = 1e-12
+
+
+def check_number(owner: str, name: str, value, low=None, high=None, low_open=False) -> float:
+    """A finite real number in [low, high] (or (low, high] with low_open)."""
+    valid = _range_text(low, high, low_open)
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.number)):
+        raise SceneError(owner, name, f"got {value!r}; use {valid}")
+    if not math.isfinite(value):
+        raise SceneError(owner, name, f"got {value!r}; use {valid} (finite)")
+    too_low = low is not None and (value <= low if low_open else value < low)
+    if too_low or (high is not None and value > high):
+        raise SceneError(owner, name, f"got {value!r}; use {valid}")
+    return float(value)
+
+
+def check_count(owner: str, name: str, value, low: int = 0) -> int:
+    """A whole number >= low."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < low:
+        raise SceneError(owner, name, f"got {value!r}; use a whole number >= {low}")
+    return int(value)
+
+
+def check_choice(owner: str, name: str, value, choices: tuple[str, ...]) -> str:
+    if value not in choices:
+        raise SceneError(owner, name, f"got {value!r}; use one of {', '.join(choices)}")
+    return value
+
+
+def check_vec3(owner, name, value, nonnegative=False, nonzero=False) -> np.ndarray:
+    try:
+        v = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise SceneError(owner, name, f"got {value!r}; use three numbers") from None
+    if v.shape != (3,):
+        raise SceneError(owner, name, f"got {value!r}; use three numbers")
+    if not np.all(np.isfinite(v)):
+        raise SceneError(owner, name, f"got {value!r}; all three numbers must be finite")
+    if nonnegative and np.any(v < 0):
+        raise SceneError(owner, name, f"got {value!r}; each number must be >= 0")
+    if nonzero and not np.any(v != 0):
+        raise SceneError(owner, name, f"got {value!r}; at least one number must be non-zero")
+    return v
+
+
+def check_affine(owner: str, name: str, matrix) -> np.ndarray:
+    m = np.asarray(matrix, dtype=float)
+    if m.shape != (4, 4):
+        raise SceneError(owner, name, f"got shape {m.shape}; use a 4x4 matrix")
+    if not np.all(np.isfinite(m)):
+        raise SceneError(owner, name, "contains NaN or infinity; use finite numbers")
+    if not np.allclose(m[3], (0.0, 0.0, 0.0, 1.0)):
+        raise SceneError(owner, name, f"bottom row is {m[3]}; an affine matrix ends in 0 0 0 1")
+    singular_values = np.linalg.svd(m[:3, :3], compute_uv=False)
+    if singular_values[-1] <= SINGULAR_RATIO * singular_values[0]:
+        raise SceneError(
+            owner,
+            name,
+            "is singular (a scale of zero along some axis flattens the shape); "
+            "give every axis a non-zero scale",
+        )
+    return m
+
+
+def check_array(owner: str, name: str, value, columns: int, kind: str) -> np.ndarray:
+    """An (n, columns) array of finite numbers ('float') or integers ('int')."""
+    try:
+        a = np.asarray(value)
+    except (TypeError, ValueError):
+        raise SceneError(owner, name, f"use an (n, {columns}) array of numbers") from None
+    if a.ndim != 2 or a.shape[1] != columns or a.dtype.kind not in "biuf":
+        raise SceneError(owner, name, f"got shape {a.shape}; use an (n, {columns}) array")
+    if kind == "int" and a.dtype.kind == "f":
+        raise SceneError(owner, name, f"got {a.dtype} numbers; use whole-number indices")
+    if a.dtype.kind == "f" and not np.all(np.isfinite(a)):
+        bad = int(np.argwhere(~np.isfinite(a))[0][0])
+        raise SceneError(owner, name, f"row {bad} has NaN or infinity; use finite numbers")
+    return a
+
+
+def _range_text(low, high, low_open) -> str:
+    if low is None and high is None:
+        return "a number"
+    if high is None:
+        return f"a number {'>' if low_open else '>='} {low}"
+    if low is None:
+        return f"a number <= {high}"
+    return f"a number {'above' if low_open else 'from'} {low} to {high}"

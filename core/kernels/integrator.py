@@ -1,0 +1,105 @@
+"""Whitted's recursion without recursion: the tree of reflected and refracted rays, walked
+depth-first with an explicit stack from the `Workspace`.
+
+At each hit of a ray carrying weight w (what its colour counts for in the pixel):
+
+    colour += w (1 - tau) local               local = the report's Phong lighting
+    reflected ray, weight w ((1 - tau) rho + tau F)
+    refracted ray, weight w tau (1 - F)
+
+with rho the material's reflectivity, tau its transparency and F the exact dielectric
+Fresnel reflectance for the indices on the two sides (outer and inner IOR, swapped when the
+ray leaves the object); past the critical angle F = 1 (total internal reflection). Rays stop
+after `max_depth` bounces, or once their weight can no longer show (MIN_WEIGHT).
+"""
+
+import math
+
+from core.jit import kernel
+from core.kernels.options import OPTION_MAX_DEPTH
+from core.kernels.shading import local_colour
+from core.kernels.surface import diffuse_colour, surface_at
+from core.kernels.trace import closest_hit, spawn_point
+from core.kernels.vec import add, as_tuple, dot, mul, normalize, row, scale, sub
+
+MIN_WEIGHT = 1e-6
+
+
+@kernel
+def fresnel_dielectric(cos_i, n1, n2):
+    """(reflectance F, cos of the refracted angle) for light going from index n1 into n2 at
+    incidence cos_i in [0, 1]: the unpolarised average of the exact s and p reflectances.
+    Total internal reflection gives (1, 0)."""
+    eta = n1 / n2
+    sin2_t = eta * eta * max(0.0, 1.0 - cos_i * cos_i)
+    if sin2_t >= 1.0:
+        return 1.0, 0.0
+    cos_t = math.sqrt(1.0 - sin2_t)
+    rs = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t)
+    rp = (n1 * cos_t - n2 * cos_i) / (n1 * cos_t + n2 * cos_i)
+    return 0.5 * (rs * rs + rp * rp), cos_t
+
+
+@kernel
+def _push(ws, top, o, d, w, depth):
+    if max(w[0], w[1], w[2]) < MIN_WEIGHT:
+        return top
+    for a in range(3):
+        ws.ray_origin[top, a] = o[a]
+        ws.ray_direction[top, a] = d[a]
+        ws.ray_weight[top, a] = w[a]
+    ws.ray_depth[top] = depth
+    return top + 1
+
+
+@kernel
+def trace_ray(ps, o, d, key, ws):
+    """Linear RGB colour seen along unit direction d from o, with every bounce."""
+    max_depth = ps.options[OPTION_MAX_DEPTH]
+    colour = (0.0, 0.0, 0.0)
+    top = _push(ws, 0, o, d, (1.0, 1.0, 1.0), 0)
+    event = 0
+    while top > 0:
+        top -= 1
+        o, d = row(ws.ray_origin, top), row(ws.ray_direction, top)
+        w, depth = row(ws.ray_weight, top), ws.ray_depth[top]
+        shape, t, part, b1, b2 = closest_hit(ps, o, d, math.inf, ws)
+        if shape < 0:
+            colour = add(colour, mul(w, as_tuple(ps.background)))
+            continue
+        p, n_geometric, n_shading, u, v = surface_at(ps, shape, part, b1, b2, o, d, t)
+        material = ps.shape_material[shape]
+        tau = ps.material_transparency[material]
+        rho = ps.material_reflectivity[material]
+        # Face the side the ray came from
+        entering = dot(d, n_geometric) < 0.0
+        if not entering:
+            n_geometric = scale(n_geometric, -1.0)
+            n_shading = scale(n_shading, -1.0)
+        outside = spawn_point(p, n_geometric, o)
+        if tau < 1.0:
+            kd = diffuse_colour(ps, material, u, v)
+            ks = row(ps.material_specular, material)
+            local = local_colour(
+                ps, outside, n_shading, d, kd, ks, ps.material_shininess[material], key, event, ws
+            )
+            colour = add(colour, mul(w, scale(local, 1.0 - tau)))
+        event += 1
+        if depth >= max_depth:
+            continue
+        cos_i = min(1.0, max(0.0, -dot(d, n_shading)))
+        reflect_weight = (1.0 - tau) * rho
+        if tau > 0.0:
+            outer, inner = ps.material_ior[material, 0], ps.material_ior[material, 1]
+            n1, n2 = (outer, inner) if entering else (inner, outer)
+            f, cos_t = fresnel_dielectric(cos_i, n1, n2)
+            reflect_weight += tau * f
+            if f < 1.0:
+                eta = n1 / n2
+                refracted = normalize(add(scale(d, eta), scale(n_shading, eta * cos_i - cos_t)))
+                inside = spawn_point(p, scale(n_geometric, -1.0), o)
+                top = _push(ws, top, inside, refracted, scale(w, tau * (1.0 - f)), depth + 1)
+        if reflect_weight > 0.0:
+            reflected = sub(d, scale(n_shading, 2.0 * dot(d, n_shading)))
+            top = _push(ws, top, outside, reflected, scale(w, reflect_weight), depth + 1)
+    return colour

@@ -1,0 +1,146 @@
+"""Triangle meshes into flat arrays: degenerate triangles dropped, normals, UVs, BVH.
+
+Each distinct `TriangleMesh` is packed once, however many `Mesh` shapes use it. Its triangles
+are reordered into the BVH's leaf order so that a leaf names a contiguous range and no
+permutation array is needed at render time.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from core.kernels.bvh_build import build_bvh
+from core.shapes import TriangleMesh
+
+# Leaves of up to MESH_MAX_LEAF triangles; a node visit costs about as much as this many
+# triangle tests (tuned with tests/benchmarks/bench_bvh.py)
+MESH_MAX_LEAF = 8
+MESH_TRAVERSAL_COST = 1.5
+
+
+@dataclass
+class MeshTables:
+    """The concatenation of every packed mesh (see `PackedScene` for the fields)."""
+
+    root: list = field(default_factory=list)
+    tri_offset: list = field(default_factory=list)
+    normal_offset: list = field(default_factory=list)
+    uv_offset: list = field(default_factory=list)
+    lo: list = field(default_factory=list)  # object-space bounds per mesh
+    hi: list = field(default_factory=list)
+    node_bounds: list = field(default_factory=list)
+    node_info: list = field(default_factory=list)
+    tri_vertices: list = field(default_factory=list)
+    tri_smooth: list = field(default_factory=list)
+    vertices: list = field(default_factory=list)
+    tri_normal_index: list = field(default_factory=list)
+    normals: list = field(default_factory=list)
+    tri_uv_index: list = field(default_factory=list)
+    uvs: list = field(default_factory=list)
+    counts: dict = field(default_factory=lambda: {"nodes": 0, "tris": 0, "vertices": 0})
+    normal_rows: int = 0
+    uv_rows: int = 0
+    normal_entries: int = 0
+    uv_entries: int = 0
+    dropped: dict = field(default_factory=dict)  # mesh name -> degenerate triangles dropped
+
+
+def vertex_normals_from_faces(vertices: np.ndarray, triangles: np.ndarray) -> np.ndarray:
+    """Area-weighted average of the face normals around each vertex (the report's way)."""
+    v = vertices.astype(np.float64)
+    face = np.cross(
+        v[triangles[:, 1]] - v[triangles[:, 0]], v[triangles[:, 2]] - v[triangles[:, 0]]
+    )
+    normals = np.empty_like(v)
+    for axis in range(3):
+        normals[:, axis] = np.bincount(
+            triangles.ravel(), weights=np.repeat(face[:, axis], 3), minlength=len(v)
+        )
+    length = np.linalg.norm(normals, axis=1, keepdims=True)
+    return normals / np.where(length > 0.0, length, 1.0)
+
+
+def add_mesh(tables: MeshTables, mesh: TriangleMesh) -> int:
+    """Pack `mesh` into `tables`; returns its mesh index."""
+    index = len(tables.root)
+    vertices = np.ascontiguousarray(mesh.vertices, np.float32)
+    triangles = np.asarray(mesh.triangles, np.int64)
+    exact = vertices.astype(np.float64)
+    v0, v1, v2 = (exact[triangles[:, k]] for k in range(3))
+    area2 = np.linalg.norm(np.cross(v1 - v0, v2 - v0), axis=1)
+    keep = np.flatnonzero(area2 > 0.0)
+    if len(keep) < len(triangles):
+        tables.dropped[mesh.name] = len(triangles) - len(keep)
+
+    lo = np.minimum(np.minimum(v0, v1), v2)[keep]
+    hi = np.maximum(np.maximum(v0, v1), v2)[keep]
+    node_lo, node_hi, node_info, order = build_bvh(lo, hi, MESH_MAX_LEAF, MESH_TRAVERSAL_COST)
+    source = keep[order]  # original triangle of each packed triangle
+
+    base_node, base_tri = tables.counts["nodes"], tables.counts["tris"]
+    base_vertex = tables.counts["vertices"]
+    inner = node_info[:, 1] == 0
+    node_info = node_info.astype(np.int64)
+    node_info[:, 0] += np.where(inner, base_node, base_tri)
+    tables.node_bounds.append(np.hstack([node_lo, node_hi]).astype(np.float32))
+    tables.node_info.append(node_info.astype(np.int32))
+    tables.tri_vertices.append((triangles[source] + base_vertex).astype(np.int32))
+    smooth = np.broadcast_to(np.asarray(mesh.smooth, bool), (len(triangles),))[source]
+    tables.tri_smooth.append(smooth.astype(np.uint8))
+    tables.vertices.append(vertices)
+    tables.root.append(base_node)
+    tables.tri_offset.append(base_tri)
+    tables.lo.append(node_lo[0] if len(keep) else np.zeros(3))
+    tables.hi.append(node_hi[0] if len(keep) else np.zeros(3))
+
+    tables.normal_offset.append(_add_normals(tables, mesh, triangles, source, smooth))
+    tables.uv_offset.append(_add_uvs(tables, mesh, triangles, source))
+    tables.counts["nodes"] += len(node_info)
+    tables.counts["tris"] += len(source)
+    tables.counts["vertices"] += len(vertices)
+    return index
+
+
+def _add_normals(tables, mesh, triangles, source, smooth) -> int:
+    if not smooth.any():
+        return -1
+    if mesh.corner_normals is not None:
+        table = np.asarray(mesh.corner_normals, np.float32).reshape(-1, 3)
+        index = 3 * source[:, None] + np.arange(3)
+    else:
+        given = mesh.vertex_normals
+        if given is None:
+            given = vertex_normals_from_faces(np.asarray(mesh.vertices, np.float64), triangles)
+        table = np.asarray(given, np.float32)
+        index = triangles[source]
+    offset = tables.normal_rows
+    tables.tri_normal_index.append((index + tables.normal_entries).astype(np.int32))
+    tables.normals.append(table)
+    tables.normal_rows += len(index)
+    tables.normal_entries += len(table)
+    return offset
+
+
+def _add_uvs(tables, mesh, triangles, source) -> int:
+    if mesh.corner_uvs is not None:
+        table = np.asarray(mesh.corner_uvs, np.float32).reshape(-1, 2)
+        index = 3 * source[:, None] + np.arange(3)
+    elif mesh.vertex_uvs is not None:
+        table = np.asarray(mesh.vertex_uvs, np.float32)
+        index = triangles[source]
+    else:
+        return -1
+    offset = tables.uv_rows
+    tables.tri_uv_index.append((index + tables.uv_entries).astype(np.int32))
+    tables.uvs.append(table)
+    tables.uv_rows += len(index)
+    tables.uv_entries += len(table)
+    return offset
+
+
+def concatenated(parts: list, shape: tuple, dtype) -> np.ndarray:
+    if not parts:
+        return np.zeros(shape, dtype)
+    return np.ascontiguousarray(np.concatenate(parts), dtype)

@@ -1,0 +1,156 @@
+"""The shapes of a scene: analytic primitives and triangle meshes.
+
+Every shape has a name, a `Material` and `world_from_object`, a 4x4 affine matrix placing its
+canonical object-space form in the world; any invertible affine transform is allowed,
+non-uniform scale included. The canonical forms match Blender's own primitives (z up):
+
+    Sphere    radius 1 about the origin
+    Box       the cube [-1, 1]^3
+    Cylinder  radius 1 about the z axis, z in [-1, 1], both ends capped
+    Cone      base radius 1 at z = -1 (capped), apex at z = +1
+    Torus     about the z axis: a tube of radius `minor_radius` around a circle of radius
+              `major_radius` in the xy plane
+    Mesh      triangles of a `TriangleMesh`; meshes that share one `TriangleMesh` object are
+              instances, and share its triangles and BVH
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from core.checks import check_affine, check_array, check_number
+from core.errors import SceneError
+from core.scene_parts import Material
+
+
+def _identity() -> np.ndarray:
+    return np.eye(4)
+
+
+@dataclass(eq=False)
+class Shape:
+    name: str = "Shape"
+    material: Material = field(default_factory=Material)
+    world_from_object: np.ndarray = field(default_factory=_identity)
+
+    kind_name = "shape"
+
+    @property
+    def owner(self) -> str:
+        return f"{self.kind_name} '{self.name}'"
+
+    def validate(self) -> None:
+        check_affine(self.owner, "world_from_object", self.world_from_object)
+        if not isinstance(self.material, Material):
+            raise SceneError(
+                self.owner, "material", f"got {type(self.material).__name__}; need a Material"
+            )
+        self.material.validate(self.owner)
+
+
+@dataclass(eq=False)
+class Sphere(Shape):
+    kind_name = "sphere"
+
+
+@dataclass(eq=False)
+class Box(Shape):
+    kind_name = "box"
+
+
+@dataclass(eq=False)
+class Cylinder(Shape):
+    kind_name = "cylinder"
+
+
+@dataclass(eq=False)
+class Cone(Shape):
+    kind_name = "cone"
+
+
+@dataclass(eq=False)
+class Torus(Shape):
+    major_radius: float = 1.0
+    minor_radius: float = 0.25
+
+    kind_name = "torus"
+
+    def validate(self) -> None:
+        super().validate()
+        check_number(self.owner, "major_radius", self.major_radius, low=0.0, low_open=True)
+        check_number(self.owner, "minor_radius", self.minor_radius, low=0.0, low_open=True)
+
+
+@dataclass(eq=False)
+class TriangleMesh:
+    """Triangle geometry in object space, shareable between `Mesh` instances.
+
+    vertices        -- (v, 3) positions
+    triangles       -- (t, 3) vertex indices, counter-clockwise seen from outside
+    smooth          -- whether faces are smooth shaded: one bool for all, or (t,) per face;
+                       smooth faces interpolate normals across the face, flat faces use the
+                       face's own normal
+    vertex_normals  -- (v, 3) normals per vertex, or None
+    corner_normals  -- (t, 3, 3) normals per triangle corner (Blender's split normals), or None;
+                       with neither, smooth faces use area-weighted vertex normals
+    vertex_uvs      -- (v, 2) texture coordinates per vertex, or None
+    corner_uvs      -- (t, 3, 2) texture coordinates per triangle corner, or None
+    """
+
+    vertices: np.ndarray
+    triangles: np.ndarray
+    smooth: bool | np.ndarray = False
+    vertex_normals: np.ndarray | None = None
+    corner_normals: np.ndarray | None = None
+    vertex_uvs: np.ndarray | None = None
+    corner_uvs: np.ndarray | None = None
+    name: str = "Mesh"
+
+    def validate(self, owner: str) -> None:
+        vertices = check_array(owner, "vertices", self.vertices, 3, "float")
+        triangles = check_array(owner, "triangles", self.triangles, 3, "int")
+        if triangles.size and (triangles.min() < 0 or triangles.max() >= len(vertices)):
+            bad = int(np.argwhere((triangles < 0) | (triangles >= len(vertices)))[0][0])
+            raise SceneError(
+                owner,
+                "triangles",
+                f"triangle {bad} is {triangles[bad].tolist()}; vertex indices must lie in "
+                f"0..{len(vertices) - 1}",
+            )
+        t, v = len(triangles), len(vertices)
+        smooth = np.asarray(self.smooth)
+        if smooth.shape not in ((), (t,)):
+            raise SceneError(owner, "smooth", f"got shape {smooth.shape}; use one bool or ({t},)")
+        for name, value, shape in (
+            ("vertex_normals", self.vertex_normals, (v, 3)),
+            ("corner_normals", self.corner_normals, (t, 3, 3)),
+            ("vertex_uvs", self.vertex_uvs, (v, 2)),
+            ("corner_uvs", self.corner_uvs, (t, 3, 2)),
+        ):
+            if value is None:
+                continue
+            a = np.asarray(value)
+            if a.shape != shape or a.dtype.kind not in "iuf":
+                raise SceneError(owner, name, f"got shape {a.shape}; use {shape} numbers")
+            if not np.all(np.isfinite(a)):
+                raise SceneError(owner, name, "contains NaN or infinity; use finite numbers")
+
+
+@dataclass(eq=False)
+class Mesh(Shape):
+    mesh: TriangleMesh | None = None
+
+    kind_name = "mesh"
+
+    def validate(self) -> None:
+        super().validate()
+        if not isinstance(self.mesh, TriangleMesh):
+            raise SceneError(
+                self.owner, "mesh", f"got {type(self.mesh).__name__}; need a TriangleMesh"
+            )
+        self.mesh.validate(self.owner)
+
+
+ANALYTIC_SHAPES = (Sphere, Box, Cylinder, Cone, Torus)

@@ -1,0 +1,38 @@
+"""Single rays into a packed scene, for tests: nearest hit, surface, shadow transmittance."""
+
+import math
+
+import numpy as np
+
+from core.kernels.surface import surface_at
+from core.kernels.trace import closest_hit, transmittance
+from core.kernels.workspace import new_workspace
+from core.packing import pack_scene
+from core.scene import RenderSettings, Scene
+
+WORKSPACE = new_workspace(8)
+
+
+def packed_shapes(*shapes, lights=()):
+    return pack_scene(Scene(shapes=list(shapes), lights=list(lights)), RenderSettings(8, 8))
+
+
+def hit(packed, origin, direction, t_max=math.inf):
+    """(shape, t, part, b1, b2); shape -1 on a miss."""
+    o, d = tuple(map(float, origin)), tuple(map(float, direction))
+    return closest_hit(packed, o, d, t_max, WORKSPACE)
+
+
+def surface(packed, origin, direction):
+    """(shape, t, point, geometric normal, shading normal, (u, v)) or None on a miss."""
+    o, d = tuple(map(float, origin)), tuple(map(float, direction))
+    shape, t, part, b1, b2 = closest_hit(packed, o, d, math.inf, WORKSPACE)
+    if shape < 0:
+        return None
+    p, ng, ns, u, v = surface_at(packed, shape, part, b1, b2, o, d, t)
+    return shape, t, np.array(p), np.array(ng), np.array(ns), (u, v)
+
+
+def light_through(packed, origin, direction, t_max):
+    o, d = tuple(map(float, origin)), tuple(map(float, direction))
+    return transmittance(packed, o, d, t_max, WORKSPACE)
