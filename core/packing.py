@@ -172,8 +172,16 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
             shape_mesh[i] = m
             box_lo, box_hi = tables.lo[m], tables.hi[m]
         lo[i], hi[i] = _world_box(world_from_object, box_lo, box_hi)
-    top_lo, top_hi, top_info, top_order = build_bvh(lo, hi, _TOP_MAX_LEAF, _TOP_TRAVERSAL_COST)
-    if n == 0:
+    # Meshes left without triangles (all degenerate) have nothing to hit: leave them out
+    solid = np.array(
+        [not isinstance(s, Mesh) or len(tables.lo) and _mesh_has_triangles(tables, s, mesh_index)
+         for s in scene.shapes], bool
+    ).reshape(-1)  # fmt: skip
+    top_lo, top_hi, top_info, top_order = build_bvh(
+        lo[solid], hi[solid], _TOP_MAX_LEAF, _TOP_TRAVERSAL_COST
+    )
+    top_order = np.flatnonzero(solid)[top_order]
+    if not solid.any():
         top_info = np.zeros((0, 2), np.int32)
 
     point_lights = [lt for lt in scene.lights if isinstance(lt, PointLight)]
@@ -252,6 +260,12 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
     ]
     mesh_bytes = sum(getattr(packed, name).nbytes for name in mesh_fields)
     return CompiledScene(packed, warnings, tables.counts["tris"], mesh_bytes)
+
+
+def _mesh_has_triangles(tables: MeshTables, shape: Mesh, mesh_index: dict) -> bool:
+    m = mesh_index[id(shape.mesh)]
+    end = tables.tri_offset[m + 1] if m + 1 < len(tables.tri_offset) else tables.counts["tris"]
+    return end > tables.tri_offset[m]
 
 
 def _world_box(world_from_object, lo, hi):

@@ -36,3 +36,22 @@ def surface(packed, origin, direction):
 def light_through(packed, origin, direction, t_max):
     o, d = tuple(map(float, origin)), tuple(map(float, direction))
     return transmittance(packed, o, d, t_max, WORKSPACE)
+
+
+def hits(packed, origins, directions, t_max=math.inf):
+    """Nearest hits of many rays: (t, shape, part) arrays."""
+    from core.kernels.batch import closest_hits
+
+    n = len(origins)
+    t, shape, part = np.empty(n), np.empty(n, np.int64), np.empty(n, np.int64)
+    closest_hits(
+        packed,
+        np.ascontiguousarray(origins, float),
+        np.ascontiguousarray(directions, float),
+        t_max,
+        t,
+        shape,
+        part,
+        WORKSPACE,
+    )
+    return t, shape, part

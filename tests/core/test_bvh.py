@@ -1,0 +1,208 @@
+"""The BVH against brute force, meshes (instancing, smooth normals, UVs, degenerate faces),
+and the BVH builder's own invariants."""
+
+import numba
+import numpy as np
+import pytest
+
+from core import Box, Mesh, RenderSettings, Scene, Sphere, Torus, TriangleMesh, render
+from core.kernels.bvh_build import build_bvh
+from core.kernels.shapes import NO_HIT, SHAPE_MESH, intersect_analytic
+from core.kernels.triangles import intersect_triangle, shear_setup
+from core.kernels.vec import affine_point, affine_vector
+from core.packing import compile_scene
+from tests.core.probe import hits, surface
+from tests.core.test_shapes import random_affine
+from tests.meshes import icosphere
+
+RNG = np.random.default_rng(7)
+
+
+@numba.njit
+def brute_force(ps, origins, directions):
+    """Every ray against every shape and every triangle, no BVH: (t, shape, part)."""
+    n = origins.shape[0]
+    out_t, out_shape, out_part = np.full(n, NO_HIT), np.full(n, -1), np.full(n, -1)
+    for r in range(n):
+        o = (origins[r, 0], origins[r, 1], origins[r, 2])
+        d = (directions[r, 0], directions[r, 1], directions[r, 2])
+        for s in range(ps.shape_kind.shape[0]):
+            m = ps.shape_object_from_world[s]
+            oo, dd = affine_point(m, o), affine_vector(m, d)
+            if ps.shape_kind[s] == SHAPE_MESH:
+                mesh = ps.shape_mesh[s]
+                first = ps.mesh_tri_offset[mesh]
+                last = ps.tri_vertices.shape[0]
+                if mesh + 1 < len(ps.mesh_root):
+                    last = ps.mesh_tri_offset[mesh + 1]
+                shear = shear_setup(dd)
+                for tri in range(first, last):
+                    t, _, _ = intersect_triangle(
+                        ps.vertices, ps.tri_vertices[tri, 0], ps.tri_vertices[tri, 1],
+                        ps.tri_vertices[tri, 2], oo, shear, out_t[r],
+                    )  # fmt: skip
+                    if t < out_t[r]:
+                        out_t[r], out_shape[r], out_part[r] = t, s, tri
+            else:
+                t, part = intersect_analytic(
+                    ps.shape_kind[s], ps.shape_param[s, 0], ps.shape_param[s, 1], oo, dd, 0.0,
+                    out_t[r],
+                )  # fmt: skip
+                if t < out_t[r]:
+                    out_t[r], out_shape[r], out_part[r] = t, s, part
+    return out_t, out_shape, out_part
+
+
+def random_scene(rng, shapes=60):
+    soup = TriangleMesh(rng.uniform(-1, 1, size=(300, 3)), rng.integers(0, 300, size=(200, 3)))
+    ball_vertices, ball_triangles = icosphere(2)
+    ball = TriangleMesh(ball_vertices, ball_triangles, smooth=True)
+    out = []
+    for i in range(shapes):
+        m = random_affine(rng, translate=8.0) @ np.diag([0.3, 0.3, 0.3, 1.0])
+        choice = i % 5
+        if choice == 0:
+            out.append(Mesh(f"soup{i}", world_from_object=m, mesh=soup))
+        elif choice == 1:
+            out.append(Mesh(f"ball{i}", world_from_object=m, mesh=ball))
+        elif choice == 2:
+            out.append(Torus(f"torus{i}", world_from_object=m, major_radius=1, minor_radius=0.3))
+        else:
+            out.append((Sphere, Box)[choice - 3](f"s{i}", world_from_object=m))
+    return Scene(shapes=out)
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_bvh_returns_exactly_what_brute_force_returns(seed):
+    rng = np.random.default_rng(seed)
+    scene = random_scene(rng)
+    packed = compile_scene(scene, RenderSettings(8, 8)).packed
+    centres = np.array([s.world_from_object[:3, 3] for s in scene.shapes])
+    origins = rng.uniform(-12, 12, size=(3000, 3))
+    directions = centres[rng.integers(0, len(centres), 3000)] - origins
+    directions += rng.normal(size=(3000, 3)) * 0.3
+    directions /= np.linalg.norm(directions, axis=1, keepdims=True)
+    t, shape, part = hits(packed, origins, directions)
+    bt, bshape, bpart = brute_force(packed, origins, directions)
+    assert (shape >= 0).sum() > 1000
+    np.testing.assert_array_equal(t, bt)
+    np.testing.assert_array_equal(shape, bshape)
+    np.testing.assert_array_equal(part, bpart)
+
+
+def test_instances_share_one_copy_of_the_triangles():
+    vertices, triangles = icosphere(3)
+    ball = TriangleMesh(vertices, triangles)
+    many = [Mesh(f"b{i}", world_from_object=np.eye(4) + np.eye(4, k=3) * i, mesh=ball)
+            for i in range(50)]  # fmt: skip
+    one = compile_scene(Scene(shapes=many[:1]), RenderSettings(8, 8))
+    fifty = compile_scene(Scene(shapes=many), RenderSettings(8, 8))
+    assert fifty.triangles == one.triangles == len(triangles)
+    assert fifty.mesh_bytes == one.mesh_bytes
+
+
+def test_builder_invariants_on_random_boxes():
+    rng = np.random.default_rng(3)
+    centre = rng.uniform(-5, 5, size=(5000, 3))
+    lo, hi = centre - rng.uniform(0, 0.2, size=(5000, 3)), centre + 0.1
+    node_lo, node_hi, info, order = build_bvh(lo, hi, 4, 1.0)
+    assert sorted(order) == list(range(5000))
+    leaves = info[:, 1] > 0
+    assert info[leaves, 1].sum() == 5000 and info[leaves, 1].max() <= 4
+    for node in np.flatnonzero(~leaves):
+        for child in (info[node, 0], info[node, 0] + 1):
+            assert np.all(node_lo[child] >= node_lo[node]) and np.all(
+                node_hi[child] <= node_hi[node]
+            )
+    for node in np.flatnonzero(leaves):
+        members = order[info[node, 0] : info[node, 0] + info[node, 1]]
+        assert np.all(lo[members] >= node_lo[node]) and np.all(hi[members] <= node_hi[node])
+
+
+def test_identical_boxes_still_give_bounded_leaves():
+    lo = np.zeros((1000, 3))
+    _, _, info, order = build_bvh(lo, lo + 1.0, 4, 1.0)
+    assert sorted(order) == list(range(1000)) and info[info[:, 1] > 0, 1].max() <= 4
+
+
+def flat_square(smooth, **extra):
+    """Two triangles of the square [-1, 1]^2 at z = 0, facing +z."""
+    v = np.array([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], float)
+    return TriangleMesh(v, np.array([[0, 1, 2], [0, 2, 3]]), smooth=smooth, **extra)
+
+
+def test_smooth_faces_interpolate_normals_and_flat_faces_do_not():
+    tilted = np.array([[-1, -1, 1], [1, -1, 1], [1, 1, 1], [-1, 1, 1]], float)
+    for smooth in (True, False):
+        mesh = flat_square(np.array([smooth, smooth]), vertex_normals=tilted)
+        found = surface(compile_scene(Scene(shapes=[Mesh(mesh=mesh)]), RenderSettings(8, 8)).packed,
+                        (0.5, -0.25, 3.0), (0.0, 0.0, -1.0))  # fmt: skip
+        _, t, point, geometric, shading, _ = found
+        assert t == pytest.approx(3.0)
+        np.testing.assert_allclose(geometric, (0, 0, 1), atol=1e-15)
+        if smooth:
+            # Barycentric blend of the corner normals at (0.5, -0.25)
+            b = {0: 0.25, 1: 0.375, 2: 0.375}
+            n = sum(w * tilted[k] for k, w in b.items())
+            np.testing.assert_allclose(shading, n / np.linalg.norm(n), atol=1e-7)
+        else:
+            np.testing.assert_allclose(shading, (0, 0, 1), atol=1e-15)
+
+
+def test_corner_uvs_interpolate_and_vertex_normals_come_from_faces():
+    uvs = np.array([[[0, 0], [1, 0], [1, 1]], [[0, 0], [1, 1], [0, 1]]], float)
+    mesh = flat_square(True, corner_uvs=uvs)
+    packed = compile_scene(Scene(shapes=[Mesh(mesh=mesh)]), RenderSettings(8, 8)).packed
+    _, _, _, _, shading, (u, v) = surface(packed, (0.5, -0.25, 3.0), (0.0, 0.0, -1.0))
+    assert (u, v) == (pytest.approx(0.75), pytest.approx(0.375))
+    np.testing.assert_allclose(shading, (0, 0, 1), atol=1e-7)  # a flat mesh: all normals +z
+
+
+def test_degenerate_triangles_are_dropped_with_a_count():
+    v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [2, 0, 0]], float)
+    mesh = TriangleMesh(v, np.array([[0, 1, 2], [0, 1, 3], [2, 2, 1]]), name="Sliver")
+    compiled = compile_scene(Scene(shapes=[Mesh("Sliver", mesh=mesh)]), RenderSettings(8, 8))
+    assert compiled.triangles == 1
+    assert compiled.warnings == ["mesh 'Sliver': dropped 2 degenerate (zero-area) triangles"]
+    out = render(Scene(shapes=[Mesh("Sliver", mesh=mesh)]), RenderSettings(4, 4))
+    assert out.warnings == compiled.warnings
+
+
+def test_a_mesh_with_no_triangles_left_renders_background():
+    v = np.zeros((3, 3))
+    scene = Scene(shapes=[Mesh("Flat", mesh=TriangleMesh(v, np.array([[0, 1, 2]])))],
+                  background=(0.25, 0.5, 0.75))  # fmt: skip
+    image = render(scene, RenderSettings(4, 4)).image
+    np.testing.assert_array_equal(image[..., :3], np.broadcast_to((0.25, 0.5, 0.75), (4, 4, 3)))
+
+
+def test_watertight_a_million_rays_at_shared_edges_and_vertices():
+    """Rays through points exactly on the shared edges and at the vertices of a closed convex
+    mesh, from outside towards a point inside and from a point inside outwards, must all hit
+    it at that point: none slips through a crack between triangles."""
+    rng = np.random.default_rng(11)
+    vertices, triangles = icosphere(4)
+    matrix = random_affine(rng, translate=3.0)
+    packed = compile_scene(
+        Scene(shapes=[Mesh(world_from_object=matrix, mesh=TriangleMesh(vertices, triangles))]),
+        RenderSettings(8, 8),
+    ).packed
+    v32 = vertices.astype(np.float32).astype(np.float64)
+    world = v32 @ matrix[:3, :3].T + matrix[:3, 3]
+    edges = np.unique(
+        np.sort(np.concatenate([triangles[:, [0, 1]], triangles[:, [1, 2]]]), 1), axis=0
+    )
+    n = 1_000_000
+    pick = rng.integers(0, len(edges), size=n)
+    s = rng.uniform(0, 1, size=(n, 1))
+    s[: n // 4] = 0.0  # a quarter aimed exactly at vertices
+    targets = world[edges[pick, 0]] * (1 - s) + world[edges[pick, 1]] * s
+    inner = matrix[:3, 3] + (matrix[:3, :3] @ rng.uniform(-0.4, 0.4, size=(n, 3)).T).T
+    away = targets - inner
+    away /= np.linalg.norm(away, axis=1, keepdims=True)
+    origins = np.where(np.arange(n)[:, None] % 2 == 0, targets + 10.0 * away, inner)
+    directions = np.where(np.arange(n)[:, None] % 2 == 0, -away, away)
+    t, shape, _ = hits(packed, origins, directions)
+    assert np.all(shape == 0), f"{np.sum(shape != 0)} of {n} rays passed through"
+    expected = np.linalg.norm(targets - origins, axis=1)
+    np.testing.assert_allclose(t, expected, rtol=1e-6)
