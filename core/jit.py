@@ -1,11 +1,14 @@
 """How every kernel is compiled: cached, GIL-free, and into a cache folder per version.
 
 numba reads `config.CACHE_DIR` when a function is decorated, so this module must be imported
-(it is, by `core.kernels`) before any kernel module. The folder holds the package, numba and
-Python versions so an upgrade never loads stale machine code; tests, benchmarks and Blender
-subprocesses share it through the WHITTED_CACHE_DIR environment variable.
+(it is, by `core.kernels`) before any kernel module. The folder's name holds the package,
+numba and Python versions and a hash of the kernels' source: numba checks only a cached
+function's own file for changes, not the files of the functions it calls, so without the hash
+an edit to one kernel module could leave stale machine code inlined in another. Tests,
+benchmarks and Blender subprocesses share the folder through WHITTED_CACHE_DIR.
 """
 
+import hashlib
 import os
 import sys
 from pathlib import Path
@@ -15,11 +18,18 @@ import numba
 from core.version import VERSION
 
 
+def kernel_source_hash() -> str:
+    here = Path(__file__).parent
+    digest = hashlib.sha1()
+    for path in sorted([here / "jit.py", *(here / "kernels").glob("*.py")]):
+        digest.update(path.name.encode() + path.read_bytes())
+    return digest.hexdigest()[:12]
+
+
 def kernel_cache_dir() -> Path:
     base = os.environ.get("WHITTED_CACHE_DIR") or Path.home() / ".cache" / "whitted"
-    tag = (
-        f"whitted-{VERSION}-numba-{numba.__version__}-py{sys.version_info[0]}{sys.version_info[1]}"
-    )
+    python = f"py{sys.version_info[0]}{sys.version_info[1]}"
+    tag = f"whitted-{VERSION}-numba-{numba.__version__}-{python}-{kernel_source_hash()}"
     return Path(base) / tag
 
 

@@ -41,6 +41,13 @@ def fresnel_dielectric(cos_i, n1, n2):
 
 
 @kernel
+def refract(d, n, eta, cos_i, cos_t):
+    """Snell's law: unit d through the surface with unit normal n facing the incoming ray,
+    eta = n1 / n2, cos_i = -d.n and cos_t from `fresnel_dielectric`."""
+    return normalize(add(scale(d, eta), scale(n, eta * cos_i - cos_t)))
+
+
+@kernel
 def _push(ws, top, o, d, w, depth):
     if max(w[0], w[1], w[2]) < MIN_WEIGHT:
         return top
@@ -95,8 +102,7 @@ def trace_ray(ps, o, d, key, ws):
             f, cos_t = fresnel_dielectric(cos_i, n1, n2)
             reflect_weight += tau * f
             if f < 1.0:
-                eta = n1 / n2
-                refracted = normalize(add(scale(d, eta), scale(n_shading, eta * cos_i - cos_t)))
+                refracted = refract(d, n_shading, n1 / n2, cos_i, cos_t)
                 inside = spawn_point(p, scale(n_geometric, -1.0), o)
                 top = _push(ws, top, inside, refracted, scale(w, tau * (1.0 - f)), depth + 1)
         if reflect_weight > 0.0:

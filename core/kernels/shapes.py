@@ -118,12 +118,25 @@ def cone_interval(o, d):
     """The capped cone x^2 + y^2 <= ((1 - z) / 2)^2, -1 <= z <= 1.
 
     Along the ray, q(t) = x^2 + y^2 - w^2 with w = (1 - z) / 2 is a quadratic; where q <= 0
-    the ray is inside the double cone. Within the slab w >= 0, so only the lower nappe
-    remains, and the result, being a convex solid's, is a single interval.
+    the ray is inside the double cone. The lower nappe's part, clipped to the slab, is the
+    solid: a convex one, so a single interval.
     """
     z_range = slab(o[2], d[2], PART_BOTTOM_CAP, PART_TOP_CAP)
     if z_range[0] > z_range[2]:
         return EMPTY
+    # Solve from the ray's point nearest the centre, so the quadratic's coefficients are of
+    # order one and b^2 - a c does not cancel catastrophically for distant rays (the same
+    # idea as the sphere's discriminant); shift back at the end
+    shift = -dot(o, d) / dot(d, d)
+    q_t0, q_p0, q_t1, q_p1 = _cone_quadric_interval(
+        (o[0] + shift * d[0], o[1] + shift * d[1], o[2] + shift * d[2]), d
+    )
+    return clip(z_range, (q_t0 + shift, q_p0, q_t1 + shift, q_p1))
+
+
+@kernel
+def _cone_quadric_interval(o, d):
+    """Where x^2 + y^2 <= w^2 along the ray, lower nappe only (w = (1 - z) / 2 >= 0)."""
     w0 = 0.5 * (1.0 - o[2])
     wd = -0.5 * d[2]
     a = d[0] * d[0] + d[1] * d[1] - wd * wd
@@ -132,27 +145,24 @@ def cone_interval(o, d):
     if a == 0.0:
         # q is linear: 2 b t + c <= 0
         if b == 0.0:
-            return clip(z_range, EVERYWHERE) if c <= 0.0 else EMPTY
+            return EVERYWHERE if c <= 0.0 else EMPTY
         t = -c / (2.0 * b)
         if b > 0.0:
-            return clip(z_range, (-math.inf, -1, t, PART_SIDE))
-        return clip(z_range, (t, PART_SIDE, math.inf, -1))
+            return -math.inf, -1, t, PART_SIDE
+        return t, PART_SIDE, math.inf, -1
     discriminant = b * b - a * c
     if discriminant < 0.0:
         # a > 0: q > 0 everywhere; a < 0: q < 0 everywhere
-        return EMPTY if a > 0.0 else clip(z_range, EVERYWHERE)
+        return EMPTY if a > 0.0 else EVERYWHERE
     t0, t1 = stable_quadratic(a, b, c, discriminant)
     if a > 0.0:
-        return clip(z_range, (t0, PART_SIDE, t1, PART_SIDE))
-    # a < 0: inside on both outer half-lines; at most one meets the slab's lower nappe part
-    before = clip(z_range, (-math.inf, -1, t0, PART_SIDE))
-    after = clip(z_range, (t1, PART_SIDE, math.inf, -1))
-    if before[0] > before[2]:
-        return after
-    if after[0] > after[2]:
-        return before
-    # Both touch the slab: they meet at the apex; join them
-    return before[0], before[1], after[2], after[3]
+        return t0, PART_SIDE, t1, PART_SIDE
+    # a < 0: steeper than the cone, the line runs through both nappes and is inside on both
+    # outer half-lines; keep the lower nappe's: the first going up, the second going down.
+    # (An interval with a > 0 in the upper nappe is removed by the slab, z <= 1.)
+    if d[2] > 0.0:
+        return -math.inf, -1, t0, PART_SIDE
+    return t1, PART_SIDE, math.inf, -1
 
 
 @kernel

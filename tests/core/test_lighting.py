@@ -1,0 +1,185 @@
+"""Lighting and the ray tree against closed forms and numerical integrals: a plane under a
+point light, an area light's irradiance, Fresnel, a refracting slab, mirrors, lenses."""
+
+import math
+
+import numpy as np
+import pytest
+
+from core import AreaLight, Box, Camera, Material, PointLight, RenderSettings, Scene, Sphere, render
+from core.kernels.integrator import fresnel_dielectric, refract
+from core.kernels.trace import spawn_point
+from tests.core.probe import surface
+from tests.core.scenes import translate_scale
+from tests.reference_tracer import camera_ray
+
+GROUND_KD = (0.6, 0.5, 0.4)
+
+
+def ground(material=None):
+    """A 200 x 200 slab whose top face is the plane z = 0."""
+    m = np.diag([100.0, 100.0, 1.0, 1.0])
+    m[2, 3] = -1.0
+    return Box("Ground", material or Material(diffuse=GROUND_KD), m)
+
+
+def look_down(eye=(0.0, -3.0, 8.0)):
+    return Camera(eye=eye, view=(0.0, 3.0, -8.0), up=(0.0, 0.0, 1.0), fovy=60.0)
+
+
+def test_plane_under_a_point_light_matches_the_formula():
+    light = PointLight((1.0, 2.0, 4.0), (30.0, 20.0, 10.0), (0.5, 0.2, 0.05))
+    scene = Scene(look_down(), [ground()], [light], ambient=(0.1, 0.1, 0.1))
+    width, height = 40, 30
+    image = render(scene, RenderSettings(width, height)).image
+    for px, py in np.random.default_rng(1).integers((0, 0), (width, height), size=(60, 2)):
+        o, d = camera_ray(scene.camera.eye, scene.camera.view, scene.camera.up, 60.0, width,
+                          height, px, py)  # fmt: skip
+        p = o + d * (-o[2] / d[2])
+        to_light = np.array(light.position) - p
+        r = np.linalg.norm(to_light)
+        c0, c1, c2 = light.attenuation
+        expected = np.array(GROUND_KD) * (
+            0.1 + np.array(light.intensity) * (to_light[2] / r) / (c0 + c1 * r + c2 * r * r)
+        )
+        np.testing.assert_allclose(image[py, px, :3], expected, rtol=1e-5)
+
+
+def area_light_integral(light, point, samples=96):
+    """(1/A) integral over the light of cos(theta) / (c0 + c1 d + c2 d^2), Gauss-Legendre."""
+    x, w = np.polynomial.legendre.leggauss(samples)
+    s, t = np.meshgrid(x / 2, x / 2, indexing="ij")
+    weight = np.outer(w, w) / 4
+    q = (np.asarray(light.centre) + s[..., None] * np.asarray(light.edge_u)
+         + t[..., None] * np.asarray(light.edge_v))  # fmt: skip
+    to_light = q - point
+    r = np.linalg.norm(to_light, axis=-1)
+    c0, c1, c2 = light.attenuation
+    f = np.maximum(to_light[..., 2] / r, 0.0) / (c0 + c1 * r + c2 * r * r)
+    return np.sum(weight * f)
+
+
+@pytest.fixture(scope="module")
+def area_lit():
+    light = AreaLight((0.5, 0.0, 2.0), (3.0, 1.0, 0.5), (-0.5, 2.0, 0.3), (5.0, 5.0, 5.0),
+                      (1.0, 0.0, 0.3))  # fmt: skip
+    scene = Scene(look_down(), [ground(Material(diffuse=(1.0, 1.0, 1.0)))], [light])
+    pixels = np.random.default_rng(2).integers((0, 0), (32, 24), size=(40, 2))
+    expected = []
+    for px, py in pixels:
+        o, d = camera_ray(scene.camera.eye, scene.camera.view, scene.camera.up, 60.0, 32, 24,
+                          px, py)  # fmt: skip
+        p = o + d * (-o[2] / d[2])
+        expected.append(5.0 * area_light_integral(light, p))
+    return scene, pixels, np.array(expected)
+
+
+def area_errors(area_lit, sampling, samples, seed=0):
+    scene, pixels, expected = area_lit
+    settings = RenderSettings(32, 24, shadow_samples=samples, shadow_sampling=sampling, seed=seed)
+    image = render(scene, settings).image
+    got = np.array([image[py, px, 0] for px, py in pixels])
+    return (got - expected) / expected
+
+
+def test_area_light_irradiance_matches_the_integral_within_half_a_percent(area_lit):
+    errors = area_errors(area_lit, "stratified", 400)
+    assert np.abs(errors).max() < 5e-3, errors
+
+
+def test_stratified_area_light_sampling_beats_uniform(area_lit):
+    stratified = np.sqrt(np.mean(area_errors(area_lit, "stratified", 64) ** 2))
+    uniform = np.sqrt(np.mean(area_errors(area_lit, "uniform", 64) ** 2))
+    assert stratified < 0.5 * uniform, (stratified, uniform)
+    assert uniform < 0.05  # and uniform sampling is still an unbiased estimate
+
+
+def test_fresnel_at_normal_incidence_and_brewster():
+    f, cos_t = fresnel_dielectric(1.0, 1.0, 1.5)
+    assert f == pytest.approx(((1.5 - 1.0) / 2.5) ** 2, rel=1e-12) and cos_t == 1.0
+    brewster = math.atan(1.5)
+    f, cos_t = fresnel_dielectric(math.cos(brewster), 1.0, 1.5)
+    theta_t = math.asin(math.sin(brewster) / 1.5)
+    rs = math.sin(theta_t - brewster) / math.sin(theta_t + brewster)
+    assert f == pytest.approx(rs * rs / 2.0, rel=1e-12)  # p-polarised part vanishes
+    assert cos_t == pytest.approx(math.cos(theta_t), rel=1e-12)
+
+
+def test_total_internal_reflection_past_the_critical_angle():
+    critical = math.asin(1.0 / 1.5)
+    assert fresnel_dielectric(math.cos(critical + 1e-6), 1.5, 1.0) == (1.0, 0.0)
+    just_inside, _ = fresnel_dielectric(math.cos(critical - 1e-3), 1.5, 1.0)
+    assert 0.5 < just_inside < 1.0
+
+
+def test_a_ray_through_a_glass_slab_exits_parallel_and_offset():
+    """Into a slab of thickness 1 and out again: same direction, shifted sideways by
+    thickness sin(i - t) / cos(t)."""
+    slab = Box("Slab", Material(transparency=1.0, inner_ior=1.5), np.diag([50, 50, 0.5, 1.0]))
+    from tests.core.probe import packed_shapes
+
+    packed = packed_shapes(slab)
+    angle = math.radians(35.0)
+    d = np.array([math.sin(angle), 0.0, -math.cos(angle)])
+    o = np.array([0.0, 0.0, 3.0])
+    _, _, p, n, _, _ = surface(packed, o, d)
+    f, cos_t = fresnel_dielectric(-d @ n, 1.0, 1.5)
+    inside_d = np.array(refract(tuple(d), tuple(n), 1.0 / 1.5, -d @ n, cos_t))
+    start = np.array(spawn_point(tuple(p), tuple(-n), tuple(o)))
+    _, _, q, n2, _, _ = surface(packed, start, inside_d)
+    facing = -n2  # the exit face's normal, turned to face the ray inside
+    _, cos_out = fresnel_dielectric(-inside_d @ facing, 1.5, 1.0)
+    out_d = np.array(refract(tuple(inside_d), tuple(facing), 1.5, -inside_d @ facing, cos_out))
+    np.testing.assert_allclose(out_d, d, atol=1e-14)
+    theta_t = math.asin(math.sin(angle) / 1.5)
+    shift = 1.0 * math.sin(angle - theta_t) / math.cos(theta_t)
+    straight = o + d * ((q[2] - o[2]) / d[2])  # where the unbent ray would cross z = -0.5
+    # to 1e-7: the refracted ray starts 1e-9 x |p| off the surface (the spawn offset)
+    assert np.linalg.norm(q - straight) == pytest.approx(shift / math.cos(angle), rel=1e-7)
+    assert q[2] == pytest.approx(-0.5, abs=1e-12)
+
+
+def mirror_corridor(depth):
+    """Two mirrors facing each other across x = +-2; the camera looks slightly sideways."""
+    mirror = Material(diffuse=(0.2, 0.2, 0.2), reflectivity=0.8)
+    walls = [Box(f"M{s}", mirror, translate_scale((s * 3.0, 0, 0), 1.0) @ np.diag([1, 30, 30, 1]))
+             for s in (-1, 1)]  # fmt: skip
+    camera = Camera(eye=(0, 0, 0), view=(1.0, 0.05, 0.0), up=(0, 0, 1), fovy=10)
+    scene = Scene(camera, walls, [], ambient=(1.0, 1.0, 1.0), background=(0, 0, 0))
+    return render(scene, RenderSettings(8, 8, max_depth=depth)).image
+
+
+def test_facing_mirrors_at_depth_fifty_terminate_each_bounce_darker():
+    values = [mirror_corridor(depth)[4, 4, 0] for depth in (0, 1, 2, 3, 50)]
+    image = mirror_corridor(50)
+    assert np.all(np.isfinite(image))
+    steps = np.diff(values[:4])
+    assert np.all(steps > 0) and np.all(np.diff(steps) < 0)  # each bounce adds less
+    # 0.2 (1 + 0.8 + ... + 0.8^50): the geometric series, to float32
+    assert values[-1] == pytest.approx(0.2 * (1 - 0.8**51) / 0.2, rel=1e-5)
+
+
+def lens_scene(aperture, focal_distance=10.0):
+    near = Sphere("Near", Material(diffuse=(1, 0, 0)), translate_scale((0, 10, 0), 1.0))
+    far = Sphere("Far", Material(diffuse=(0, 1, 0)), translate_scale((3, 30, 0), 2.0))
+    camera = Camera(eye=(0, 0, 0), view=(0, 1, 0), up=(0, 0, 1), fovy=20,
+                    aperture_radius=aperture, focal_distance=focal_distance)  # fmt: skip
+    return Scene(camera, [near, far], [], ambient=(1, 1, 1), background=(0, 0, 0))
+
+
+def test_zero_aperture_is_the_pinhole_image_exactly():
+    settings = RenderSettings(40, 30, pixel_samples=2, pixel_sampling="jittered")
+    pinhole = render(lens_scene(0.0), settings).image
+    for focal in (0.5, 10.0, 1e6):
+        np.testing.assert_array_equal(render(lens_scene(0.0, focal), settings).image, pinhole)
+
+
+def test_the_plane_in_focus_stays_sharp_and_the_rest_blurs():
+    settings = RenderSettings(40, 30, pixel_samples=4, pixel_sampling="jittered")
+    pinhole = render(lens_scene(0.0), settings).image
+    lens = render(lens_scene(0.4), settings).image
+    near = pinhole[..., 0] > 0  # the red sphere, at the focal distance
+    far = pinhole[..., 1] > 0
+    sharp = np.abs(lens[..., 0] - pinhole[..., 0])[near].mean()
+    blurred = np.abs(lens[..., 1] - pinhole[..., 1])[far].mean()
+    assert sharp < 0.05 and blurred > 3 * sharp
