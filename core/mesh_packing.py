@@ -17,7 +17,7 @@ from core.shapes import TriangleMesh
 # Leaves of up to MESH_MAX_LEAF triangles; a node visit costs about as much as this many
 # triangle tests (tuned with tests/benchmarks/bench_bvh.py)
 MESH_MAX_LEAF = 8
-MESH_TRAVERSAL_COST = 1.5
+MESH_TRAVERSAL_COST = 3.0
 
 
 @dataclass
@@ -30,8 +30,7 @@ class MeshTables:
     uv_offset: list = field(default_factory=list)
     lo: list = field(default_factory=list)  # object-space bounds per mesh
     hi: list = field(default_factory=list)
-    node_bounds: list = field(default_factory=list)
-    node_info: list = field(default_factory=list)
+    node_bounds: list = field(default_factory=list)  # (n, 8) float32 node records
     tri_vertices: list = field(default_factory=list)
     tri_smooth: list = field(default_factory=list)
     vertices: list = field(default_factory=list)
@@ -84,8 +83,12 @@ def add_mesh(tables: MeshTables, mesh: TriangleMesh) -> int:
     inner = node_info[:, 1] == 0
     node_info = node_info.astype(np.int64)
     node_info[:, 0] += np.where(inner, base_node, base_tri)
-    tables.node_bounds.append(np.hstack([node_lo, node_hi]).astype(np.float32))
-    tables.node_info.append(node_info.astype(np.int32))
+    # One 32-byte record per node, children side by side: a node's box and its link share a
+    # cache line, and a pair of children fills one
+    record = np.empty((len(node_info), 8), np.float32)
+    record[:, :3], record[:, 3:6] = node_lo, node_hi
+    record.view(np.int32)[:, 6:8] = node_info
+    tables.node_bounds.append(record)
     tables.tri_vertices.append((triangles[source] + base_vertex).astype(np.int32))
     smooth = np.broadcast_to(np.asarray(mesh.smooth, bool), (len(triangles),))[source]
     tables.tri_smooth.append(smooth.astype(np.uint8))

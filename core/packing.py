@@ -87,8 +87,10 @@ class PackedScene(NamedTuple):
     mesh_normal_offset: np.ndarray  # int64 (m,): its first row in tri_normal_index, or -1
     mesh_uv_offset: np.ndarray  # int64 (m,): its first row in tri_uv_index, or -1
     # meshes: all BVH nodes, triangles and vertices, concatenated
-    node_bounds: np.ndarray  # float32 (nodes, 6)
-    node_info: np.ndarray  # int32 (nodes, 2): global node or triangle indices
+    # 32-byte node records: lo xyz, hi xyz as float32, then the two int32 of node_info
+    node_bounds: np.ndarray  # float32 (nodes, 8)
+    node_info: np.ndarray  # int32 (nodes, 2) view of columns 6-7: global node or triangle
+
     tri_vertices: np.ndarray  # int32 (t, 3): rows of vertices
     tri_smooth: np.ndarray  # uint8 (t,): 1 if the face is smooth shaded
     vertices: np.ndarray  # float32 (v, 3), object space
@@ -184,6 +186,7 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
     if not solid.any():
         top_info = np.zeros((0, 2), np.int32)
 
+    nodes = concatenated(tables.node_bounds, (0, 8), np.float32)
     point_lights = [lt for lt in scene.lights if isinstance(lt, PointLight)]
     area_lights = [lt for lt in scene.lights if isinstance(lt, AreaLight)]
 
@@ -208,8 +211,8 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
         mesh_tri_offset=np.array(tables.tri_offset, np.int64),
         mesh_normal_offset=np.array(tables.normal_offset, np.int64),
         mesh_uv_offset=np.array(tables.uv_offset, np.int64),
-        node_bounds=concatenated(tables.node_bounds, (0, 6), np.float32),
-        node_info=concatenated(tables.node_info, (0, 2), np.int32),
+        node_bounds=nodes,
+        node_info=nodes.view(np.int32)[:, 6:8],
         tri_vertices=concatenated(tables.tri_vertices, (0, 3), np.int32),
         tri_smooth=concatenated(tables.tri_smooth, (0,), np.uint8),
         vertices=concatenated(tables.vertices, (0, 3), np.float32),
@@ -249,7 +252,6 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
     ]
     mesh_fields = [
         "node_bounds",
-        "node_info",
         "tri_vertices",
         "tri_smooth",
         "vertices",

@@ -13,7 +13,7 @@ float32 vertices, so they are exact; the arithmetic is float64.
 
 from core.jit import kernel
 from core.kernels.shapes import NO_HIT, SHAPE_MESH, count_crossings, intersect_analytic
-from core.kernels.triangles import intersect_triangle, shear_setup
+from core.kernels.triangles import intersect_triangle, permuted, shear_setup
 from core.kernels.vec import add, affine_point, affine_vector, max_abs, scale
 
 _WIDEN = 1.0 + 6.0 * 2.0**-53
@@ -30,17 +30,37 @@ SPAWN_OFFSET_ABSOLUTE = 1e-30
 def box_entry(bounds, k, o, inv, t_max):
     """Entry distance of the ray into box k of bounds (n, 6) = (lo xyz, hi xyz) within
     [0, t_max]; NO_HIT when it misses. NaNs (a ray in a box's face plane) are ignored."""
+    return _slabs(bounds, k, o[0], o[1], o[2], inv[0], inv[1], inv[2], t_max)
+
+
+@kernel
+def _slabs(bounds, k, ox, oy, oz, ix, iy, iz, t_max):
     t_near = 0.0
     t_far = t_max
-    for a in range(3):
-        t0 = (bounds[k, a] - o[a]) * inv[a]
-        t1 = (bounds[k, a + 3] - o[a]) * inv[a]
-        if t0 > t1:
-            t0, t1 = t1, t0
-        if t0 > t_near:
-            t_near = t0
-        if t1 < t_far:
-            t_far = t1
+    t0 = (bounds[k, 0] - ox) * ix
+    t1 = (bounds[k, 3] - ox) * ix
+    if t0 > t1:
+        t0, t1 = t1, t0
+    if t0 > t_near:
+        t_near = t0
+    if t1 < t_far:
+        t_far = t1
+    t0 = (bounds[k, 1] - oy) * iy
+    t1 = (bounds[k, 4] - oy) * iy
+    if t0 > t1:
+        t0, t1 = t1, t0
+    if t0 > t_near:
+        t_near = t0
+    if t1 < t_far:
+        t_far = t1
+    t0 = (bounds[k, 2] - oz) * iz
+    t1 = (bounds[k, 5] - oz) * iz
+    if t0 > t1:
+        t0, t1 = t1, t0
+    if t0 > t_near:
+        t_near = t0
+    if t1 < t_far:
+        t_far = t1
     if t_near <= t_far * _WIDEN:
         return t_near
     return NO_HIT
@@ -52,14 +72,17 @@ def _inverse(d):
 
 
 @kernel
-def mesh_closest(ps, mesh, o, d, t_max, stack, stack_t):
-    """Nearest triangle of `mesh` (object-space ray): (t, triangle, b1, b2)."""
-    inv = _inverse(d)
+def mesh_closest(bounds, info, tris, vertices, root, o, d, t_max, stack, stack_t):
+    """Nearest triangle of the mesh whose BVH starts at node `root`, for a ray in its object
+    space: (t, triangle, b1, b2). Takes the arrays it reads rather than the whole packed
+    scene: numba passes a tuple argument field by field, and this is called once per ray."""
+    ox, oy, oz = o
+    ix, iy, iz = _inverse(d)
     shear = shear_setup(d)
-    bounds, info, tris = ps.node_bounds, ps.node_info, ps.tri_vertices
+    o_sheared = permuted(o, shear)
     best_t, best_tri, best_b1, best_b2 = t_max, -1, 0.0, 0.0
-    node = ps.mesh_root[mesh]
-    if box_entry(bounds, node, o, inv, best_t) == NO_HIT:
+    node = root
+    if _slabs(bounds, node, ox, oy, oz, ix, iy, iz, best_t) == NO_HIT:
         return NO_HIT, -1, 0.0, 0.0
     top = 0
     while True:
@@ -68,24 +91,26 @@ def mesh_closest(ps, mesh, o, d, t_max, stack, stack_t):
             first = info[node, 0]
             for tri in range(first, first + count):
                 t, b1, b2 = intersect_triangle(
-                    ps.vertices, tris[tri, 0], tris[tri, 1], tris[tri, 2], o, shear, best_t
+                    vertices, tris[tri, 0], tris[tri, 1], tris[tri, 2], o_sheared, shear, best_t
                 )
                 if t < best_t:
                     best_t, best_tri, best_b1, best_b2 = t, tri, b1, b2
         else:
             child = info[node, 0]
-            t_left = box_entry(bounds, child, o, inv, best_t)
-            t_right = box_entry(bounds, child + 1, o, inv, best_t)
-            if t_left != NO_HIT and t_right != NO_HIT:
-                near, far, t_far = child, child + 1, t_right
-                if t_right < t_left:
-                    near, far, t_far = child + 1, child, t_left
-                stack[top] = far
-                stack_t[top] = t_far
-                top += 1
-                node = near
-                continue
+            t_left = _slabs(bounds, child, ox, oy, oz, ix, iy, iz, best_t)
+            t_right = _slabs(bounds, child + 1, ox, oy, oz, ix, iy, iz, best_t)
             if t_left != NO_HIT:
+                if t_right != NO_HIT:
+                    if t_right < t_left:
+                        stack[top] = child
+                        stack_t[top] = t_left
+                        node = child + 1
+                    else:
+                        stack[top] = child + 1
+                        stack_t[top] = t_right
+                        node = child
+                    top += 1
+                    continue
                 node = child
                 continue
             if t_right != NO_HIT:
@@ -109,6 +134,7 @@ def mesh_crossings(ps, mesh, o, d, t_max, stop_at_first, stack):
     """How many triangles of `mesh` the segment crosses (stopping at 1 if stop_at_first)."""
     inv = _inverse(d)
     shear = shear_setup(d)
+    o_sheared = permuted(o, shear)
     bounds, info, tris = ps.node_bounds, ps.node_info, ps.tri_vertices
     crossings = 0
     stack[0] = ps.mesh_root[mesh]
@@ -127,7 +153,7 @@ def mesh_crossings(ps, mesh, o, d, t_max, stop_at_first, stack):
         first = info[node, 0]
         for tri in range(first, first + count):
             t, _, _ = intersect_triangle(
-                ps.vertices, tris[tri, 0], tris[tri, 1], tris[tri, 2], o, shear, t_max
+                ps.vertices, tris[tri, 0], tris[tri, 1], tris[tri, 2], o_sheared, shear, t_max
             )
             if t < t_max:
                 crossings += 1
@@ -143,46 +169,60 @@ def closest_hit(ps, o, d, t_max, ws):
     part is the surface part for analytic shapes, the triangle for meshes; b1 and b2 are
     barycentric weights on meshes. A miss returns (-1, NO_HIT, -1, 0, 0)."""
     stack, stack_t = ws.top_stack, ws.top_stack_t
-    inv = _inverse(d)
-    best = (-1, t_max, -1, 0.0, 0.0)
-    if ps.top_info.shape[0] == 0 or box_entry(ps.top_bounds, 0, o, inv, t_max) == NO_HIT:
+    ox, oy, oz = o
+    ix, iy, iz = _inverse(d)
+    bounds, info = ps.top_bounds, ps.top_info
+    # Scalars, not a tuple, carry the best hit through the loop: numba keeps them in
+    # registers (a reassigned mixed-type tuple here cost half the mesh traversal's speed)
+    best_shape, best_t, best_part, best_b1, best_b2 = -1, t_max, -1, 0.0, 0.0
+    if info.shape[0] == 0 or _slabs(bounds, 0, ox, oy, oz, ix, iy, iz, t_max) == NO_HIT:
         return -1, NO_HIT, -1, 0.0, 0.0
     node = 0
     top = 0
     while True:
-        count = ps.top_info[node, 1]
+        count = info[node, 1]
         if count > 0:
-            first = ps.top_info[node, 0]
+            first = info[node, 0]
             for k in range(first, first + count):
                 shape = ps.top_order[k]
                 m = ps.shape_object_from_world[shape]
                 o_obj, d_obj = affine_point(m, o), affine_vector(m, d)
                 kind = ps.shape_kind[shape]
                 if kind == SHAPE_MESH:
-                    t, tri, b1, b2 = mesh_closest(
-                        ps, ps.shape_mesh[shape], o_obj, d_obj, best[1], ws.stack, ws.stack_t
+                    t, part, b1, b2 = mesh_closest(
+                        ps.node_bounds,
+                        ps.node_info,
+                        ps.tri_vertices,
+                        ps.vertices,
+                        ps.mesh_root[ps.shape_mesh[shape]],
+                        o_obj,
+                        d_obj,
+                        best_t,
+                        ws.stack,
+                        ws.stack_t,
                     )
-                    if t < best[1]:
-                        best = (shape, t, tri, b1, b2)
                 else:
                     major, minor = ps.shape_param[shape, 0], ps.shape_param[shape, 1]
-                    t, part = intersect_analytic(kind, major, minor, o_obj, d_obj, 0.0, best[1])
-                    if t < best[1]:
-                        best = (shape, t, part, 0.0, 0.0)
+                    t, part = intersect_analytic(kind, major, minor, o_obj, d_obj, 0.0, best_t)
+                    b1 = b2 = 0.0
+                if t < best_t:
+                    best_shape, best_t, best_part, best_b1, best_b2 = shape, t, part, b1, b2
         else:
-            child = ps.top_info[node, 0]
-            t_left = box_entry(ps.top_bounds, child, o, inv, best[1])
-            t_right = box_entry(ps.top_bounds, child + 1, o, inv, best[1])
-            if t_left != NO_HIT and t_right != NO_HIT:
-                near, far, t_far = child, child + 1, t_right
-                if t_right < t_left:
-                    near, far, t_far = child + 1, child, t_left
-                stack[top] = far
-                stack_t[top] = t_far
-                top += 1
-                node = near
-                continue
+            child = info[node, 0]
+            t_left = _slabs(bounds, child, ox, oy, oz, ix, iy, iz, best_t)
+            t_right = _slabs(bounds, child + 1, ox, oy, oz, ix, iy, iz, best_t)
             if t_left != NO_HIT:
+                if t_right != NO_HIT:
+                    if t_right < t_left:
+                        stack[top] = child
+                        stack_t[top] = t_left
+                        node = child + 1
+                    else:
+                        stack[top] = child + 1
+                        stack_t[top] = t_right
+                        node = child
+                    top += 1
+                    continue
                 node = child
                 continue
             if t_right != NO_HIT:
@@ -190,14 +230,14 @@ def closest_hit(ps, o, d, t_max, ws):
                 continue
         while top > 0:
             top -= 1
-            if stack_t[top] < best[1]:
+            if stack_t[top] < best_t:
                 break
         else:
             break
         node = stack[top]
-    if best[0] < 0:
+    if best_shape < 0:
         return -1, NO_HIT, -1, 0.0, 0.0
-    return best
+    return best_shape, best_t, best_part, best_b1, best_b2
 
 
 @kernel

@@ -25,22 +25,27 @@ def shear_setup(d):
 
 
 @kernel
+def permuted(o, shear):
+    """The ray origin in the shear's axis order: (o[kx], o[ky], o[kz])."""
+    return o[shear[0]], o[shear[1]], o[shear[2]]
+
+
+@kernel
 def intersect_triangle(vertices, i0, i1, i2, o, shear, t_max):
     """(t, b1, b2) where o + t d meets triangle (i0, i1, i2) with 0 < t < t_max, b1 and b2
-    the barycentric weights of vertices i1 and i2; (NO_HIT, 0, 0) on a miss."""
+    the barycentric weights of vertices i1 and i2; (NO_HIT, 0, 0) on a miss. `o` is the
+    origin from `permuted`, `shear` from `shear_setup`."""
     kx, ky, kz, sx, sy, sz = shear
-    a0 = vertices[i0, kx] - o[kx]
-    a1 = vertices[i0, ky] - o[ky]
-    a2 = vertices[i0, kz] - o[kz]
-    b0 = vertices[i1, kx] - o[kx]
-    b1 = vertices[i1, ky] - o[ky]
-    b2 = vertices[i1, kz] - o[kz]
-    c0 = vertices[i2, kx] - o[kx]
-    c1 = vertices[i2, ky] - o[ky]
-    c2 = vertices[i2, kz] - o[kz]
-    ax, ay = a0 - sx * a2, a1 - sy * a2
-    bx, by = b0 - sx * b2, b1 - sy * b2
-    cx, cy = c0 - sx * c2, c1 - sy * c2
+    ox, oy, oz = o
+    a2 = vertices[i0, kz] - oz
+    b2 = vertices[i1, kz] - oz
+    c2 = vertices[i2, kz] - oz
+    ax = vertices[i0, kx] - ox - sx * a2
+    ay = vertices[i0, ky] - oy - sy * a2
+    bx = vertices[i1, kx] - ox - sx * b2
+    by = vertices[i1, ky] - oy - sy * b2
+    cx = vertices[i2, kx] - ox - sx * c2
+    cy = vertices[i2, ky] - oy - sy * c2
     u = cx * by - cy * bx
     v = ax * cy - ay * cx
     w = bx * ay - by * ax
@@ -49,7 +54,7 @@ def intersect_triangle(vertices, i0, i1, i2, o, shear, t_max):
     det = u + v + w
     if det == 0.0:
         return NO_HIT, 0.0, 0.0
-    t = (u * (sz * a2) + v * (sz * b2) + w * (sz * c2)) / det
+    t = (u * a2 + v * b2 + w * c2) * sz / det
     if not 0.0 < t < t_max:
         return NO_HIT, 0.0, 0.0
     return t, v / det, w / det

@@ -8,7 +8,7 @@ import pytest
 from core import Box, Mesh, RenderSettings, Scene, Sphere, Torus, TriangleMesh, render
 from core.kernels.bvh_build import build_bvh
 from core.kernels.shapes import NO_HIT, SHAPE_MESH, intersect_analytic
-from core.kernels.triangles import intersect_triangle, shear_setup
+from core.kernels.triangles import intersect_triangle, permuted, shear_setup
 from core.kernels.vec import affine_point, affine_vector
 from core.packing import compile_scene
 from tests.core.probe import hits, surface
@@ -36,10 +36,11 @@ def brute_force(ps, origins, directions):
                 if mesh + 1 < len(ps.mesh_root):
                     last = ps.mesh_tri_offset[mesh + 1]
                 shear = shear_setup(dd)
+                o_sheared = permuted(oo, shear)
                 for tri in range(first, last):
                     t, _, _ = intersect_triangle(
                         ps.vertices, ps.tri_vertices[tri, 0], ps.tri_vertices[tri, 1],
-                        ps.tri_vertices[tri, 2], oo, shear, out_t[r],
+                        ps.tri_vertices[tri, 2], o_sheared, shear, out_t[r],
                     )  # fmt: skip
                     if t < out_t[r]:
                         out_t[r], out_shape[r], out_part[r] = t, s, tri
