@@ -66,8 +66,12 @@ format: $(VENV)/.installed
 test: setup lint
 	$(VENV)/bin/python -m pytest
 
-bench: setup
+bench: setup $(VENV)/.embree
 	$(VENV)/bin/python -m tests.benchmarks
+
+$(VENV)/.embree: pyproject.toml | $(VENV)/.installed
+	$(VENV)/bin/pip install --quiet -e ".[embree]"
+	touch $@
 
 clean:
 	rm -rf $(VENV) $(BUILD) .cache build

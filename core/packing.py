@@ -77,6 +77,7 @@ class PackedScene(NamedTuple):
     shape_object_from_world: np.ndarray  # float64 (n, 3, 4): affine rows, inverse transform
     shape_param: np.ndarray  # float64 (n, 2): torus major and minor radius
     shape_mesh: np.ndarray  # int32 (n,): row in mesh_* for meshes, else -1
+    shape_transparency: np.ndarray  # float64 (n,): its material's, for shadow rays
     # top-level BVH over shapes, world space (see core.kernels.bvh_build)
     top_bounds: np.ndarray  # float64 (k, 6): lo xyz, hi xyz
     top_info: np.ndarray  # int32 (k, 2)
@@ -204,6 +205,7 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
         shape_object_from_world=object_from_world,
         shape_param=param,
         shape_mesh=shape_mesh,
+        shape_transparency=np.array([s.material.transparency for s in scene.shapes], float),
         top_bounds=np.ascontiguousarray(np.hstack([top_lo, top_hi])),
         top_info=np.ascontiguousarray(top_info, np.int32),
         top_order=np.ascontiguousarray(top_order, np.int32),

@@ -14,7 +14,7 @@ float32 vertices, so they are exact; the arithmetic is float64.
 from core.jit import kernel
 from core.kernels.shapes import NO_HIT, SHAPE_MESH, count_crossings, intersect_analytic
 from core.kernels.triangles import intersect_triangle, permuted, shear_setup
-from core.kernels.vec import add, affine_point, affine_vector, max_abs, scale
+from core.kernels.vec import add, affine_point_of, affine_vector_of, max_abs, scale
 
 _WIDEN = 1.0 + 6.0 * 2.0**-53
 
@@ -28,33 +28,39 @@ SPAWN_OFFSET_ABSOLUTE = 1e-30
 
 @kernel
 def box_entry(bounds, k, o, inv, t_max):
-    """Entry distance of the ray into box k of bounds (n, 6) = (lo xyz, hi xyz) within
+    """Entry distance of the ray into box k of bounds (n, 6+) = (lo xyz, hi xyz, ...) within
     [0, t_max]; NO_HIT when it misses. NaNs (a ray in a box's face plane) are ignored."""
-    return _slabs(bounds, k, o[0], o[1], o[2], inv[0], inv[1], inv[2], t_max)
+    return _slab_test(
+        bounds[k, 0], bounds[k, 1], bounds[k, 2], bounds[k, 3], bounds[k, 4], bounds[k, 5],
+        o[0], o[1], o[2], inv[0], inv[1], inv[2], t_max,
+    )  # fmt: skip
 
 
 @kernel
-def _slabs(bounds, k, ox, oy, oz, ix, iy, iz, t_max):
+def _slab_test(x0, y0, z0, x1, y1, z1, ox, oy, oz, ix, iy, iz, t_max):
+    """The slab test on the box's corners as scalars. Hot helpers take numbers, not arrays:
+    every array passed to a function that is not inlined costs an atomic reference count
+    increment and decrement, which measured a third of the render time."""
     t_near = 0.0
     t_far = t_max
-    t0 = (bounds[k, 0] - ox) * ix
-    t1 = (bounds[k, 3] - ox) * ix
+    t0 = (x0 - ox) * ix
+    t1 = (x1 - ox) * ix
     if t0 > t1:
         t0, t1 = t1, t0
     if t0 > t_near:
         t_near = t0
     if t1 < t_far:
         t_far = t1
-    t0 = (bounds[k, 1] - oy) * iy
-    t1 = (bounds[k, 4] - oy) * iy
+    t0 = (y0 - oy) * iy
+    t1 = (y1 - oy) * iy
     if t0 > t1:
         t0, t1 = t1, t0
     if t0 > t_near:
         t_near = t0
     if t1 < t_far:
         t_far = t1
-    t0 = (bounds[k, 2] - oz) * iz
-    t1 = (bounds[k, 5] - oz) * iz
+    t0 = (z0 - oz) * iz
+    t1 = (z1 - oz) * iz
     if t0 > t1:
         t0, t1 = t1, t0
     if t0 > t_near:
@@ -82,7 +88,24 @@ def mesh_closest(bounds, info, tris, vertices, root, o, d, t_max, stack, stack_t
     o_sheared = permuted(o, shear)
     best_t, best_tri, best_b1, best_b2 = t_max, -1, 0.0, 0.0
     node = root
-    if _slabs(bounds, node, ox, oy, oz, ix, iy, iz, best_t) == NO_HIT:
+    if (
+        _slab_test(
+            bounds[node, 0],
+            bounds[node, 1],
+            bounds[node, 2],
+            bounds[node, 3],
+            bounds[node, 4],
+            bounds[node, 5],
+            ox,
+            oy,
+            oz,
+            ix,
+            iy,
+            iz,
+            best_t,
+        )
+        == NO_HIT
+    ):
         return NO_HIT, -1, 0.0, 0.0
     top = 0
     while True:
@@ -97,8 +120,36 @@ def mesh_closest(bounds, info, tris, vertices, root, o, d, t_max, stack, stack_t
                     best_t, best_tri, best_b1, best_b2 = t, tri, b1, b2
         else:
             child = info[node, 0]
-            t_left = _slabs(bounds, child, ox, oy, oz, ix, iy, iz, best_t)
-            t_right = _slabs(bounds, child + 1, ox, oy, oz, ix, iy, iz, best_t)
+            t_left = _slab_test(
+                bounds[child, 0],
+                bounds[child, 1],
+                bounds[child, 2],
+                bounds[child, 3],
+                bounds[child, 4],
+                bounds[child, 5],
+                ox,
+                oy,
+                oz,
+                ix,
+                iy,
+                iz,
+                best_t,
+            )
+            t_right = _slab_test(
+                bounds[child + 1, 0],
+                bounds[child + 1, 1],
+                bounds[child + 1, 2],
+                bounds[child + 1, 3],
+                bounds[child + 1, 4],
+                bounds[child + 1, 5],
+                ox,
+                oy,
+                oz,
+                ix,
+                iy,
+                iz,
+                best_t,
+            )
             if t_left != NO_HIT:
                 if t_right != NO_HIT:
                     if t_right < t_left:
@@ -130,14 +181,14 @@ def mesh_closest(bounds, info, tris, vertices, root, o, d, t_max, stack, stack_t
 
 
 @kernel
-def mesh_crossings(ps, mesh, o, d, t_max, stop_at_first, stack):
-    """How many triangles of `mesh` the segment crosses (stopping at 1 if stop_at_first)."""
+def mesh_crossings(bounds, info, tris, vertices, root, o, d, t_max, stop_at_first, stack):
+    """How many triangles of the mesh whose BVH starts at `root` the segment crosses
+    (stopping at 1 if stop_at_first)."""
     inv = _inverse(d)
     shear = shear_setup(d)
     o_sheared = permuted(o, shear)
-    bounds, info, tris = ps.node_bounds, ps.node_info, ps.tri_vertices
     crossings = 0
-    stack[0] = ps.mesh_root[mesh]
+    stack[0] = root
     top = 1
     while top > 0:
         top -= 1
@@ -153,7 +204,7 @@ def mesh_crossings(ps, mesh, o, d, t_max, stop_at_first, stack):
         first = info[node, 0]
         for tri in range(first, first + count):
             t, _, _ = intersect_triangle(
-                ps.vertices, tris[tri, 0], tris[tri, 1], tris[tri, 2], o_sheared, shear, t_max
+                vertices, tris[tri, 0], tris[tri, 1], tris[tri, 2], o_sheared, shear, t_max
             )
             if t < t_max:
                 crossings += 1
@@ -168,14 +219,39 @@ def closest_hit(ps, o, d, t_max, ws):
 
     part is the surface part for analytic shapes, the triangle for meshes; b1 and b2 are
     barycentric weights on meshes. A miss returns (-1, NO_HIT, -1, 0, 0)."""
-    stack, stack_t = ws.top_stack, ws.top_stack_t
+    # Arrays are bound once here (see `transmittance`)
+    stack, stack_t, mesh_stack, mesh_stack_t = ws.top_stack, ws.top_stack_t, ws.stack, ws.stack_t
+    bounds, info, order = ps.top_bounds, ps.top_info, ps.top_order
+    kinds, params, meshes = ps.shape_kind, ps.shape_param, ps.shape_mesh
+    transforms, roots = ps.shape_object_from_world, ps.mesh_root
+    node_bounds, node_info, tris, vertices = (
+        ps.node_bounds,
+        ps.node_info,
+        ps.tri_vertices,
+        ps.vertices,
+    )
     ox, oy, oz = o
     ix, iy, iz = _inverse(d)
-    bounds, info = ps.top_bounds, ps.top_info
-    # Scalars, not a tuple, carry the best hit through the loop: numba keeps them in
-    # registers (a reassigned mixed-type tuple here cost half the mesh traversal's speed)
     best_shape, best_t, best_part, best_b1, best_b2 = -1, t_max, -1, 0.0, 0.0
-    if info.shape[0] == 0 or _slabs(bounds, 0, ox, oy, oz, ix, iy, iz, t_max) == NO_HIT:
+    if (
+        info.shape[0] == 0
+        or _slab_test(
+            bounds[0, 0],
+            bounds[0, 1],
+            bounds[0, 2],
+            bounds[0, 3],
+            bounds[0, 4],
+            bounds[0, 5],
+            ox,
+            oy,
+            oz,
+            ix,
+            iy,
+            iz,
+            t_max,
+        )
+        == NO_HIT
+    ):
         return -1, NO_HIT, -1, 0.0, 0.0
     node = 0
     top = 0
@@ -184,33 +260,53 @@ def closest_hit(ps, o, d, t_max, ws):
         if count > 0:
             first = info[node, 0]
             for k in range(first, first + count):
-                shape = ps.top_order[k]
-                m = ps.shape_object_from_world[shape]
-                o_obj, d_obj = affine_point(m, o), affine_vector(m, d)
-                kind = ps.shape_kind[shape]
+                shape = order[k]
+                o_obj = affine_point_of(transforms, shape, o)
+                d_obj = affine_vector_of(transforms, shape, d)
+                kind = kinds[shape]
                 if kind == SHAPE_MESH:
                     t, part, b1, b2 = mesh_closest(
-                        ps.node_bounds,
-                        ps.node_info,
-                        ps.tri_vertices,
-                        ps.vertices,
-                        ps.mesh_root[ps.shape_mesh[shape]],
-                        o_obj,
-                        d_obj,
-                        best_t,
-                        ws.stack,
-                        ws.stack_t,
-                    )
+                        node_bounds, node_info, tris, vertices, roots[meshes[shape]], o_obj,
+                        d_obj, best_t, mesh_stack, mesh_stack_t,
+                    )  # fmt: skip
                 else:
-                    major, minor = ps.shape_param[shape, 0], ps.shape_param[shape, 1]
+                    major, minor = params[shape, 0], params[shape, 1]
                     t, part = intersect_analytic(kind, major, minor, o_obj, d_obj, 0.0, best_t)
                     b1 = b2 = 0.0
                 if t < best_t:
                     best_shape, best_t, best_part, best_b1, best_b2 = shape, t, part, b1, b2
         else:
             child = info[node, 0]
-            t_left = _slabs(bounds, child, ox, oy, oz, ix, iy, iz, best_t)
-            t_right = _slabs(bounds, child + 1, ox, oy, oz, ix, iy, iz, best_t)
+            t_left = _slab_test(
+                bounds[child, 0],
+                bounds[child, 1],
+                bounds[child, 2],
+                bounds[child, 3],
+                bounds[child, 4],
+                bounds[child, 5],
+                ox,
+                oy,
+                oz,
+                ix,
+                iy,
+                iz,
+                best_t,
+            )
+            t_right = _slab_test(
+                bounds[child + 1, 0],
+                bounds[child + 1, 1],
+                bounds[child + 1, 2],
+                bounds[child + 1, 3],
+                bounds[child + 1, 4],
+                bounds[child + 1, 5],
+                ox,
+                oy,
+                oz,
+                ix,
+                iy,
+                iz,
+                best_t,
+            )
             if t_left != NO_HIT:
                 if t_right != NO_HIT:
                     if t_right < t_left:
@@ -248,37 +344,55 @@ def transmittance(ps, o, d, t_max, ws):
     transparency tau multiplies the light by tau, without bending or Fresnel loss (a shadow
     ray cannot follow refraction to the light). Opaque surfaces (tau = 0) block it outright,
     and the search stops at the first of them, as an any-hit query."""
-    stack = ws.top_stack
-    if ps.top_info.shape[0] == 0:
+    # Arrays are bound once here, never read from `ps` inside the loop: each `ps.field`
+    # read costs numba an atomic reference-count increment and decrement
+    stack, mesh_stack = ws.top_stack, ws.stack
+    bounds, info, order = ps.top_bounds, ps.top_info, ps.top_order
+    kinds, params, meshes = ps.shape_kind, ps.shape_param, ps.shape_mesh
+    transforms, tau_of_shape = ps.shape_object_from_world, ps.shape_transparency
+    node_bounds, node_info, tris, vertices = (
+        ps.node_bounds,
+        ps.node_info,
+        ps.tri_vertices,
+        ps.vertices,
+    )
+    roots = ps.mesh_root
+    if info.shape[0] == 0:
         return 1.0
-    inv = _inverse(d)
+    ox, oy, oz = o
+    ix, iy, iz = _inverse(d)
     light = 1.0
     stack[0] = 0
     top = 1
     while top > 0:
         top -= 1
         node = stack[top]
-        if box_entry(ps.top_bounds, node, o, inv, t_max) == NO_HIT:
+        if (
+            _slab_test(bounds[node, 0], bounds[node, 1], bounds[node, 2], bounds[node, 3],
+                       bounds[node, 4], bounds[node, 5], ox, oy, oz, ix, iy, iz, t_max)
+            == NO_HIT
+        ):  # fmt: skip
             continue
-        count = ps.top_info[node, 1]
+        count = info[node, 1]
         if count == 0:
-            stack[top] = ps.top_info[node, 0]
-            stack[top + 1] = ps.top_info[node, 0] + 1
+            stack[top] = info[node, 0]
+            stack[top + 1] = info[node, 0] + 1
             top += 2
             continue
-        first = ps.top_info[node, 0]
+        first = info[node, 0]
         for k in range(first, first + count):
-            shape = ps.top_order[k]
-            tau = ps.material_transparency[ps.shape_material[shape]]
-            m = ps.shape_object_from_world[shape]
-            o_obj, d_obj = affine_point(m, o), affine_vector(m, d)
-            kind = ps.shape_kind[shape]
+            shape = order[k]
+            tau = tau_of_shape[shape]
+            o_obj = affine_point_of(transforms, shape, o)
+            d_obj = affine_vector_of(transforms, shape, d)
+            kind = kinds[shape]
             if kind == SHAPE_MESH:
                 crossings = mesh_crossings(
-                    ps, ps.shape_mesh[shape], o_obj, d_obj, t_max, tau == 0.0, ws.stack
-                )
+                    node_bounds, node_info, tris, vertices, roots[meshes[shape]], o_obj, d_obj,
+                    t_max, tau == 0.0, mesh_stack,
+                )  # fmt: skip
             else:
-                major, minor = ps.shape_param[shape, 0], ps.shape_param[shape, 1]
+                major, minor = params[shape, 0], params[shape, 1]
                 crossings = count_crossings(kind, major, minor, o_obj, d_obj, 0.0, t_max)
             if crossings > 0:
                 if tau == 0.0:

@@ -90,3 +90,26 @@ def affine_transpose_vector(m, v):
 @kernel
 def cross(a, b):
     return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+@kernel
+def affine_point_of(matrices, i, p):
+    """matrices[i] (3, 4 affine rows) applied to point p, without making a view of it."""
+    return (
+        matrices[i, 0, 0] * p[0] + matrices[i, 0, 1] * p[1] + matrices[i, 0, 2] * p[2]
+        + matrices[i, 0, 3],
+        matrices[i, 1, 0] * p[0] + matrices[i, 1, 1] * p[1] + matrices[i, 1, 2] * p[2]
+        + matrices[i, 1, 3],
+        matrices[i, 2, 0] * p[0] + matrices[i, 2, 1] * p[1] + matrices[i, 2, 2] * p[2]
+        + matrices[i, 2, 3],
+    )  # fmt: skip
+
+
+@kernel
+def affine_vector_of(matrices, i, v):
+    """The linear part of matrices[i] applied to direction v."""
+    return (
+        matrices[i, 0, 0] * v[0] + matrices[i, 0, 1] * v[1] + matrices[i, 0, 2] * v[2],
+        matrices[i, 1, 0] * v[0] + matrices[i, 1, 1] * v[1] + matrices[i, 1, 2] * v[2],
+        matrices[i, 2, 0] * v[0] + matrices[i, 2, 1] * v[1] + matrices[i, 2, 2] * v[2],
+    )
