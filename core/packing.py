@@ -61,8 +61,8 @@ _TOP_MAX_LEAF = 2
 _TOP_TRAVERSAL_COST = 1.0
 
 
-class PackedScene(NamedTuple):
-    """Struct-of-arrays scene. Row i of every `shape_*` array describes shape i, and so on."""
+class Frame(NamedTuple):
+    """Camera and render options: what frames the picture."""
 
     # rows: eye, forward (unit), right (scaled by the half-width of the image plane at
     # distance 1), up (scaled by its half-height)
@@ -71,54 +71,81 @@ class PackedScene(NamedTuple):
     ambient: np.ndarray  # float64 (3,)
     background: np.ndarray  # float64 (3,)
     options: np.ndarray  # int64 (OPTION_COUNT,)
-    # shapes
-    shape_kind: np.ndarray  # int32 (n,)
-    shape_material: np.ndarray  # int32 (n,): row in material_*
-    shape_object_from_world: np.ndarray  # float64 (n, 3, 4): affine rows, inverse transform
-    shape_param: np.ndarray  # float64 (n, 2): torus major and minor radius
-    shape_mesh: np.ndarray  # int32 (n,): row in mesh_* for meshes, else -1
-    shape_transparency: np.ndarray  # float64 (n,): its material's, for shadow rays
+
+
+class Geometry(NamedTuple):
+    """What rays are traced against: shapes, the top-level BVH, mesh BVHs and triangles."""
+
     # top-level BVH over shapes, world space (see core.kernels.bvh_build)
     top_bounds: np.ndarray  # float64 (k, 6): lo xyz, hi xyz
     top_info: np.ndarray  # int32 (k, 2)
     top_order: np.ndarray  # int32 (n,): shapes in leaf order
-    # meshes: per mesh
+    # shapes
+    shape_kind: np.ndarray  # int32 (n,)
+    shape_object_from_world: np.ndarray  # float64 (n, 3, 4): affine rows, inverse transform
+    shape_param: np.ndarray  # float64 (n, 2): torus major and minor radius
+    shape_mesh: np.ndarray  # int32 (n,): row in mesh_root for meshes, else -1
+    shape_transparency: np.ndarray  # float64 (n,): its material's, for shadow rays
+    # meshes
     mesh_root: np.ndarray  # int32 (m,): its BVH's root in node_*
-    mesh_tri_offset: np.ndarray  # int64 (m,): its first triangle in tri_*
-    mesh_normal_offset: np.ndarray  # int64 (m,): its first row in tri_normal_index, or -1
-    mesh_uv_offset: np.ndarray  # int64 (m,): its first row in tri_uv_index, or -1
-    # meshes: all BVH nodes, triangles and vertices, concatenated
     # 32-byte node records: lo xyz, hi xyz as float32, then the two int32 of node_info
     node_bounds: np.ndarray  # float32 (nodes, 8)
     node_info: np.ndarray  # int32 (nodes, 2) view of columns 6-7: global node or triangle
-
     tri_vertices: np.ndarray  # int32 (t, 3): rows of vertices
-    tri_smooth: np.ndarray  # uint8 (t,): 1 if the face is smooth shaded
     vertices: np.ndarray  # float32 (v, 3), object space
+
+
+class Surfaces(NamedTuple):
+    """What a hit needs beyond geometry: materials of shapes, mesh normals and UVs."""
+
+    shape_material: np.ndarray  # int32 (n,): row in Materials
+    mesh_tri_offset: np.ndarray  # int64 (m,): its first triangle in tri_*
+    mesh_normal_offset: np.ndarray  # int64 (m,): its first row in tri_normal_index, or -1
+    mesh_uv_offset: np.ndarray  # int64 (m,): its first row in tri_uv_index, or -1
+    tri_smooth: np.ndarray  # uint8 (t,): 1 if the face is smooth shaded
     tri_normal_index: np.ndarray  # int32 (rows, 3): rows of normals per corner
     normals: np.ndarray  # float32 (r, 3)
     tri_uv_index: np.ndarray  # int32 (rows, 3): rows of uvs per corner
     uvs: np.ndarray  # float32 (r, 2)
-    # materials
-    material_diffuse: np.ndarray  # float64 (q, 3)
-    material_specular: np.ndarray  # float64 (q, 3)
-    material_shininess: np.ndarray  # float64 (q,)
-    material_reflectivity: np.ndarray  # float64 (q,)
-    material_transparency: np.ndarray  # float64 (q,)
-    material_ior: np.ndarray  # float64 (q, 2): outer, inner
-    material_texture: np.ndarray  # int32 (q,): row in texture_*, or -1
+
+
+class Materials(NamedTuple):
+    diffuse: np.ndarray  # float64 (q, 3)
+    specular: np.ndarray  # float64 (q, 3)
+    shininess: np.ndarray  # float64 (q,)
+    reflectivity: np.ndarray  # float64 (q,)
+    transparency: np.ndarray  # float64 (q,)
+    ior: np.ndarray  # float64 (q, 2): outer, inner
+    texture: np.ndarray  # int32 (q,): row in texture_*, or -1
     texture_pixels: np.ndarray  # float32 (texels, 3): all images, row-major, top row first
     texture_offset: np.ndarray  # int64 (x,): each image's first texel
     texture_size: np.ndarray  # int64 (x, 2): width, height
-    # lights
-    light_position: np.ndarray  # float64 (l, 3)
-    light_intensity: np.ndarray  # float64 (l, 3)
-    light_attenuation: np.ndarray  # float64 (l, 3): c0, c1, c2
+
+
+class Lights(NamedTuple):
+    point_position: np.ndarray  # float64 (l, 3)
+    point_intensity: np.ndarray  # float64 (l, 3)
+    point_attenuation: np.ndarray  # float64 (l, 3): c0, c1, c2
     area_centre: np.ndarray  # float64 (a, 3)
     area_edge_u: np.ndarray  # float64 (a, 3)
     area_edge_v: np.ndarray  # float64 (a, 3)
     area_intensity: np.ndarray  # float64 (a, 3)
     area_attenuation: np.ndarray  # float64 (a, 3)
+
+
+class PackedScene(NamedTuple):
+    """Struct of arrays, in groups. Row i of every `shape_*` array describes shape i, etc.
+
+    Kernels take only the groups they read: numba passes a tuple of arrays field by field,
+    on the stack, and reference-counts every array, so handing the whole scene to each
+    helper cost more than the tracing itself (measured: three quarters of the render time).
+    """
+
+    frame: Frame  # (not "view": numba reserves that attribute name for arrays)
+    geometry: Geometry
+    surfaces: Surfaces
+    materials: Materials
+    lights: Lights
 
 
 class CompiledScene(NamedTuple):
@@ -187,50 +214,54 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
     if not solid.any():
         top_info = np.zeros((0, 2), np.int32)
 
-    nodes = concatenated(tables.node_bounds, (0, 8), np.float32)
     point_lights = [lt for lt in scene.lights if isinstance(lt, PointLight)]
     area_lights = [lt for lt in scene.lights if isinstance(lt, AreaLight)]
 
     def rows(values, width=3):
         return np.array(values, float).reshape(-1, width)
 
-    packed = PackedScene(
+    nodes = concatenated(tables.node_bounds, (0, 8), np.float32)
+    frame = Frame(
         camera=_pack_camera(scene, settings),
         lens=np.array([scene.camera.aperture_radius, scene.camera.focal_distance], float),
         ambient=np.asarray(scene.ambient, float),
         background=np.asarray(scene.background, float),
         options=_pack_options(settings),
+    )
+    geometry = Geometry(
+        top_bounds=np.ascontiguousarray(np.hstack([top_lo, top_hi])),
+        top_info=np.ascontiguousarray(top_info, np.int32),
+        top_order=np.ascontiguousarray(top_order, np.int32),
         shape_kind=np.array([SHAPE_KIND_OF_CLASS[type(s)] for s in scene.shapes], np.int32),
-        shape_material=np.array([material_index[id(s.material)] for s in scene.shapes], np.int32),
         shape_object_from_world=object_from_world,
         shape_param=param,
         shape_mesh=shape_mesh,
         shape_transparency=np.array([s.material.transparency for s in scene.shapes], float),
-        top_bounds=np.ascontiguousarray(np.hstack([top_lo, top_hi])),
-        top_info=np.ascontiguousarray(top_info, np.int32),
-        top_order=np.ascontiguousarray(top_order, np.int32),
         mesh_root=np.array(tables.root, np.int32),
-        mesh_tri_offset=np.array(tables.tri_offset, np.int64),
-        mesh_normal_offset=np.array(tables.normal_offset, np.int64),
-        mesh_uv_offset=np.array(tables.uv_offset, np.int64),
         node_bounds=nodes,
         node_info=nodes.view(np.int32)[:, 6:8],
         tri_vertices=concatenated(tables.tri_vertices, (0, 3), np.int32),
-        tri_smooth=concatenated(tables.tri_smooth, (0,), np.uint8),
         vertices=concatenated(tables.vertices, (0, 3), np.float32),
+    )
+    surfaces = Surfaces(
+        shape_material=np.array([material_index[id(s.material)] for s in scene.shapes], np.int32),
+        mesh_tri_offset=np.array(tables.tri_offset, np.int64),
+        mesh_normal_offset=np.array(tables.normal_offset, np.int64),
+        mesh_uv_offset=np.array(tables.uv_offset, np.int64),
+        tri_smooth=concatenated(tables.tri_smooth, (0,), np.uint8),
         tri_normal_index=concatenated(tables.tri_normal_index, (0, 3), np.int32),
         normals=concatenated(tables.normals, (0, 3), np.float32),
         tri_uv_index=concatenated(tables.tri_uv_index, (0, 3), np.int32),
         uvs=concatenated(tables.uvs, (0, 2), np.float32),
-        material_diffuse=rows([m.diffuse for m, _ in materials]),
-        material_specular=rows([m.specular for m, _ in materials]),
-        material_shininess=np.array([m.shininess for m, _ in materials], float),
-        material_reflectivity=np.array([m.reflectivity for m, _ in materials], float),
-        material_transparency=np.array([m.transparency for m, _ in materials], float),
-        material_ior=rows([(m.outer_ior, m.inner_ior) for m, _ in materials], 2),
-        material_texture=np.array(
-            [texture_index.get(id(m.texture), -1) for m, _ in materials], np.int32
-        ),
+    )
+    materials = Materials(
+        diffuse=rows([m.diffuse for m, _ in materials]),
+        specular=rows([m.specular for m, _ in materials]),
+        shininess=np.array([m.shininess for m, _ in materials], float),
+        reflectivity=np.array([m.reflectivity for m, _ in materials], float),
+        transparency=np.array([m.transparency for m, _ in materials], float),
+        ior=rows([(m.outer_ior, m.inner_ior) for m, _ in materials], 2),
+        texture=np.array([texture_index.get(id(m.texture), -1) for m, _ in materials], np.int32),
         texture_pixels=concatenated([t.reshape(-1, 3) for t in textures], (0, 3), np.float32),
         texture_offset=np.cumsum([0] + [t.shape[0] * t.shape[1] for t in textures])[:-1].astype(
             np.int64
@@ -238,15 +269,18 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
         texture_size=np.array([(t.shape[1], t.shape[0]) for t in textures], np.int64).reshape(
             -1, 2
         ),
-        light_position=rows([lt.position for lt in point_lights]),
-        light_intensity=rows([lt.intensity for lt in point_lights]),
-        light_attenuation=rows([lt.attenuation for lt in point_lights]),
+    )
+    lights = Lights(
+        point_position=rows([lt.position for lt in point_lights]),
+        point_intensity=rows([lt.intensity for lt in point_lights]),
+        point_attenuation=rows([lt.attenuation for lt in point_lights]),
         area_centre=rows([lt.centre for lt in area_lights]),
         area_edge_u=rows([lt.edge_u for lt in area_lights]),
         area_edge_v=rows([lt.edge_v for lt in area_lights]),
         area_intensity=rows([lt.intensity for lt in area_lights]),
         area_attenuation=rows([lt.attenuation for lt in area_lights]),
     )
+    packed = PackedScene(frame, geometry, surfaces, materials, lights)
     warnings = [
         f"mesh '{name}': dropped {count} degenerate (zero-area) triangle"
         + ("s" if count != 1 else "")
@@ -262,7 +296,12 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
         "tri_uv_index",
         "uvs",
     ]
-    mesh_bytes = sum(getattr(packed, name).nbytes for name in mesh_fields)
+    mesh_bytes = sum(
+        getattr(group, name).nbytes
+        for group in (geometry, surfaces)
+        for name in mesh_fields
+        if name in group._fields
+    )
     return CompiledScene(packed, warnings, tables.counts["tris"], mesh_bytes)
 
 

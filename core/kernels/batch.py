@@ -1,7 +1,8 @@
 """Many rays at once, for benchmarks, tests and tools: nearest hits and shadow queries.
 
 Each entry point loops over the rays inside one GIL-free kernel, so callers can split a batch
-across threads themselves; one `Workspace` per calling thread.
+across threads themselves; one `Stacks` (from a `Workspace`) per calling thread. They take
+the packed scene's `geometry` group.
 """
 
 from core.jit import kernel
@@ -9,21 +10,21 @@ from core.kernels.trace import closest_hit, transmittance
 
 
 @kernel
-def closest_hits(ps, origins, directions, t_max, out_t, out_shape, out_part, ws):
+def closest_hits(geo, origins, directions, t_max, out_t, out_shape, out_part, stacks):
     """Nearest hit of each ray: out_t (NO_HIT on a miss), out_shape (-1), out_part."""
     for i in range(origins.shape[0]):
         o = (origins[i, 0], origins[i, 1], origins[i, 2])
         d = (directions[i, 0], directions[i, 1], directions[i, 2])
-        shape, t, part, _, _ = closest_hit(ps, o, d, t_max, ws)
+        shape, t, part, _, _ = closest_hit(geo, o, d, t_max, stacks)
         out_t[i] = t
         out_shape[i] = shape
         out_part[i] = part
 
 
 @kernel
-def shadow_rays(ps, origins, directions, t_max, out_light, ws):
+def shadow_rays(geo, origins, directions, t_max, out_light, stacks):
     """Transmittance of each segment origin + t direction, 0 < t < t_max[i]."""
     for i in range(origins.shape[0]):
         o = (origins[i, 0], origins[i, 1], origins[i, 2])
         d = (directions[i, 0], directions[i, 1], directions[i, 2])
-        out_light[i] = transmittance(ps, o, d, t_max[i], ws)
+        out_light[i] = transmittance(geo, o, d, t_max[i], stacks)

@@ -15,7 +15,7 @@ after `max_depth` bounces, or once their weight can no longer show (MIN_WEIGHT).
 
 import math
 
-from core.jit import kernel
+from core.jit import inlined_kernel, kernel
 from core.kernels.options import OPTION_MAX_DEPTH
 from core.kernels.shading import local_colour
 from core.kernels.surface import diffuse_colour, surface_at
@@ -48,36 +48,41 @@ def refract(d, n, eta, cos_i, cos_t):
 
 
 @kernel
-def _push(ws, top, o, d, w, depth):
+def _push(rays, top, o, d, w, depth):
     if max(w[0], w[1], w[2]) < MIN_WEIGHT:
         return top
     for a in range(3):
-        ws.ray_origin[top, a] = o[a]
-        ws.ray_direction[top, a] = d[a]
-        ws.ray_weight[top, a] = w[a]
-    ws.ray_depth[top] = depth
+        rays.origin[top, a] = o[a]
+        rays.direction[top, a] = d[a]
+        rays.weight[top, a] = w[a]
+    rays.depth[top] = depth
     return top + 1
 
 
-@kernel
+@inlined_kernel
 def trace_ray(ps, o, d, key, ws):
     """Linear RGB colour seen along unit direction d from o, with every bounce."""
-    max_depth = ps.options[OPTION_MAX_DEPTH]
+    frame, geo, surf, mats, lights = ps
+    stacks, rays = ws
+    max_depth = frame.options[OPTION_MAX_DEPTH]
     colour = (0.0, 0.0, 0.0)
-    top = _push(ws, 0, o, d, (1.0, 1.0, 1.0), 0)
+    top = _push(rays, 0, o, d, (1.0, 1.0, 1.0), 0)
     event = 0
     while top > 0:
         top -= 1
-        o, d = row(ws.ray_origin, top), row(ws.ray_direction, top)
-        w, depth = row(ws.ray_weight, top), ws.ray_depth[top]
-        shape, t, part, b1, b2 = closest_hit(ps, o, d, math.inf, ws)
+        o, d = row(rays.origin, top), row(rays.direction, top)
+        w, depth = row(rays.weight, top), rays.depth[top]
+        shape, t, part, b1, b2 = closest_hit(geo, o, d, math.inf, stacks)
         if shape < 0:
-            colour = add(colour, mul(w, as_tuple(ps.background)))
+            colour = add(colour, mul(w, as_tuple(frame.background)))
             continue
-        p, n_geometric, n_shading, u, v = surface_at(ps, shape, part, b1, b2, o, d, t)
-        material = ps.shape_material[shape]
-        tau = ps.material_transparency[material]
-        rho = ps.material_reflectivity[material]
+        material = surf.shape_material[shape]
+        textured = mats.texture[material] >= 0
+        p, n_geometric, n_shading, u, v = surface_at(
+            geo, surf, shape, part, b1, b2, o, d, t, textured
+        )
+        tau = mats.transparency[material]
+        rho = mats.reflectivity[material]
         # Face the side the ray came from
         entering = dot(d, n_geometric) < 0.0
         if not entering:
@@ -85,11 +90,12 @@ def trace_ray(ps, o, d, key, ws):
             n_shading = scale(n_shading, -1.0)
         outside = spawn_point(p, n_geometric, o)
         if tau < 1.0:
-            kd = diffuse_colour(ps, material, u, v)
-            ks = row(ps.material_specular, material)
+            kd = diffuse_colour(mats, material, u, v)
+            ks = row(mats.specular, material)
             local = local_colour(
-                ps, outside, n_shading, d, kd, ks, ps.material_shininess[material], key, event, ws
-            )
+                frame, lights, geo, stacks, outside, n_shading, d, kd, ks,
+                mats.shininess[material], key, event,
+            )  # fmt: skip
             colour = add(colour, mul(w, scale(local, 1.0 - tau)))
         event += 1
         if depth >= max_depth:
@@ -97,15 +103,15 @@ def trace_ray(ps, o, d, key, ws):
         cos_i = min(1.0, max(0.0, -dot(d, n_shading)))
         reflect_weight = (1.0 - tau) * rho
         if tau > 0.0:
-            outer, inner = ps.material_ior[material, 0], ps.material_ior[material, 1]
+            outer, inner = mats.ior[material, 0], mats.ior[material, 1]
             n1, n2 = (outer, inner) if entering else (inner, outer)
             f, cos_t = fresnel_dielectric(cos_i, n1, n2)
             reflect_weight += tau * f
             if f < 1.0:
                 refracted = refract(d, n_shading, n1 / n2, cos_i, cos_t)
                 inside = spawn_point(p, scale(n_geometric, -1.0), o)
-                top = _push(ws, top, inside, refracted, scale(w, tau * (1.0 - f)), depth + 1)
+                top = _push(rays, top, inside, refracted, scale(w, tau * (1.0 - f)), depth + 1)
         if reflect_weight > 0.0:
             reflected = sub(d, scale(n_shading, 2.0 * dot(d, n_shading)))
-            top = _push(ws, top, outside, reflected, scale(w, reflect_weight), depth + 1)
+            top = _push(rays, top, outside, reflected, scale(w, reflect_weight), depth + 1)
     return colour

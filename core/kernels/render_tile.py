@@ -40,23 +40,23 @@ def _lens_cell(sample, cells):
 
 
 @kernel
-def camera_ray(ps, image_width, image_height, px, py, sample, key):
+def camera_ray(frame, image_width, image_height, px, py, sample, key):
     """(origin, unit direction) of camera sample `sample` of pixel (px, py), py from the top."""
-    n = ps.options[OPTION_PIXEL_SAMPLES]
+    n = frame.options[OPTION_PIXEL_SAMPLES]
     cx, cy = sample % n, sample // n
     jx, jy = 0.5, 0.5
-    if ps.options[OPTION_PIXEL_JITTER] != 0:
+    if frame.options[OPTION_PIXEL_JITTER] != 0:
         jx, jy = uniform2(key, PURPOSE_PIXEL, 0, 0)
     sx = 2.0 * (px + (cx + jx) / n) / image_width - 1.0
     sy = 1.0 - 2.0 * (py + (cy + jy) / n) / image_height
-    eye = row(ps.camera, 0)
-    right, up = row(ps.camera, 2), row(ps.camera, 3)
-    d = add(row(ps.camera, 1), add(scale(right, sx), scale(up, sy)))
-    aperture = ps.lens[0]
+    eye = row(frame.camera, 0)
+    right, up = row(frame.camera, 2), row(frame.camera, 3)
+    d = add(row(frame.camera, 1), add(scale(right, sx), scale(up, sy)))
+    aperture = frame.lens[0]
     if aperture == 0.0:
         return eye, normalize(d)
     # d has unit length along the view direction, so eye + f d lies on the focal plane
-    focus = add(eye, scale(d, ps.lens[1]))
+    focus = add(eye, scale(d, frame.lens[1]))
     cell = _lens_cell(sample, n * n)
     a, b = uniform2(key, PURPOSE_LENS, 0, 0)
     lx, ly = concentric_disk(((cell % n) + a) / n, ((cell // n) + b) / n)
@@ -73,16 +73,17 @@ def render_tile(ps, image_width, image_height, x0, y0, width, height, out, ws):
     Pixels depend only on their image coordinates, never on the tile, so any tiling of the
     image gives the same picture.
     """
-    n = ps.options[OPTION_PIXEL_SAMPLES]
+    frame = ps.frame
+    n = frame.options[OPTION_PIXEL_SAMPLES]
     samples = n * n
-    seed = ps.options[OPTION_SEED]
+    seed = frame.options[OPTION_SEED]
     for j in range(height):
         for i in range(width):
             px, py = x0 + i, y0 + j
             r = g = b = 0.0
             for s in range(samples):
                 key = sample_key(seed, px, py, s)
-                o, d = camera_ray(ps, image_width, image_height, px, py, s, key)
+                o, d = camera_ray(frame, image_width, image_height, px, py, s, key)
                 colour = trace_ray(ps, o, d, key, ws)
                 r += colour[0]
                 g += colour[1]

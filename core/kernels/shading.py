@@ -11,15 +11,17 @@ rays, one in each of N equal-area cells ("stratified"), or at N independent rand
 
 import math
 
-from core.jit import kernel
+from core.jit import inlined_kernel, kernel
 from core.kernels.options import OPTION_SHADOW_SAMPLES, OPTION_SHADOW_STRATIFIED
 from core.kernels.rng import PURPOSE_LIGHT, uniform2
 from core.kernels.trace import transmittance
 from core.kernels.vec import add, as_tuple, dot, mul, row, scale, sub
 
 
-@kernel
-def light_from(ps, position, intensity, attenuation, origin, n, to_viewer, kd, ks, shininess, ws):
+@inlined_kernel
+def light_from(
+    geo, stacks, position, intensity, attenuation, origin, n, to_viewer, kd, ks, shininess
+):
     """What one point emitter at `position` adds at a point (spawned at `origin`)."""
     to_light = sub(position, origin)
     distance = math.sqrt(dot(to_light, to_light))
@@ -29,7 +31,7 @@ def light_from(ps, position, intensity, attenuation, origin, n, to_viewer, kd, k
     n_dot_l = dot(n, light_dir)
     if n_dot_l <= 0.0:
         return 0.0, 0.0, 0.0
-    visible = transmittance(ps, origin, light_dir, distance, ws)
+    visible = transmittance(geo, origin, light_dir, distance, stacks)
     if visible == 0.0:
         return 0.0, 0.0, 0.0
     c0, c1, c2 = attenuation
@@ -60,36 +62,36 @@ def stratified_cell(j, count):
 
 
 @kernel
-def local_colour(ps, origin, n, d, kd, ks, shininess, key, event, ws):
+def local_colour(frame, lights, geo, stacks, origin, n, d, kd, ks, shininess, key, event):
     """Colour at a point seen along unit d, with unit shading normal n facing the viewer;
     shadow rays start at `origin` (the point lifted off the surface). `key` and `event`
     select the area lights' random numbers."""
     to_viewer = scale(d, -1.0)
-    colour = mul(kd, as_tuple(ps.ambient))
-    for light in range(ps.light_position.shape[0]):
+    colour = mul(kd, as_tuple(frame.ambient))
+    for light in range(lights.point_position.shape[0]):
         colour = add(
             colour,
             light_from(
-                ps,
-                row(ps.light_position, light),
-                row(ps.light_intensity, light),
-                row(ps.light_attenuation, light),
+                geo,
+                stacks,
+                row(lights.point_position, light),
+                row(lights.point_intensity, light),
+                row(lights.point_attenuation, light),
                 origin,
                 n,
                 to_viewer,
                 kd,
                 ks,
                 shininess,
-                ws,
             ),
         )
-    samples = ps.options[OPTION_SHADOW_SAMPLES]
-    stratified = ps.options[OPTION_SHADOW_STRATIFIED] != 0
-    for light in range(ps.area_centre.shape[0]):
-        centre = row(ps.area_centre, light)
-        edge_u, edge_v = row(ps.area_edge_u, light), row(ps.area_edge_v, light)
-        intensity = row(ps.area_intensity, light)
-        attenuation = row(ps.area_attenuation, light)
+    samples = frame.options[OPTION_SHADOW_SAMPLES]
+    stratified = frame.options[OPTION_SHADOW_STRATIFIED] != 0
+    for light in range(lights.area_centre.shape[0]):
+        centre = row(lights.area_centre, light)
+        edge_u, edge_v = row(lights.area_edge_u, light), row(lights.area_edge_v, light)
+        intensity = row(lights.area_intensity, light)
+        attenuation = row(lights.area_attenuation, light)
         total = (0.0, 0.0, 0.0)
         for j in range(samples):
             a, b = uniform2(key, PURPOSE_LIGHT, event * 65536 + light, j)
@@ -100,7 +102,8 @@ def local_colour(ps, origin, n, d, kd, ks, shininess, key, event, ws):
             total = add(
                 total,
                 light_from(
-                    ps,
+                    geo,
+                    stacks,
                     position,
                     intensity,
                     attenuation,
@@ -110,7 +113,6 @@ def local_colour(ps, origin, n, d, kd, ks, shininess, key, event, ws):
                     kd,
                     ks,
                     shininess,
-                    ws,
                 ),
             )
         colour = add(colour, scale(total, 1.0 / samples))

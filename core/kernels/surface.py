@@ -6,9 +6,9 @@ from core.jit import kernel
 from core.kernels.shapes import SHAPE_MESH, analytic_normal, analytic_uv
 from core.kernels.vec import (
     add,
-    affine_point,
-    affine_transpose_vector,
-    affine_vector,
+    affine_point_of,
+    affine_transpose_vector_of,
+    affine_vector_of,
     cross,
     normalize,
     row,
@@ -18,8 +18,8 @@ from core.kernels.vec import (
 
 
 @kernel
-def _vertex(ps, i):
-    return (float(ps.vertices[i, 0]), float(ps.vertices[i, 1]), float(ps.vertices[i, 2]))
+def _vertex(vertices, i):
+    return (float(vertices[i, 0]), float(vertices[i, 1]), float(vertices[i, 2]))
 
 
 @kernel
@@ -34,75 +34,83 @@ def _blend3(table, index, row_, b0, b1, b2):
 
 
 @kernel
-def surface_at(ps, shape, part, b1, b2, o, d, t):
-    """(p, geometric normal, shading normal, u, v) at a hit, normals unit and outward.
+def surface_at(geo, surf, shape, part, b1, b2, o, d, t, with_uv):
+    """(p, geometric normal, shading normal, u, v) at a hit, normals unit and outward;
+    u = v = 0 unless with_uv (texture coordinates cost trigonometry on analytic shapes).
 
     The shading normal differs from the geometric one only on smooth-shaded mesh faces,
     where the corner normals are interpolated with the barycentric weights.
     """
-    m = ps.shape_object_from_world[shape]
+    transforms = geo.shape_object_from_world
     p = add(o, scale(d, t))
-    kind = ps.shape_kind[shape]
+    kind = geo.shape_kind[shape]
+    u = v = 0.0
     if kind != SHAPE_MESH:
-        p_object = add(affine_point(m, o), scale(affine_vector(m, d), t))
-        major = ps.shape_param[shape, 0]
-        n = normalize(affine_transpose_vector(m, analytic_normal(kind, major, p_object, part)))
-        u, v = analytic_uv(kind, major, p_object, part)
+        p_object = add(
+            affine_point_of(transforms, shape, o), scale(affine_vector_of(transforms, shape, d), t)
+        )
+        major = geo.shape_param[shape, 0]
+        n_object = analytic_normal(kind, major, p_object, part)
+        n = normalize(affine_transpose_vector_of(transforms, shape, n_object))
+        if with_uv:
+            u, v = analytic_uv(kind, major, p_object, part)
         return p, n, n, u, v
 
-    mesh = ps.shape_mesh[shape]
+    mesh = geo.shape_mesh[shape]
     tri = part
-    local = tri - ps.mesh_tri_offset[mesh]
-    v0 = _vertex(ps, ps.tri_vertices[tri, 0])
-    v1 = _vertex(ps, ps.tri_vertices[tri, 1])
-    v2 = _vertex(ps, ps.tri_vertices[tri, 2])
-    geometric = normalize(affine_transpose_vector(m, cross(sub(v1, v0), sub(v2, v0))))
+    local = tri - surf.mesh_tri_offset[mesh]
+    tris, vertices = geo.tri_vertices, geo.vertices
+    v0 = _vertex(vertices, tris[tri, 0])
+    v1 = _vertex(vertices, tris[tri, 1])
+    v2 = _vertex(vertices, tris[tri, 2])
+    face = cross(sub(v1, v0), sub(v2, v0))
+    geometric = normalize(affine_transpose_vector_of(transforms, shape, face))
     b0 = 1.0 - b1 - b2
     shading = geometric
-    normal_row = ps.mesh_normal_offset[mesh]
-    if normal_row >= 0 and ps.tri_smooth[tri]:
-        n_object = _blend3(ps.normals, ps.tri_normal_index, normal_row + local, b0, b1, b2)
-        n_world = affine_transpose_vector(m, n_object)
+    normal_row = surf.mesh_normal_offset[mesh]
+    if normal_row >= 0 and surf.tri_smooth[tri]:
+        n_object = _blend3(surf.normals, surf.tri_normal_index, normal_row + local, b0, b1, b2)
+        n_world = affine_transpose_vector_of(transforms, shape, n_object)
         if n_world[0] != 0.0 or n_world[1] != 0.0 or n_world[2] != 0.0:
             shading = normalize(n_world)
-    u = v = 0.0
-    uv_row = ps.mesh_uv_offset[mesh]
-    if uv_row >= 0:
+    uv_row = surf.mesh_uv_offset[mesh]
+    if with_uv and uv_row >= 0:
         r = uv_row + local
-        i0, i1, i2 = ps.tri_uv_index[r, 0], ps.tri_uv_index[r, 1], ps.tri_uv_index[r, 2]
-        u = b0 * ps.uvs[i0, 0] + b1 * ps.uvs[i1, 0] + b2 * ps.uvs[i2, 0]
-        v = b0 * ps.uvs[i0, 1] + b1 * ps.uvs[i1, 1] + b2 * ps.uvs[i2, 1]
+        index, uvs = surf.tri_uv_index, surf.uvs
+        i0, i1, i2 = index[r, 0], index[r, 1], index[r, 2]
+        u = b0 * uvs[i0, 0] + b1 * uvs[i1, 0] + b2 * uvs[i2, 0]
+        v = b0 * uvs[i0, 1] + b1 * uvs[i1, 1] + b2 * uvs[i2, 1]
     return p, geometric, shading, u, v
 
 
 @kernel
-def _texel(ps, texture, x, y):
-    width, height = ps.texture_size[texture, 0], ps.texture_size[texture, 1]
-    i = ps.texture_offset[texture] + (y % height) * width + (x % width)
-    return (
-        float(ps.texture_pixels[i, 0]),
-        float(ps.texture_pixels[i, 1]),
-        float(ps.texture_pixels[i, 2]),
-    )
+def _texel(pixels, first, width, height, x, y):
+    i = first + (y % height) * width + (x % width)
+    return float(pixels[i, 0]), float(pixels[i, 1]), float(pixels[i, 2])
 
 
 @kernel
-def diffuse_colour(ps, material, u, v):
+def diffuse_colour(mats, material, u, v):
     """The material's kd, or its texture at (u, v): bilinear, repeating, v = 0 at the
     bottom row of the image."""
-    texture = ps.material_texture[material]
+    texture = mats.texture[material]
     if texture < 0:
-        return row(ps.material_diffuse, material)
-    width, height = ps.texture_size[texture, 0], ps.texture_size[texture, 1]
+        return row(mats.diffuse, material)
+    pixels, first = mats.texture_pixels, mats.texture_offset[texture]
+    width, height = mats.texture_size[texture, 0], mats.texture_size[texture, 1]
     x = u * width - 0.5
     y = (1.0 - v) * height - 0.5
     if not (math.isfinite(x) and math.isfinite(y)):
-        return _texel(ps, texture, 0, 0)
+        return _texel(pixels, first, width, height, 0, 0)
     x0, y0 = math.floor(x), math.floor(y)
     fx, fy = x - x0, y - y0
     i, j = int(x0), int(y0)
-    top = add(scale(_texel(ps, texture, i, j), 1.0 - fx), scale(_texel(ps, texture, i + 1, j), fx))
+    top = add(
+        scale(_texel(pixels, first, width, height, i, j), 1.0 - fx),
+        scale(_texel(pixels, first, width, height, i + 1, j), fx),
+    )
     bottom = add(
-        scale(_texel(ps, texture, i, j + 1), 1.0 - fx), scale(_texel(ps, texture, i + 1, j + 1), fx)
+        scale(_texel(pixels, first, width, height, i, j + 1), 1.0 - fx),
+        scale(_texel(pixels, first, width, height, i + 1, j + 1), fx),
     )
     return add(scale(top, 1.0 - fy), scale(bottom, fy))

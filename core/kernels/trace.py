@@ -214,21 +214,21 @@ def mesh_crossings(bounds, info, tris, vertices, root, o, d, t_max, stop_at_firs
 
 
 @kernel
-def closest_hit(ps, o, d, t_max, ws):
+def closest_hit(geo, o, d, t_max, stacks):
     """Nearest hit along o + t d with 0 < t < t_max: (shape, t, part, b1, b2).
 
     part is the surface part for analytic shapes, the triangle for meshes; b1 and b2 are
     barycentric weights on meshes. A miss returns (-1, NO_HIT, -1, 0, 0)."""
     # Arrays are bound once here (see `transmittance`)
-    stack, stack_t, mesh_stack, mesh_stack_t = ws.top_stack, ws.top_stack_t, ws.stack, ws.stack_t
-    bounds, info, order = ps.top_bounds, ps.top_info, ps.top_order
-    kinds, params, meshes = ps.shape_kind, ps.shape_param, ps.shape_mesh
-    transforms, roots = ps.shape_object_from_world, ps.mesh_root
+    stack, stack_t, mesh_stack, mesh_stack_t = stacks
+    bounds, info, order = geo.top_bounds, geo.top_info, geo.top_order
+    kinds, params, meshes = geo.shape_kind, geo.shape_param, geo.shape_mesh
+    transforms, roots = geo.shape_object_from_world, geo.mesh_root
     node_bounds, node_info, tris, vertices = (
-        ps.node_bounds,
-        ps.node_info,
-        ps.tri_vertices,
-        ps.vertices,
+        geo.node_bounds,
+        geo.node_info,
+        geo.tri_vertices,
+        geo.vertices,
     )
     ox, oy, oz = o
     ix, iy, iz = _inverse(d)
@@ -337,7 +337,7 @@ def closest_hit(ps, o, d, t_max, ws):
 
 
 @kernel
-def transmittance(ps, o, d, t_max, ws):
+def transmittance(geo, o, d, t_max, stacks):
     """The fraction of light that passes along o + t d, 0 < t < t_max (shadow rays).
 
     The rule for transparent objects: each crossing of a surface whose material has
@@ -346,17 +346,17 @@ def transmittance(ps, o, d, t_max, ws):
     and the search stops at the first of them, as an any-hit query."""
     # Arrays are bound once here, never read from `ps` inside the loop: each `ps.field`
     # read costs numba an atomic reference-count increment and decrement
-    stack, mesh_stack = ws.top_stack, ws.stack
-    bounds, info, order = ps.top_bounds, ps.top_info, ps.top_order
-    kinds, params, meshes = ps.shape_kind, ps.shape_param, ps.shape_mesh
-    transforms, tau_of_shape = ps.shape_object_from_world, ps.shape_transparency
+    stack, mesh_stack = stacks.top, stacks.mesh
+    bounds, info, order = geo.top_bounds, geo.top_info, geo.top_order
+    kinds, params, meshes = geo.shape_kind, geo.shape_param, geo.shape_mesh
+    transforms, tau_of_shape = geo.shape_object_from_world, geo.shape_transparency
     node_bounds, node_info, tris, vertices = (
-        ps.node_bounds,
-        ps.node_info,
-        ps.tri_vertices,
-        ps.vertices,
+        geo.node_bounds,
+        geo.node_info,
+        geo.tri_vertices,
+        geo.vertices,
     )
-    roots = ps.mesh_root
+    roots = geo.mesh_root
     if info.shape[0] == 0:
         return 1.0
     ox, oy, oz = o

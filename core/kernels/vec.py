@@ -113,3 +113,14 @@ def affine_vector_of(matrices, i, v):
         matrices[i, 1, 0] * v[0] + matrices[i, 1, 1] * v[1] + matrices[i, 1, 2] * v[2],
         matrices[i, 2, 0] * v[0] + matrices[i, 2, 1] * v[1] + matrices[i, 2, 2] * v[2],
     )
+
+
+@kernel
+def affine_transpose_vector_of(matrices, i, v):
+    """The transpose of the linear part of matrices[i] applied to v (see
+    `affine_transpose_vector`)."""
+    return (
+        matrices[i, 0, 0] * v[0] + matrices[i, 1, 0] * v[1] + matrices[i, 2, 0] * v[2],
+        matrices[i, 0, 1] * v[0] + matrices[i, 1, 1] * v[1] + matrices[i, 2, 1] * v[2],
+        matrices[i, 0, 2] * v[0] + matrices[i, 1, 2] * v[1] + matrices[i, 2, 2] * v[2],
+    )

@@ -7,15 +7,27 @@ import numpy as np
 from core.kernels.bvh_build import MAX_TREE_DEPTH
 
 
+class Stacks(NamedTuple):
+    """BVH traversal stacks, one for the top level and one for the mesh level."""
+
+    top: np.ndarray  # int32 (MAX_TREE_DEPTH,): top-level nodes waiting
+    top_t: np.ndarray  # float64: their entry distances
+    mesh: np.ndarray  # int32: mesh-level nodes waiting
+    mesh_t: np.ndarray  # float64
+
+
+class RayStack(NamedTuple):
+    """Secondary rays waiting to be traced."""
+
+    origin: np.ndarray  # float64 (n, 3)
+    direction: np.ndarray  # float64 (n, 3)
+    weight: np.ndarray  # float64 (n, 3): what their colour is multiplied by
+    depth: np.ndarray  # int64 (n,): bounces so far
+
+
 class Workspace(NamedTuple):
-    top_stack: np.ndarray  # int32 (MAX_TREE_DEPTH,): top-level nodes waiting
-    top_stack_t: np.ndarray  # float64: their entry distances
-    stack: np.ndarray  # int32: mesh-level nodes waiting
-    stack_t: np.ndarray  # float64
-    ray_origin: np.ndarray  # float64 (n, 3): secondary rays waiting to be traced
-    ray_direction: np.ndarray  # float64 (n, 3)
-    ray_weight: np.ndarray  # float64 (n, 3): what their colour is multiplied by
-    ray_depth: np.ndarray  # int64 (n,): bounces so far
+    stacks: Stacks
+    rays: RayStack
 
 
 def new_workspace(max_depth: int) -> Workspace:
@@ -23,12 +35,13 @@ def new_workspace(max_depth: int) -> Workspace:
     # max_depth + 2 rays ever wait
     rays = max_depth + 2
     return Workspace(
-        np.empty(MAX_TREE_DEPTH, np.int32),
-        np.empty(MAX_TREE_DEPTH),
-        np.empty(MAX_TREE_DEPTH, np.int32),
-        np.empty(MAX_TREE_DEPTH),
-        np.empty((rays, 3)),
-        np.empty((rays, 3)),
-        np.empty((rays, 3)),
-        np.empty(rays, np.int64),
+        Stacks(
+            np.empty(MAX_TREE_DEPTH, np.int32),
+            np.empty(MAX_TREE_DEPTH),
+            np.empty(MAX_TREE_DEPTH, np.int32),
+            np.empty(MAX_TREE_DEPTH),
+        ),
+        RayStack(
+            np.empty((rays, 3)), np.empty((rays, 3)), np.empty((rays, 3)), np.empty(rays, np.int64)
+        ),
     )

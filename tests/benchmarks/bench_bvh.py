@@ -48,7 +48,7 @@ def shadow_segments(packed):
     """From the primary hit points, lifted off the surface, towards a light."""
     o, d = primary_rays()
     t, shape, part = np.empty(RAYS), np.empty(RAYS, np.int64), np.empty(RAYS, np.int64)
-    closest_hits(packed, o, d, np.inf, t, shape, part, new_workspace(0))
+    closest_hits(packed.geometry, o, d, np.inf, t, shape, part, new_workspace(0).stacks)
     hit = shape >= 0
     p = o[hit] + d[hit] * t[hit, None] * (1 - 1e-7)
     to_light = np.array([4.0, -6.0, 7.0]) - p
@@ -61,15 +61,15 @@ def ours(packed, o, d, threads, shadow_t=None):
     chunks = np.array_split(np.arange(len(o)), threads * 8)
 
     def run(index):
-        ws = new_workspace(0)
+        ws = new_workspace(0).stacks
         oo, dd = np.ascontiguousarray(o[index]), np.ascontiguousarray(d[index])
         if shadow_t is not None:
-            shadow_rays(packed, oo, dd, np.ascontiguousarray(shadow_t[index]),
+            shadow_rays(packed.geometry, oo, dd, np.ascontiguousarray(shadow_t[index]),
                         np.empty(len(index)), ws)  # fmt: skip
         else:
             n = len(index)
             out = np.empty(n), np.empty(n, np.int64), np.empty(n, np.int64)
-            closest_hits(packed, oo, dd, np.inf, *out, ws)
+            closest_hits(packed.geometry, oo, dd, np.inf, *out, ws)
 
     start = time.perf_counter()
     with ThreadPoolExecutor(threads) as pool:
@@ -114,7 +114,7 @@ def main():
     print(f"triangles: {compiled.triangles}")
     print(f"bvh_build_1m_tris_s: {build_s:.3f}")
     print(f"bytes_per_triangle: {compiled.mesh_bytes / compiled.triangles:.1f}")
-    print(f"bvh_nodes: {len(packed.node_info)}")
+    print(f"bvh_nodes: {len(packed.geometry.node_info)}")
 
     threads = available_threads()
     embree_scene = embree(vertices, triangles)

@@ -20,22 +20,24 @@ def packed_shapes(*shapes, lights=()):
 def hit(packed, origin, direction, t_max=math.inf):
     """(shape, t, part, b1, b2); shape -1 on a miss."""
     o, d = tuple(map(float, origin)), tuple(map(float, direction))
-    return closest_hit(packed, o, d, t_max, WORKSPACE)
+    return closest_hit(packed.geometry, o, d, t_max, WORKSPACE.stacks)
 
 
 def surface(packed, origin, direction):
     """(shape, t, point, geometric normal, shading normal, (u, v)) or None on a miss."""
     o, d = tuple(map(float, origin)), tuple(map(float, direction))
-    shape, t, part, b1, b2 = closest_hit(packed, o, d, math.inf, WORKSPACE)
+    shape, t, part, b1, b2 = closest_hit(packed.geometry, o, d, math.inf, WORKSPACE.stacks)
     if shape < 0:
         return None
-    p, ng, ns, u, v = surface_at(packed, shape, part, b1, b2, o, d, t)
+    p, ng, ns, u, v = surface_at(
+        packed.geometry, packed.surfaces, shape, part, b1, b2, o, d, t, True
+    )
     return shape, t, np.array(p), np.array(ng), np.array(ns), (u, v)
 
 
 def light_through(packed, origin, direction, t_max):
     o, d = tuple(map(float, origin)), tuple(map(float, direction))
-    return transmittance(packed, o, d, t_max, WORKSPACE)
+    return transmittance(packed.geometry, o, d, t_max, WORKSPACE.stacks)
 
 
 def hits(packed, origins, directions, t_max=math.inf):
@@ -45,13 +47,13 @@ def hits(packed, origins, directions, t_max=math.inf):
     n = len(origins)
     t, shape, part = np.empty(n), np.empty(n, np.int64), np.empty(n, np.int64)
     closest_hits(
-        packed,
+        packed.geometry,
         np.ascontiguousarray(origins, float),
         np.ascontiguousarray(directions, float),
         t_max,
         t,
         shape,
         part,
-        WORKSPACE,
+        WORKSPACE.stacks,
     )
     return t, shape, part

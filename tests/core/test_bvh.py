@@ -19,34 +19,34 @@ RNG = np.random.default_rng(7)
 
 
 @numba.njit
-def brute_force(ps, origins, directions):
+def brute_force(geo, surf, origins, directions):
     """Every ray against every shape and every triangle, no BVH: (t, shape, part)."""
     n = origins.shape[0]
     out_t, out_shape, out_part = np.full(n, NO_HIT), np.full(n, -1), np.full(n, -1)
     for r in range(n):
         o = (origins[r, 0], origins[r, 1], origins[r, 2])
         d = (directions[r, 0], directions[r, 1], directions[r, 2])
-        for s in range(ps.shape_kind.shape[0]):
-            m = ps.shape_object_from_world[s]
+        for s in range(geo.shape_kind.shape[0]):
+            m = geo.shape_object_from_world[s]
             oo, dd = affine_point(m, o), affine_vector(m, d)
-            if ps.shape_kind[s] == SHAPE_MESH:
-                mesh = ps.shape_mesh[s]
-                first = ps.mesh_tri_offset[mesh]
-                last = ps.tri_vertices.shape[0]
-                if mesh + 1 < len(ps.mesh_root):
-                    last = ps.mesh_tri_offset[mesh + 1]
+            if geo.shape_kind[s] == SHAPE_MESH:
+                mesh = geo.shape_mesh[s]
+                first = surf.mesh_tri_offset[mesh]
+                last = geo.tri_vertices.shape[0]
+                if mesh + 1 < len(geo.mesh_root):
+                    last = surf.mesh_tri_offset[mesh + 1]
                 shear = shear_setup(dd)
                 o_sheared = permuted(oo, shear)
                 for tri in range(first, last):
                     t, _, _ = intersect_triangle(
-                        ps.vertices, ps.tri_vertices[tri, 0], ps.tri_vertices[tri, 1],
-                        ps.tri_vertices[tri, 2], o_sheared, shear, out_t[r],
+                        geo.vertices, geo.tri_vertices[tri, 0], geo.tri_vertices[tri, 1],
+                        geo.tri_vertices[tri, 2], o_sheared, shear, out_t[r],
                     )  # fmt: skip
                     if t < out_t[r]:
                         out_t[r], out_shape[r], out_part[r] = t, s, tri
             else:
                 t, part = intersect_analytic(
-                    ps.shape_kind[s], ps.shape_param[s, 0], ps.shape_param[s, 1], oo, dd, 0.0,
+                    geo.shape_kind[s], geo.shape_param[s, 0], geo.shape_param[s, 1], oo, dd, 0.0,
                     out_t[r],
                 )  # fmt: skip
                 if t < out_t[r]:
@@ -84,7 +84,7 @@ def test_bvh_returns_exactly_what_brute_force_returns(seed):
     directions += rng.normal(size=(3000, 3)) * 0.3
     directions /= np.linalg.norm(directions, axis=1, keepdims=True)
     t, shape, part = hits(packed, origins, directions)
-    bt, bshape, bpart = brute_force(packed, origins, directions)
+    bt, bshape, bpart = brute_force(packed.geometry, packed.surfaces, origins, directions)
     assert (shape >= 0).sum() > 1000
     np.testing.assert_array_equal(t, bt)
     np.testing.assert_array_equal(shape, bshape)
