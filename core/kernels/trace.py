@@ -184,32 +184,59 @@ def mesh_closest(bounds, info, tris, vertices, root, o, d, t_max, stack, stack_t
 def mesh_crossings(bounds, info, tris, vertices, root, o, d, t_max, stop_at_first, stack):
     """How many triangles of the mesh whose BVH starts at `root` the segment crosses
     (stopping at 1 if stop_at_first)."""
-    inv = _inverse(d)
+    ox, oy, oz = o
+    ix, iy, iz = _inverse(d)
     shear = shear_setup(d)
     o_sheared = permuted(o, shear)
     crossings = 0
-    stack[0] = root
-    top = 1
-    while top > 0:
+    if box_entry(bounds, root, o, (ix, iy, iz), t_max) == NO_HIT:
+        return 0
+    node = root
+    top = 0
+    while True:
+        count = info[node, 1]
+        if count > 0:
+            first = info[node, 0]
+            for tri in range(first, first + count):
+                t, _, _ = intersect_triangle(
+                    vertices, tris[tri, 0], tris[tri, 1], tris[tri, 2], o_sheared, shear, t_max
+                )
+                if t < t_max:
+                    crossings += 1
+                    if stop_at_first:
+                        return crossings
+        else:
+            # Children are tested before they are visited, so only boxes the segment
+            # crosses are ever pushed; the nearer is visited first, which finds an occluder
+            # sooner on average
+            child = info[node, 0]
+            t_left = _slab_test(
+                bounds[child, 0], bounds[child, 1], bounds[child, 2],
+                bounds[child, 3], bounds[child, 4], bounds[child, 5],
+                ox, oy, oz, ix, iy, iz, t_max,
+            )  # fmt: skip
+            t_right = _slab_test(
+                bounds[child + 1, 0], bounds[child + 1, 1], bounds[child + 1, 2],
+                bounds[child + 1, 3], bounds[child + 1, 4], bounds[child + 1, 5],
+                ox, oy, oz, ix, iy, iz, t_max,
+            )  # fmt: skip
+            if t_left != NO_HIT:
+                if t_right != NO_HIT:
+                    near, far = (child, child + 1) if t_left <= t_right else (child + 1, child)
+                    stack[top] = far
+                    top += 1
+                    node = near
+                    continue
+                node = child
+                continue
+            if t_right != NO_HIT:
+                node = child + 1
+                continue
+        if top == 0:
+            break
         top -= 1
         node = stack[top]
-        if box_entry(bounds, node, o, inv, t_max) == NO_HIT:
-            continue
-        count = info[node, 1]
-        if count == 0:
-            stack[top] = info[node, 0]
-            stack[top + 1] = info[node, 0] + 1
-            top += 2
-            continue
-        first = info[node, 0]
-        for tri in range(first, first + count):
-            t, _, _ = intersect_triangle(
-                vertices, tris[tri, 0], tris[tri, 1], tris[tri, 2], o_sheared, shear, t_max
-            )
-            if t < t_max:
-                crossings += 1
-                if stop_at_first:
-                    return crossings
+    return crossings
     return crossings
 
 
