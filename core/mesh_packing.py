@@ -86,7 +86,11 @@ def add_mesh(tables: MeshTables, mesh: TriangleMesh) -> int:
     # One 32-byte record per node, children side by side: a node's box and its link share a
     # cache line, and a pair of children fills one
     record = np.empty((len(node_info), 8), np.float32)
-    record[:, :3], record[:, 3:6] = node_lo, node_hi
+    # Boxes one float32 step larger than their triangles: the watertight triangle test may
+    # claim a ray that passes a hair outside a triangle at a shared vertex or edge (so that
+    # exactly one neighbour claims it), and that triangle's box must not have culled it
+    record[:, :3] = np.nextafter(node_lo.astype(np.float32), np.float32(-np.inf))
+    record[:, 3:6] = np.nextafter(node_hi.astype(np.float32), np.float32(np.inf))
     record.view(np.int32)[:, 6:8] = node_info
     tables.node_bounds.append(record)
     tables.tri_vertices.append((triangles[source] + base_vertex).astype(np.int32))

@@ -159,6 +159,23 @@ def test_corner_uvs_interpolate_and_vertex_normals_come_from_faces():
     np.testing.assert_allclose(shading, (0, 0, 1), atol=1e-7)  # a flat mesh: all normals +z
 
 
+def test_smooth_mesh_without_normals_gets_area_weighted_vertex_normals():
+    """At a vertex, the shading normal is the area-weighted mean of the faces around it (the
+    report's way); on an icosphere that is close to the radial direction."""
+    vertices, triangles = icosphere(2)
+    mesh = TriangleMesh(vertices, triangles, smooth=True)
+    packed = compile_scene(Scene(shapes=[Mesh(mesh=mesh)]), RenderSettings(8, 8)).packed
+    v32 = vertices.astype(np.float32).astype(np.float64)
+    for k in (0, 5, 40):
+        faces = np.flatnonzero((triangles == k).any(axis=1))
+        a, b, c = (v32[triangles[faces, i]] for i in range(3))
+        expected = np.cross(b - a, c - a).sum(axis=0)
+        expected /= np.linalg.norm(expected)
+        # Aim at the vertex itself from outside along its direction
+        _, _, _, _, shading, _ = surface(packed, v32[k] * 3.0, -v32[k] / np.linalg.norm(v32[k]))
+        np.testing.assert_allclose(shading, expected, atol=1e-6)
+
+
 def test_degenerate_triangles_are_dropped_with_a_count():
     v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [2, 0, 0]], float)
     mesh = TriangleMesh(v, np.array([[0, 1, 2], [0, 1, 3], [2, 2, 1]]), name="Sliver")
@@ -207,3 +224,17 @@ def test_watertight_a_million_rays_at_shared_edges_and_vertices():
     assert np.all(shape == 0), f"{np.sum(shape != 0)} of {n} rays passed through"
     expected = np.linalg.norm(targets - origins, axis=1)
     np.testing.assert_allclose(t, expected, rtol=1e-6)
+
+
+@pytest.mark.parametrize("subdivisions", [1, 2, 3, 4])
+def test_watertight_rays_through_every_vertex_untransformed(subdivisions):
+    """Radial rays at every vertex of an untransformed icosphere: the vertex lies on the
+    boxes of the BVH, where culling must not undo the triangle test's decision."""
+    vertices, triangles = icosphere(subdivisions)
+    mesh = TriangleMesh(vertices, triangles)
+    packed = compile_scene(Scene(shapes=[Mesh(mesh=mesh)]), RenderSettings(8, 8)).packed
+    v32 = vertices.astype(np.float32).astype(np.float64)
+    inward = -v32 / np.linalg.norm(v32, axis=1, keepdims=True)
+    _, shape, _ = hits(packed, v32 * 3.0, inward)
+    _, shape_out, _ = hits(packed, v32 * 0.0, -inward)
+    assert np.all(shape == 0) and np.all(shape_out == 0), (np.sum(shape), np.sum(shape_out))

@@ -183,3 +183,17 @@ def test_the_plane_in_focus_stays_sharp_and_the_rest_blurs():
     sharp = np.abs(lens[..., 0] - pinhole[..., 0])[near].mean()
     blurred = np.abs(lens[..., 1] - pinhole[..., 1])[far].mean()
     assert sharp < 0.05 and blurred > 3 * sharp
+
+
+def test_shadow_rays_through_glass_follow_the_documented_rule():
+    """Each crossing of a surface with transparency tau passes tau of the light: through a
+    sphere (two crossings) of tau = 0.5, a quarter; behind an opaque one, nothing."""
+    from tests.core.probe import light_through, packed_shapes
+
+    glass = Sphere("Glass", Material(transparency=0.5, inner_ior=1.5))
+    opaque = Sphere("Stone", Material(), translate_scale((0, 0, 5), 1.0))
+    packed = packed_shapes(glass, opaque)
+    assert light_through(packed, (0, 0, -3), (0, 0, 1), 4.5) == pytest.approx(0.25)
+    assert light_through(packed, (0, 0, -3), (0, 0, 1), 3.5) == pytest.approx(0.5)  # ends inside
+    assert light_through(packed, (0, 0, -3), (0, 0, 1), 10.0) == 0.0
+    assert light_through(packed, (3, 0, -3), (0, 0, 1), 10.0) == 1.0
