@@ -61,7 +61,7 @@ def check_affine(owner: str, name: str, matrix) -> np.ndarray:
         raise SceneError(owner, name, f"got shape {m.shape}; use a 4x4 matrix")
     if not np.all(np.isfinite(m)):
         raise SceneError(owner, name, "contains NaN or infinity; use finite numbers")
-    if not np.allclose(m[3], (0.0, 0.0, 0.0, 1.0)):
+    if np.abs(m[3] - (0.0, 0.0, 0.0, 1.0)).max() > 1e-8:
         raise SceneError(owner, name, f"bottom row is {m[3]}; an affine matrix ends in 0 0 0 1")
     singular_values = np.linalg.svd(m[:3, :3], compute_uv=False)
     if singular_values[-1] <= SINGULAR_RATIO * singular_values[0]:

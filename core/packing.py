@@ -184,24 +184,23 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
             mesh_index[id(shape.mesh)] = add_mesh(tables, shape.mesh)
 
     n = len(scene.shapes)
-    object_from_world = np.empty((n, 3, 4))
     param = np.zeros((n, 2))
     shape_mesh = np.full(n, -1, np.int32)
-    lo, hi = np.empty((n, 3)), np.empty((n, 3))
+    box_lo, box_hi = np.full((n, 3), -1.0), np.full((n, 3), 1.0)  # object-space boxes
     for i, shape in enumerate(scene.shapes):
-        world_from_object = np.asarray(shape.world_from_object, float)
-        object_from_world[i] = np.linalg.inv(world_from_object)[:3]
-        box_lo, box_hi = np.full(3, -1.0), np.full(3, 1.0)
         if isinstance(shape, Torus):
             param[i] = shape.major_radius, shape.minor_radius
             reach = shape.major_radius + shape.minor_radius
-            box_hi = np.array([reach, reach, shape.minor_radius])
-            box_lo = -box_hi
+            box_hi[i] = reach, reach, shape.minor_radius
+            box_lo[i] = -box_hi[i]
         elif isinstance(shape, Mesh):
             m = mesh_index[id(shape.mesh)]
             shape_mesh[i] = m
-            box_lo, box_hi = tables.lo[m], tables.hi[m]
-        lo[i], hi[i] = _world_box(world_from_object, box_lo, box_hi)
+            box_lo[i], box_hi[i] = tables.lo[m], tables.hi[m]
+    world_from_object = np.array([s.world_from_object for s in scene.shapes], float)
+    world_from_object = world_from_object.reshape(n, 4, 4)
+    object_from_world = np.linalg.inv(world_from_object)[:, :3] if n else np.empty((0, 3, 4))
+    lo, hi = _world_boxes(world_from_object, box_lo, box_hi)
     # Meshes left without triangles (all degenerate) have nothing to hit: leave them out
     solid = np.array(
         [not isinstance(s, Mesh) or len(tables.lo) and _mesh_has_triangles(tables, s, mesh_index)
@@ -311,12 +310,15 @@ def _mesh_has_triangles(tables: MeshTables, shape: Mesh, mesh_index: dict) -> bo
     return end > tables.tri_offset[m]
 
 
-def _world_box(world_from_object, lo, hi):
-    """World box around the object box lo..hi, padded against rounding."""
-    corners = np.array(np.meshgrid(*zip(lo, hi, strict=True), indexing="ij")).reshape(3, 8).T
-    world = corners @ world_from_object[:3, :3].T + world_from_object[:3, 3]
-    w_lo, w_hi = world.min(axis=0), world.max(axis=0)
-    pad = 1e-12 * (np.abs(w_lo).max() + np.abs(w_hi).max())
+def _world_boxes(world_from_object, lo, hi):
+    """World boxes (n, 3) around the object boxes lo..hi under each transform, padded
+    against rounding."""
+    corner_of = np.array(np.meshgrid([0, 1], [0, 1], [0, 1], indexing="ij")).reshape(3, 8).T
+    corners = np.where(corner_of[None, :, :] == 1, hi[:, None, :], lo[:, None, :])  # (n, 8, 3)
+    world = np.einsum("nij,nkj->nki", world_from_object[:, :3, :3], corners)
+    world += world_from_object[:, None, :3, 3]
+    w_lo, w_hi = world.min(axis=1), world.max(axis=1)
+    pad = 1e-12 * (np.abs(w_lo).max(axis=1) + np.abs(w_hi).max(axis=1))[:, None]
     return w_lo - pad, w_hi + pad
 
 

@@ -11,7 +11,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from core.checks import check_choice, check_count, check_vec3
+import numpy as np
+
+from core.checks import SINGULAR_RATIO, check_choice, check_count, check_vec3
 from core.errors import SceneError
 from core.scene_parts import AreaLight, Camera, Material, PointLight, Texture, Vec3
 from core.shapes import Box, Cone, Cylinder, Mesh, Shape, Sphere, Torus, TriangleMesh
@@ -61,9 +63,29 @@ class Scene:
         for i, shape in enumerate(self.shapes):
             if not isinstance(shape, Shape) or type(shape) is Shape:
                 raise SceneError("scene", f"shapes[{i}]", f"got {shape!r}; need a shape")
-            shape.validate()
+        checked = self._checked_transforms()
+        for shape in self.shapes:
+            shape.validate(checked)
         check_vec3("scene", "ambient", self.ambient, nonnegative=True)
         check_vec3("scene", "background", self.background, nonnegative=True)
+
+    def _checked_transforms(self) -> set:
+        """Ids of the shapes' transforms found valid, all checked at once (thousands of
+        shapes would spend seconds one by one); the others are left to each shape's own
+        check, which names it."""
+        try:
+            matrices = np.array([s.world_from_object for s in self.shapes], float)
+        except (TypeError, ValueError):
+            return set()
+        if matrices.shape != (len(self.shapes), 4, 4):
+            return set()
+        finite = np.isfinite(matrices).all(axis=(1, 2))
+        affine = np.abs(matrices[:, 3] - (0.0, 0.0, 0.0, 1.0)).max(axis=1) <= 1e-8
+        ok = finite & affine
+        if ok.any():
+            singular_values = np.linalg.svd(matrices[ok, :3, :3], compute_uv=False)
+            ok[ok] = singular_values[:, -1] > SINGULAR_RATIO * singular_values[:, 0]
+        return {id(s.world_from_object) for s, good in zip(self.shapes, ok, strict=True) if good}
 
 
 PIXEL_SAMPLINGS = ("grid", "jittered")

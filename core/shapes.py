@@ -41,13 +41,20 @@ class Shape:
     def owner(self) -> str:
         return f"{self.kind_name} '{self.name}'"
 
-    def validate(self) -> None:
-        check_affine(self.owner, "world_from_object", self.world_from_object)
+    def validate(self, checked: set | None = None) -> None:
+        """Raise SceneError on bad fields. `checked` holds the ids of transforms and
+        materials already validated (by `Scene.validate`, which checks all transforms at
+        once and each shared material once)."""
+        checked = checked if checked is not None else set()
+        if id(self.world_from_object) not in checked:
+            check_affine(self.owner, "world_from_object", self.world_from_object)
         if not isinstance(self.material, Material):
             raise SceneError(
                 self.owner, "material", f"got {type(self.material).__name__}; need a Material"
             )
-        self.material.validate(self.owner)
+        if id(self.material) not in checked:
+            self.material.validate(self.owner)
+            checked.add(id(self.material))
 
 
 @dataclass(eq=False)
@@ -77,8 +84,8 @@ class Torus(Shape):
 
     kind_name = "torus"
 
-    def validate(self) -> None:
-        super().validate()
+    def validate(self, checked: set | None = None) -> None:
+        super().validate(checked)
         check_number(self.owner, "major_radius", self.major_radius, low=0.0, low_open=True)
         check_number(self.owner, "minor_radius", self.minor_radius, low=0.0, low_open=True)
 
@@ -144,13 +151,16 @@ class Mesh(Shape):
 
     kind_name = "mesh"
 
-    def validate(self) -> None:
-        super().validate()
+    def validate(self, checked: set | None = None) -> None:
+        super().validate(checked)
         if not isinstance(self.mesh, TriangleMesh):
             raise SceneError(
                 self.owner, "mesh", f"got {type(self.mesh).__name__}; need a TriangleMesh"
             )
-        self.mesh.validate(self.owner)
+        if checked is None or id(self.mesh) not in checked:
+            self.mesh.validate(self.owner)
+            if checked is not None:
+                checked.add(id(self.mesh))
 
 
 ANALYTIC_SHAPES = (Sphere, Box, Cylinder, Cone, Torus)
