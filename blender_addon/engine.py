@@ -35,6 +35,8 @@ class WhittedRenderEngine(bpy.types.RenderEngine):
         except core.SceneError as error:
             self.report({"ERROR"}, f"Whitted: {error}")
             return
+        for warning in output.warnings:
+            self.report({"WARNING"}, f"Whitted: {warning}")
         stats = output.stats
         summary = (
             f"Whitted | {settings.width}x{settings.height} | kernels {stats.kernel_source} "
