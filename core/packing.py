@@ -15,6 +15,7 @@ from typing import NamedTuple
 import numpy as np
 
 from core.kernels.bvh_build import build_bvh
+from core.kernels.layout import Frame, Geometry, Lights, Materials, PackedScene, Surfaces
 from core.kernels.options import (
     OPTION_COUNT,
     OPTION_MAX_DEPTH,
@@ -59,93 +60,6 @@ SHAPE_KIND_OF_CLASS = {
 # Top-level leaves: shapes per leaf, and the node-visit cost relative to one shape test
 _TOP_MAX_LEAF = 2
 _TOP_TRAVERSAL_COST = 1.0
-
-
-class Frame(NamedTuple):
-    """Camera and render options: what frames the picture."""
-
-    # rows: eye, forward (unit), right (scaled by the half-width of the image plane at
-    # distance 1), up (scaled by its half-height)
-    camera: np.ndarray  # float64 (4, 3)
-    lens: np.ndarray  # float64 (2,): aperture radius, focal distance
-    ambient: np.ndarray  # float64 (3,)
-    background: np.ndarray  # float64 (3,)
-    options: np.ndarray  # int64 (OPTION_COUNT,)
-
-
-class Geometry(NamedTuple):
-    """What rays are traced against: shapes, the top-level BVH, mesh BVHs and triangles."""
-
-    # top-level BVH over shapes, world space (see core.kernels.bvh_build)
-    top_bounds: np.ndarray  # float64 (k, 6): lo xyz, hi xyz
-    top_info: np.ndarray  # int32 (k, 2)
-    top_order: np.ndarray  # int32 (n,): shapes in leaf order
-    # shapes
-    shape_kind: np.ndarray  # int32 (n,)
-    shape_object_from_world: np.ndarray  # float64 (n, 3, 4): affine rows, inverse transform
-    shape_param: np.ndarray  # float64 (n, 2): torus major and minor radius
-    shape_mesh: np.ndarray  # int32 (n,): row in mesh_root for meshes, else -1
-    shape_transparency: np.ndarray  # float64 (n,): its material's, for shadow rays
-    # meshes
-    mesh_root: np.ndarray  # int32 (m,): its BVH's root in node_*
-    # 32-byte node records: lo xyz, hi xyz as float32, then the two int32 of node_info
-    node_bounds: np.ndarray  # float32 (nodes, 8)
-    node_info: np.ndarray  # int32 (nodes, 2) view of columns 6-7: global node or triangle
-    tri_vertices: np.ndarray  # int32 (t, 3): rows of vertices
-    vertices: np.ndarray  # float32 (v, 3), object space
-
-
-class Surfaces(NamedTuple):
-    """What a hit needs beyond geometry: materials of shapes, mesh normals and UVs."""
-
-    shape_material: np.ndarray  # int32 (n,): row in Materials
-    mesh_tri_offset: np.ndarray  # int64 (m,): its first triangle in tri_*
-    mesh_normal_offset: np.ndarray  # int64 (m,): its first row in tri_normal_index, or -1
-    mesh_uv_offset: np.ndarray  # int64 (m,): its first row in tri_uv_index, or -1
-    tri_smooth: np.ndarray  # uint8 (t,): 1 if the face is smooth shaded
-    tri_normal_index: np.ndarray  # int32 (rows, 3): rows of normals per corner
-    normals: np.ndarray  # float32 (r, 3)
-    tri_uv_index: np.ndarray  # int32 (rows, 3): rows of uvs per corner
-    uvs: np.ndarray  # float32 (r, 2)
-
-
-class Materials(NamedTuple):
-    diffuse: np.ndarray  # float64 (q, 3)
-    specular: np.ndarray  # float64 (q, 3)
-    shininess: np.ndarray  # float64 (q,)
-    reflectivity: np.ndarray  # float64 (q,)
-    transparency: np.ndarray  # float64 (q,)
-    ior: np.ndarray  # float64 (q, 2): outer, inner
-    texture: np.ndarray  # int32 (q,): row in texture_*, or -1
-    texture_pixels: np.ndarray  # float32 (texels, 3): all images, row-major, top row first
-    texture_offset: np.ndarray  # int64 (x,): each image's first texel
-    texture_size: np.ndarray  # int64 (x, 2): width, height
-
-
-class Lights(NamedTuple):
-    point_position: np.ndarray  # float64 (l, 3)
-    point_intensity: np.ndarray  # float64 (l, 3)
-    point_attenuation: np.ndarray  # float64 (l, 3): c0, c1, c2
-    area_centre: np.ndarray  # float64 (a, 3)
-    area_edge_u: np.ndarray  # float64 (a, 3)
-    area_edge_v: np.ndarray  # float64 (a, 3)
-    area_intensity: np.ndarray  # float64 (a, 3)
-    area_attenuation: np.ndarray  # float64 (a, 3)
-
-
-class PackedScene(NamedTuple):
-    """Struct of arrays, in groups. Row i of every `shape_*` array describes shape i, etc.
-
-    Kernels take only the groups they read: numba passes a tuple of arrays field by field,
-    on the stack, and reference-counts every array, so handing the whole scene to each
-    helper cost more than the tracing itself (measured: three quarters of the render time).
-    """
-
-    frame: Frame  # (not "view": numba reserves that attribute name for arrays)
-    geometry: Geometry
-    surfaces: Surfaces
-    materials: Materials
-    lights: Lights
 
 
 class CompiledScene(NamedTuple):

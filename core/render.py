@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from core.kernels.render_tile import render_tile
+from core.kernels.render_tile import render_borrowed_tile
 from core.kernels.workspace import new_workspace
 from core.packing import PackedScene, compile_scene
 from core.scene import RenderSettings, Scene
@@ -78,15 +78,15 @@ def prepare_kernels(packed: PackedScene) -> tuple[float, str]:
     Returns (seconds, source). Done once on the calling thread so that worker threads never
     compile concurrently and so that compile time is reported apart from render time.
     """
-    already = bool(render_tile.signatures)
-    hits_before = sum(render_tile.stats.cache_hits.values())
+    already = bool(render_borrowed_tile.signatures)
+    hits_before = sum(render_borrowed_tile.stats.cache_hits.values())
     start = time.perf_counter()
     empty = np.empty((0, 0, 4), np.float32)
-    render_tile(packed, 1, 1, 0, 0, 0, 0, empty, new_workspace(0))
+    render_borrowed_tile(packed, 1, 1, 0, 0, 0, 0, empty, new_workspace(0))
     seconds = time.perf_counter() - start
     if already:
         return seconds, "memory"
-    loaded = sum(render_tile.stats.cache_hits.values()) > hits_before
+    loaded = sum(render_borrowed_tile.stats.cache_hits.values()) > hits_before
     return seconds, "cache" if loaded else "compiled"
 
 
@@ -113,7 +113,7 @@ def render(
     def render_one(tile: Tile) -> np.ndarray:
         pixels = np.empty((tile.height, tile.width, 4), np.float32)
         workspace = new_workspace(settings.max_depth)
-        render_tile(
+        render_borrowed_tile(
             packed,
             settings.width,
             settings.height,

@@ -6,12 +6,14 @@ the packed scene's `geometry` group.
 """
 
 from core.jit import kernel
+from core.kernels.borrow import borrow_geometry, borrow_stacks
 from core.kernels.trace import closest_hit, transmittance
 
 
 @kernel
 def closest_hits(geo, origins, directions, t_max, out_t, out_shape, out_part, stacks):
     """Nearest hit of each ray: out_t (NO_HIT on a miss), out_shape (-1), out_part."""
+    geo, stacks = borrow_geometry(geo), borrow_stacks(stacks)
     for i in range(origins.shape[0]):
         o = (origins[i, 0], origins[i, 1], origins[i, 2])
         d = (directions[i, 0], directions[i, 1], directions[i, 2])
@@ -24,6 +26,7 @@ def closest_hits(geo, origins, directions, t_max, out_t, out_shape, out_part, st
 @kernel
 def shadow_rays(geo, origins, directions, t_max, out_light, stacks):
     """Transmittance of each segment origin + t direction, 0 < t < t_max[i]."""
+    geo, stacks = borrow_geometry(geo), borrow_stacks(stacks)
     for i in range(origins.shape[0]):
         o = (origins[i, 0], origins[i, 1], origins[i, 2])
         d = (directions[i, 0], directions[i, 1], directions[i, 2])

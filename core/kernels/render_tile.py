@@ -11,6 +11,7 @@ focus. With aperture 0 the lens code does not run: the pinhole picture, exactly.
 import math
 
 from core.jit import kernel
+from core.kernels.borrow import borrow_scene, borrow_workspace, borrowed
 from core.kernels.integrator import trace_ray
 from core.kernels.options import OPTION_PIXEL_JITTER, OPTION_PIXEL_SAMPLES, OPTION_SEED
 from core.kernels.rng import PURPOSE_LENS, PURPOSE_PIXEL, sample_key, uniform2
@@ -64,6 +65,16 @@ def camera_ray(frame, image_width, image_height, px, py, sample, key):
         eye, add(scale(normalize(right), aperture * lx), scale(normalize(up), aperture * ly))
     )
     return origin, normalize(sub(focus, origin))
+
+
+@kernel
+def render_borrowed_tile(ps, image_width, image_height, x0, y0, width, height, out, ws):
+    """`render_tile` with reference counting off for the tile's duration (see
+    core.kernels.borrow): the entry point the driver calls."""
+    render_tile(
+        borrow_scene(ps), image_width, image_height, x0, y0, width, height, borrowed(out),
+        borrow_workspace(ws),
+    )  # fmt: skip
 
 
 @kernel
