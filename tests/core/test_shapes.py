@@ -103,7 +103,7 @@ def torus_case(rng, case):
     return origin, rng.normal(size=3)
 
 
-@pytest.mark.parametrize("seed, case", enumerate(["grazing", "axis", "far", "inside"]))
+@pytest.mark.parametrize("seed, case", list(enumerate(["grazing", "axis", "far", "inside"])))
 def test_torus_against_sixty_digit_roots(seed, case):
     rng = np.random.default_rng(seed)
     packed = packed_shapes(Torus(major_radius=1.0, minor_radius=0.25))
