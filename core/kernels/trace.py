@@ -11,7 +11,7 @@ so that rounding never culls a box a ray truly crosses. Mesh boxes are float32 c
 float32 vertices, so they are exact; the arithmetic is float64.
 """
 
-from core.jit import kernel
+from core.jit import inlined_kernel, kernel
 from core.kernels.shapes import NO_HIT, SHAPE_MESH, count_crossings, intersect_analytic
 from core.kernels.triangles import intersect_triangle, permuted, shear_setup
 from core.kernels.vec import add, affine_point_of, affine_vector_of, max_abs, scale
@@ -75,11 +75,11 @@ def _inverse(d):
     return (1.0 / d[0], 1.0 / d[1], 1.0 / d[2])
 
 
-@kernel
+@inlined_kernel
 def mesh_closest(bounds, info, tris, vertices, root, o, d, t_max, stack, stack_t):
     """Nearest triangle of the mesh whose BVH starts at node `root`, for a ray in its object
-    space: (t, triangle, b1, b2). Takes the arrays it reads rather than the whole packed
-    scene: numba passes a tuple argument field by field, and this is called once per ray."""
+    space: (t, triangle, b1, b2). Inlined into `closest_hit` by numba: measured 8% more
+    primary rays per second than a call."""
     ox, oy, oz = o
     ix, iy, iz = _inverse(d)
     shear = shear_setup(d)
