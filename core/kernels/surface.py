@@ -6,9 +6,9 @@ from core.jit import kernel
 from core.kernels.shapes import SHAPE_MESH, analytic_normal, analytic_uv
 from core.kernels.vec import (
     add,
-    affine_point_of,
-    affine_transpose_vector_of,
-    affine_vector_of,
+    affine_point,
+    affine_transpose_vector,
+    affine_vector,
     cross,
     normalize,
     row,
@@ -47,11 +47,11 @@ def surface_at(geo, surf, shape, part, b1, b2, o, d, t, with_uv):
     u = v = 0.0
     if kind != SHAPE_MESH:
         p_object = add(
-            affine_point_of(transforms, shape, o), scale(affine_vector_of(transforms, shape, d), t)
+            affine_point(transforms, shape, o), scale(affine_vector(transforms, shape, d), t)
         )
         major = geo.shape_param[shape, 0]
         n_object = analytic_normal(kind, major, p_object, part)
-        n = normalize(affine_transpose_vector_of(transforms, shape, n_object))
+        n = normalize(affine_transpose_vector(transforms, shape, n_object))
         if with_uv:
             u, v = analytic_uv(kind, major, p_object, part)
         return p, n, n, u, v
@@ -64,13 +64,13 @@ def surface_at(geo, surf, shape, part, b1, b2, o, d, t, with_uv):
     v1 = _vertex(vertices, tris[tri, 1])
     v2 = _vertex(vertices, tris[tri, 2])
     face = cross(sub(v1, v0), sub(v2, v0))
-    geometric = normalize(affine_transpose_vector_of(transforms, shape, face))
+    geometric = normalize(affine_transpose_vector(transforms, shape, face))
     b0 = 1.0 - b1 - b2
     shading = geometric
     normal_row = surf.mesh_normal_offset[mesh]
     if normal_row >= 0 and surf.tri_smooth[tri]:
         n_object = _blend3(surf.normals, surf.tri_normal_index, normal_row + local, b0, b1, b2)
-        n_world = affine_transpose_vector_of(transforms, shape, n_object)
+        n_world = affine_transpose_vector(transforms, shape, n_object)
         if n_world[0] != 0.0 or n_world[1] != 0.0 or n_world[2] != 0.0:
             shading = normalize(n_world)
     uv_row = surf.mesh_uv_offset[mesh]

@@ -14,7 +14,7 @@ float32 vertices, so they are exact; the arithmetic is float64.
 from core.jit import inlined_kernel, kernel
 from core.kernels.shapes import NO_HIT, SHAPE_MESH, count_crossings, intersect_analytic
 from core.kernels.triangles import intersect_triangle, permuted, shear_setup
-from core.kernels.vec import add, affine_point_of, affine_vector_of, max_abs, scale
+from core.kernels.vec import add, affine_point, affine_vector, max_abs, scale
 
 _WIDEN = 1.0 + 6.0 * 2.0**-53
 
@@ -26,39 +26,31 @@ SPAWN_OFFSET_RELATIVE = 1e-9
 SPAWN_OFFSET_ABSOLUTE = 1e-30
 
 
-@kernel
-def box_entry(bounds, k, o, inv, t_max):
-    """Entry distance of the ray into box k of bounds (n, 6+) = (lo xyz, hi xyz, ...) within
-    [0, t_max]; NO_HIT when it misses. NaNs (a ray in a box's face plane) are ignored."""
-    return _slab_test(
-        bounds[k, 0], bounds[k, 1], bounds[k, 2], bounds[k, 3], bounds[k, 4], bounds[k, 5],
-        o[0], o[1], o[2], inv[0], inv[1], inv[2], t_max,
-    )  # fmt: skip
-
-
-@kernel
-def _slab_test(x0, y0, z0, x1, y1, z1, ox, oy, oz, ix, iy, iz, t_max):
-    """The slab test on the box's corners, given as scalars."""
+@inlined_kernel
+def box_entry(bounds, k, ox, oy, oz, ix, iy, iz, t_max):
+    """Entry distance of the ray (origin o, inverse direction i) into box k of bounds
+    (n, 6+) = (lo xyz, hi xyz, ...) within [0, t_max]; NO_HIT when it misses. NaNs (a ray
+    in a box's face plane) fail every comparison and so never cull."""
     t_near = 0.0
     t_far = t_max
-    t0 = (x0 - ox) * ix
-    t1 = (x1 - ox) * ix
+    t0 = (bounds[k, 0] - ox) * ix
+    t1 = (bounds[k, 3] - ox) * ix
     if t0 > t1:
         t0, t1 = t1, t0
     if t0 > t_near:
         t_near = t0
     if t1 < t_far:
         t_far = t1
-    t0 = (y0 - oy) * iy
-    t1 = (y1 - oy) * iy
+    t0 = (bounds[k, 1] - oy) * iy
+    t1 = (bounds[k, 4] - oy) * iy
     if t0 > t1:
         t0, t1 = t1, t0
     if t0 > t_near:
         t_near = t0
     if t1 < t_far:
         t_far = t1
-    t0 = (z0 - oz) * iz
-    t1 = (z1 - oz) * iz
+    t0 = (bounds[k, 2] - oz) * iz
+    t1 = (bounds[k, 5] - oz) * iz
     if t0 > t1:
         t0, t1 = t1, t0
     if t0 > t_near:
@@ -76,6 +68,35 @@ def _inverse(d):
 
 
 @inlined_kernel
+def descend(bounds, child, ox, oy, oz, ix, iy, iz, t_max, stack, stack_t, top):
+    """One step down from an inner node whose children are `child` and `child + 1`: test
+    both boxes, go on to the nearer one hit and push the other if it is hit too.
+    Returns (next node or -1 if neither is hit, new stack top)."""
+    t_left = box_entry(bounds, child, ox, oy, oz, ix, iy, iz, t_max)
+    t_right = box_entry(bounds, child + 1, ox, oy, oz, ix, iy, iz, t_max)
+    if t_left == NO_HIT:
+        return (child + 1 if t_right != NO_HIT else -1), top
+    if t_right == NO_HIT:
+        return child, top
+    if t_right < t_left:
+        stack[top], stack_t[top] = child, t_left
+        return child + 1, top + 1
+    stack[top], stack_t[top] = child + 1, t_right
+    return child, top + 1
+
+
+@inlined_kernel
+def pop_nearer(stack, stack_t, top, t_max):
+    """The next waiting node that could still hold a hit nearer than t_max:
+    (node or -1 when none is left, new stack top)."""
+    while top > 0:
+        top -= 1
+        if stack_t[top] < t_max:
+            return stack[top], top
+    return -1, 0
+
+
+@inlined_kernel
 def mesh_closest(bounds, info, tris, vertices, root, o, d, t_max, stack, stack_t):
     """Nearest triangle of the mesh whose BVH starts at node `root`, for a ray in its object
     space: (t, triangle, b1, b2). Inlined into `closest_hit` by numba: measured 8% more
@@ -85,28 +106,9 @@ def mesh_closest(bounds, info, tris, vertices, root, o, d, t_max, stack, stack_t
     shear = shear_setup(d)
     o_sheared = permuted(o, shear)
     best_t, best_tri, best_b1, best_b2 = t_max, -1, 0.0, 0.0
-    node = root
-    if (
-        _slab_test(
-            bounds[node, 0],
-            bounds[node, 1],
-            bounds[node, 2],
-            bounds[node, 3],
-            bounds[node, 4],
-            bounds[node, 5],
-            ox,
-            oy,
-            oz,
-            ix,
-            iy,
-            iz,
-            best_t,
-        )
-        == NO_HIT
-    ):
-        return NO_HIT, -1, 0.0, 0.0
+    node = root if box_entry(bounds, root, ox, oy, oz, ix, iy, iz, t_max) != NO_HIT else -1
     top = 0
-    while True:
+    while node >= 0:
         count = info[node, 1]
         if count > 0:
             first = info[node, 0]
@@ -116,82 +118,30 @@ def mesh_closest(bounds, info, tris, vertices, root, o, d, t_max, stack, stack_t
                 )
                 if t < best_t:
                     best_t, best_tri, best_b1, best_b2 = t, tri, b1, b2
+            node = -1
         else:
-            child = info[node, 0]
-            t_left = _slab_test(
-                bounds[child, 0],
-                bounds[child, 1],
-                bounds[child, 2],
-                bounds[child, 3],
-                bounds[child, 4],
-                bounds[child, 5],
-                ox,
-                oy,
-                oz,
-                ix,
-                iy,
-                iz,
-                best_t,
+            node, top = descend(
+                bounds, info[node, 0], ox, oy, oz, ix, iy, iz, best_t, stack, stack_t, top
             )
-            t_right = _slab_test(
-                bounds[child + 1, 0],
-                bounds[child + 1, 1],
-                bounds[child + 1, 2],
-                bounds[child + 1, 3],
-                bounds[child + 1, 4],
-                bounds[child + 1, 5],
-                ox,
-                oy,
-                oz,
-                ix,
-                iy,
-                iz,
-                best_t,
-            )
-            if t_left != NO_HIT:
-                if t_right != NO_HIT:
-                    if t_right < t_left:
-                        stack[top] = child
-                        stack_t[top] = t_left
-                        node = child + 1
-                    else:
-                        stack[top] = child + 1
-                        stack_t[top] = t_right
-                        node = child
-                    top += 1
-                    continue
-                node = child
-                continue
-            if t_right != NO_HIT:
-                node = child + 1
-                continue
-        # Pop the nearest waiting node that could still hold a nearer hit
-        while top > 0:
-            top -= 1
-            if stack_t[top] < best_t:
-                break
-        else:
-            break
-        node = stack[top]
+        if node < 0:
+            node, top = pop_nearer(stack, stack_t, top, best_t)
     if best_tri < 0:
         return NO_HIT, -1, 0.0, 0.0
     return best_t, best_tri, best_b1, best_b2
 
 
 @kernel
-def mesh_crossings(bounds, info, tris, vertices, root, o, d, t_max, stop_at_first, stack):
+def mesh_crossings(bounds, info, tris, vertices, root, o, d, t_max, stop_at_first, stack, stack_t):
     """How many triangles of the mesh whose BVH starts at `root` the segment crosses
-    (stopping at 1 if stop_at_first)."""
+    (stopping at 1 if stop_at_first). Nearer boxes first: an occluder is found sooner."""
     ox, oy, oz = o
     ix, iy, iz = _inverse(d)
     shear = shear_setup(d)
     o_sheared = permuted(o, shear)
     crossings = 0
-    if box_entry(bounds, root, o, (ix, iy, iz), t_max) == NO_HIT:
-        return 0
-    node = root
+    node = root if box_entry(bounds, root, ox, oy, oz, ix, iy, iz, t_max) != NO_HIT else -1
     top = 0
-    while True:
+    while node >= 0:
         count = info[node, 1]
         if count > 0:
             first = info[node, 0]
@@ -203,38 +153,13 @@ def mesh_crossings(bounds, info, tris, vertices, root, o, d, t_max, stop_at_firs
                     crossings += 1
                     if stop_at_first:
                         return crossings
+            node = -1
         else:
-            # Children are tested before they are visited, so only boxes the segment
-            # crosses are ever pushed; the nearer is visited first, which finds an occluder
-            # sooner on average
-            child = info[node, 0]
-            t_left = _slab_test(
-                bounds[child, 0], bounds[child, 1], bounds[child, 2],
-                bounds[child, 3], bounds[child, 4], bounds[child, 5],
-                ox, oy, oz, ix, iy, iz, t_max,
-            )  # fmt: skip
-            t_right = _slab_test(
-                bounds[child + 1, 0], bounds[child + 1, 1], bounds[child + 1, 2],
-                bounds[child + 1, 3], bounds[child + 1, 4], bounds[child + 1, 5],
-                ox, oy, oz, ix, iy, iz, t_max,
-            )  # fmt: skip
-            if t_left != NO_HIT:
-                if t_right != NO_HIT:
-                    near, far = (child, child + 1) if t_left <= t_right else (child + 1, child)
-                    stack[top] = far
-                    top += 1
-                    node = near
-                    continue
-                node = child
-                continue
-            if t_right != NO_HIT:
-                node = child + 1
-                continue
-        if top == 0:
-            break
-        top -= 1
-        node = stack[top]
-    return crossings
+            node, top = descend(
+                bounds, info[node, 0], ox, oy, oz, ix, iy, iz, t_max, stack, stack_t, top
+            )
+        if node < 0:
+            node, top = pop_nearer(stack, stack_t, top, t_max)
     return crossings
 
 
@@ -244,50 +169,27 @@ def closest_hit(geo, o, d, t_max, stacks):
 
     part is the surface part for analytic shapes, the triangle for meshes; b1 and b2 are
     barycentric weights on meshes. A miss returns (-1, NO_HIT, -1, 0, 0)."""
-    # Arrays are bound once here (see `transmittance`)
     stack, stack_t, mesh_stack, mesh_stack_t = stacks
     bounds, info, order = geo.top_bounds, geo.top_info, geo.top_order
     kinds, params, meshes = geo.shape_kind, geo.shape_param, geo.shape_mesh
     transforms, roots = geo.shape_object_from_world, geo.mesh_root
-    node_bounds, node_info, tris, vertices = (
-        geo.node_bounds,
-        geo.node_info,
-        geo.tri_vertices,
-        geo.vertices,
-    )
+    node_bounds, node_info = geo.node_bounds, geo.node_info
+    tris, vertices = geo.tri_vertices, geo.vertices
     ox, oy, oz = o
     ix, iy, iz = _inverse(d)
     best_shape, best_t, best_part, best_b1, best_b2 = -1, t_max, -1, 0.0, 0.0
-    if (
-        info.shape[0] == 0
-        or _slab_test(
-            bounds[0, 0],
-            bounds[0, 1],
-            bounds[0, 2],
-            bounds[0, 3],
-            bounds[0, 4],
-            bounds[0, 5],
-            ox,
-            oy,
-            oz,
-            ix,
-            iy,
-            iz,
-            t_max,
-        )
-        == NO_HIT
-    ):
-        return -1, NO_HIT, -1, 0.0, 0.0
-    node = 0
+    node = -1
+    if info.shape[0] > 0 and box_entry(bounds, 0, ox, oy, oz, ix, iy, iz, t_max) != NO_HIT:
+        node = 0
     top = 0
-    while True:
+    while node >= 0:
         count = info[node, 1]
         if count > 0:
             first = info[node, 0]
             for k in range(first, first + count):
                 shape = order[k]
-                o_obj = affine_point_of(transforms, shape, o)
-                d_obj = affine_vector_of(transforms, shape, d)
+                o_obj = affine_point(transforms, shape, o)
+                d_obj = affine_vector(transforms, shape, d)
                 kind = kinds[shape]
                 if kind == SHAPE_MESH:
                     t, part, b1, b2 = mesh_closest(
@@ -300,62 +202,13 @@ def closest_hit(geo, o, d, t_max, stacks):
                     b1 = b2 = 0.0
                 if t < best_t:
                     best_shape, best_t, best_part, best_b1, best_b2 = shape, t, part, b1, b2
+            node = -1
         else:
-            child = info[node, 0]
-            t_left = _slab_test(
-                bounds[child, 0],
-                bounds[child, 1],
-                bounds[child, 2],
-                bounds[child, 3],
-                bounds[child, 4],
-                bounds[child, 5],
-                ox,
-                oy,
-                oz,
-                ix,
-                iy,
-                iz,
-                best_t,
+            node, top = descend(
+                bounds, info[node, 0], ox, oy, oz, ix, iy, iz, best_t, stack, stack_t, top
             )
-            t_right = _slab_test(
-                bounds[child + 1, 0],
-                bounds[child + 1, 1],
-                bounds[child + 1, 2],
-                bounds[child + 1, 3],
-                bounds[child + 1, 4],
-                bounds[child + 1, 5],
-                ox,
-                oy,
-                oz,
-                ix,
-                iy,
-                iz,
-                best_t,
-            )
-            if t_left != NO_HIT:
-                if t_right != NO_HIT:
-                    if t_right < t_left:
-                        stack[top] = child
-                        stack_t[top] = t_left
-                        node = child + 1
-                    else:
-                        stack[top] = child + 1
-                        stack_t[top] = t_right
-                        node = child
-                    top += 1
-                    continue
-                node = child
-                continue
-            if t_right != NO_HIT:
-                node = child + 1
-                continue
-        while top > 0:
-            top -= 1
-            if stack_t[top] < best_t:
-                break
-        else:
-            break
-        node = stack[top]
+        if node < 0:
+            node, top = pop_nearer(stack, stack_t, top, best_t)
     if best_shape < 0:
         return -1, NO_HIT, -1, 0.0, 0.0
     return best_shape, best_t, best_part, best_b1, best_b2
@@ -369,60 +222,48 @@ def transmittance(geo, o, d, t_max, stacks):
     transparency tau multiplies the light by tau, without bending or Fresnel loss (a shadow
     ray cannot follow refraction to the light). Opaque surfaces (tau = 0) block it outright,
     and the search stops at the first of them, as an any-hit query."""
-    # Arrays are bound once here, never read from `ps` inside the loop: each `ps.field`
-    # read costs numba an atomic reference-count increment and decrement
-    stack, mesh_stack = stacks.top, stacks.mesh
+    stack, stack_t, mesh_stack, mesh_stack_t = stacks
     bounds, info, order = geo.top_bounds, geo.top_info, geo.top_order
     kinds, params, meshes = geo.shape_kind, geo.shape_param, geo.shape_mesh
     transforms, tau_of_shape = geo.shape_object_from_world, geo.shape_transparency
-    node_bounds, node_info, tris, vertices = (
-        geo.node_bounds,
-        geo.node_info,
-        geo.tri_vertices,
-        geo.vertices,
-    )
-    roots = geo.mesh_root
-    if info.shape[0] == 0:
-        return 1.0
+    node_bounds, node_info, roots = geo.node_bounds, geo.node_info, geo.mesh_root
+    tris, vertices = geo.tri_vertices, geo.vertices
     ox, oy, oz = o
     ix, iy, iz = _inverse(d)
     light = 1.0
-    stack[0] = 0
-    top = 1
-    while top > 0:
-        top -= 1
-        node = stack[top]
-        if (
-            _slab_test(bounds[node, 0], bounds[node, 1], bounds[node, 2], bounds[node, 3],
-                       bounds[node, 4], bounds[node, 5], ox, oy, oz, ix, iy, iz, t_max)
-            == NO_HIT
-        ):  # fmt: skip
-            continue
+    node = -1
+    if info.shape[0] > 0 and box_entry(bounds, 0, ox, oy, oz, ix, iy, iz, t_max) != NO_HIT:
+        node = 0
+    top = 0
+    while node >= 0:
         count = info[node, 1]
-        if count == 0:
-            stack[top] = info[node, 0]
-            stack[top + 1] = info[node, 0] + 1
-            top += 2
-            continue
-        first = info[node, 0]
-        for k in range(first, first + count):
-            shape = order[k]
-            tau = tau_of_shape[shape]
-            o_obj = affine_point_of(transforms, shape, o)
-            d_obj = affine_vector_of(transforms, shape, d)
-            kind = kinds[shape]
-            if kind == SHAPE_MESH:
-                crossings = mesh_crossings(
-                    node_bounds, node_info, tris, vertices, roots[meshes[shape]], o_obj, d_obj,
-                    t_max, tau == 0.0, mesh_stack,
-                )  # fmt: skip
-            else:
-                major, minor = params[shape, 0], params[shape, 1]
-                crossings = count_crossings(kind, major, minor, o_obj, d_obj, 0.0, t_max)
-            if crossings > 0:
-                if tau == 0.0:
-                    return 0.0
-                light *= tau**crossings
+        if count > 0:
+            first = info[node, 0]
+            for k in range(first, first + count):
+                shape = order[k]
+                tau = tau_of_shape[shape]
+                o_obj = affine_point(transforms, shape, o)
+                d_obj = affine_vector(transforms, shape, d)
+                kind = kinds[shape]
+                if kind == SHAPE_MESH:
+                    crossings = mesh_crossings(
+                        node_bounds, node_info, tris, vertices, roots[meshes[shape]], o_obj,
+                        d_obj, t_max, tau == 0.0, mesh_stack, mesh_stack_t,
+                    )  # fmt: skip
+                else:
+                    major, minor = params[shape, 0], params[shape, 1]
+                    crossings = count_crossings(kind, major, minor, o_obj, d_obj, 0.0, t_max)
+                if crossings > 0:
+                    if tau == 0.0:
+                        return 0.0
+                    light *= tau**crossings
+            node = -1
+        else:
+            node, top = descend(
+                bounds, info[node, 0], ox, oy, oz, ix, iy, iz, t_max, stack, stack_t, top
+            )
+        if node < 0:
+            node, top = pop_nearer(stack, stack_t, top, t_max)
     return light
 
 

@@ -57,43 +57,12 @@ def row(array, i):
 
 
 @kernel
-def affine_point(m, p):
-    """m (3, 4) affine rows applied to point p."""
-    return (
-        m[0, 0] * p[0] + m[0, 1] * p[1] + m[0, 2] * p[2] + m[0, 3],
-        m[1, 0] * p[0] + m[1, 1] * p[1] + m[1, 2] * p[2] + m[1, 3],
-        m[2, 0] * p[0] + m[2, 1] * p[1] + m[2, 2] * p[2] + m[2, 3],
-    )
-
-
-@kernel
-def affine_vector(m, v):
-    """The linear part of m (3, 4) applied to direction v."""
-    return (
-        m[0, 0] * v[0] + m[0, 1] * v[1] + m[0, 2] * v[2],
-        m[1, 0] * v[0] + m[1, 1] * v[1] + m[1, 2] * v[2],
-        m[2, 0] * v[0] + m[2, 1] * v[1] + m[2, 2] * v[2],
-    )
-
-
-@kernel
-def affine_transpose_vector(m, v):
-    """The transpose of m's linear part applied to v: maps an object-space normal to world
-    space when m is object_from_world (normals go through the inverse transpose)."""
-    return (
-        m[0, 0] * v[0] + m[1, 0] * v[1] + m[2, 0] * v[2],
-        m[0, 1] * v[0] + m[1, 1] * v[1] + m[2, 1] * v[2],
-        m[0, 2] * v[0] + m[1, 2] * v[1] + m[2, 2] * v[2],
-    )
-
-
-@kernel
 def cross(a, b):
     return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
 
 @kernel
-def affine_point_of(matrices, i, p):
+def affine_point(matrices, i, p):
     """matrices[i] (3, 4 affine rows) applied to point p, without making a view of it."""
     return (
         matrices[i, 0, 0] * p[0] + matrices[i, 0, 1] * p[1] + matrices[i, 0, 2] * p[2]
@@ -106,7 +75,7 @@ def affine_point_of(matrices, i, p):
 
 
 @kernel
-def affine_vector_of(matrices, i, v):
+def affine_vector(matrices, i, v):
     """The linear part of matrices[i] applied to direction v."""
     return (
         matrices[i, 0, 0] * v[0] + matrices[i, 0, 1] * v[1] + matrices[i, 0, 2] * v[2],
@@ -116,9 +85,10 @@ def affine_vector_of(matrices, i, v):
 
 
 @kernel
-def affine_transpose_vector_of(matrices, i, v):
-    """The transpose of the linear part of matrices[i] applied to v (see
-    `affine_transpose_vector`)."""
+def affine_transpose_vector(matrices, i, v):
+    """The transpose of the linear part of matrices[i] applied to v: carries an
+    object-space normal to world space when matrices[i] is object_from_world (normals go
+    through the inverse transpose)."""
     return (
         matrices[i, 0, 0] * v[0] + matrices[i, 1, 0] * v[1] + matrices[i, 2, 0] * v[2],
         matrices[i, 0, 1] * v[0] + matrices[i, 1, 1] * v[1] + matrices[i, 2, 1] * v[2],

@@ -27,8 +27,8 @@ def brute_force(geo, surf, origins, directions):
         o = (origins[r, 0], origins[r, 1], origins[r, 2])
         d = (directions[r, 0], directions[r, 1], directions[r, 2])
         for s in range(geo.shape_kind.shape[0]):
-            m = geo.shape_object_from_world[s]
-            oo, dd = affine_point(m, o), affine_vector(m, d)
+            oo = affine_point(geo.shape_object_from_world, s, o)
+            dd = affine_vector(geo.shape_object_from_world, s, d)
             if geo.shape_kind[s] == SHAPE_MESH:
                 mesh = geo.shape_mesh[s]
                 first = surf.mesh_tri_offset[mesh]
