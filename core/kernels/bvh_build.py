@@ -37,6 +37,101 @@ def _half_area(lo0, lo1, lo2, hi0, hi1, hi2):
 
 
 @kernel
+def _sah_partition(
+    order, centroid, prim_lo, prim_hi, start, end, lo, hi, clo, chi, max_leaf,
+    traversal_cost, bin_count, bin_lo, bin_hi, right_area, right_count,
+):  # fmt: skip
+    """Find the binned-SAH split of order[start:end] and partition it there. Returns the
+    index where the right part starts, or -1 when a leaf is cheaper. The bin_* and right_*
+    arrays are scratch space, reused from node to node."""
+    count = end - start
+    # Bin the centroids along all three axes at once
+    bin_count[:, :] = 0
+    bin_lo[:, :, :] = np.inf
+    bin_hi[:, :, :] = -np.inf
+    for k in range(start, end):
+        i = order[k]
+        for a in range(3):
+            extent = chi[a] - clo[a]
+            if extent <= 0.0:
+                continue
+            b = int((centroid[i, a] - clo[a]) * (BIN_COUNT / extent))
+            b = min(b, BIN_COUNT - 1)
+            bin_count[a, b] += 1
+            for c in range(3):
+                bin_lo[a, b, c] = min(bin_lo[a, b, c], prim_lo[i, c])
+                bin_hi[a, b, c] = max(bin_hi[a, b, c], prim_hi[i, c])
+
+    node_area = _half_area(lo[0], lo[1], lo[2], hi[0], hi[1], hi[2])
+    best_cost = np.inf
+    best_axis = -1
+    best_split = 0
+    for a in range(3):
+        if chi[a] - clo[a] <= 0.0:
+            continue
+        # Sweep from the right: area and count of bins b..end
+        r0 = r1 = r2 = np.inf
+        s0 = s1 = s2 = -np.inf
+        n = 0
+        for b in range(BIN_COUNT - 1, 0, -1):
+            n += bin_count[a, b]
+            if bin_count[a, b] > 0:
+                r0, r1, r2 = (
+                    min(r0, bin_lo[a, b, 0]),
+                    min(r1, bin_lo[a, b, 1]),
+                    min(r2, bin_lo[a, b, 2]),
+                )
+                s0, s1, s2 = (
+                    max(s0, bin_hi[a, b, 0]),
+                    max(s1, bin_hi[a, b, 1]),
+                    max(s2, bin_hi[a, b, 2]),
+                )
+            right_count[b] = n
+            right_area[b] = _half_area(r0, r1, r2, s0, s1, s2) if n > 0 else 0.0
+        # Sweep from the left, evaluating the split before bin b
+        l0 = l1 = l2 = np.inf
+        m0 = m1 = m2 = -np.inf
+        n = 0
+        for b in range(1, BIN_COUNT):
+            n += bin_count[a, b - 1]
+            if bin_count[a, b - 1] > 0:
+                l0, l1, l2 = (
+                    min(l0, bin_lo[a, b - 1, 0]),
+                    min(l1, bin_lo[a, b - 1, 1]),
+                    min(l2, bin_lo[a, b - 1, 2]),
+                )
+                m0, m1, m2 = (
+                    max(m0, bin_hi[a, b - 1, 0]),
+                    max(m1, bin_hi[a, b - 1, 1]),
+                    max(m2, bin_hi[a, b - 1, 2]),
+                )
+            if n == 0 or right_count[b] == 0:
+                continue
+            left_area = _half_area(l0, l1, l2, m0, m1, m2)
+            cost = left_area * n + right_area[b] * right_count[b]
+            if cost < best_cost:
+                best_cost, best_axis, best_split = cost, a, b
+
+    if best_axis < 0:
+        # All centroids coincide: no split separates them; halve big groups by index
+        return -1 if count <= max_leaf else start + count // 2
+    split_cost = traversal_cost + best_cost / node_area if node_area > 0.0 else 0.0
+    if count <= max_leaf and split_cost >= count:
+        return -1
+    extent = chi[best_axis] - clo[best_axis]
+    left, right = start, end - 1
+    while left <= right:
+        i = order[left]
+        b = int((centroid[i, best_axis] - clo[best_axis]) * (BIN_COUNT / extent))
+        if min(b, BIN_COUNT - 1) < best_split:
+            left += 1
+        else:
+            order[left], order[right] = order[right], order[left]
+            right -= 1
+    return left
+
+
+@kernel
 def build_bvh(prim_lo, prim_hi, max_leaf, traversal_cost):
     """Build over boxes prim_lo/prim_hi (p, 3). Leaves hold at most max_leaf primitives
     unless their centroids coincide; traversal_cost is the cost of visiting an inner node
@@ -96,103 +191,13 @@ def build_bvh(prim_lo, prim_hi, max_leaf, traversal_cost):
             if count <= max_leaf:
                 continue
             mid = start + count // 2
-            child = nodes
-            nodes += 2
-            node_info[node, 0] = child
-            node_info[node, 1] = 0
-            task_node[tasks], task_start[tasks], task_end[tasks] = child + 1, mid, end
-            task_node[tasks + 1], task_start[tasks + 1], task_end[tasks + 1] = child, start, mid
-            task_depth[tasks] = task_depth[tasks + 1] = depth + 1
-            tasks += 2
-            continue
-
-        # Bin the centroids along all three axes at once
-        bin_count[:, :] = 0
-        bin_lo[:, :, :] = np.inf
-        bin_hi[:, :, :] = -np.inf
-        for k in range(start, end):
-            i = order[k]
-            for a in range(3):
-                extent = chi[a] - clo[a]
-                if extent <= 0.0:
-                    continue
-                b = int((centroid[i, a] - clo[a]) * (BIN_COUNT / extent))
-                b = min(b, BIN_COUNT - 1)
-                bin_count[a, b] += 1
-                for c in range(3):
-                    bin_lo[a, b, c] = min(bin_lo[a, b, c], prim_lo[i, c])
-                    bin_hi[a, b, c] = max(bin_hi[a, b, c], prim_hi[i, c])
-
-        node_area = _half_area(lo[0], lo[1], lo[2], hi[0], hi[1], hi[2])
-        best_cost = np.inf
-        best_axis = -1
-        best_split = 0
-        for a in range(3):
-            if chi[a] - clo[a] <= 0.0:
-                continue
-            # Sweep from the right: area and count of bins b..end
-            r0 = r1 = r2 = np.inf
-            s0 = s1 = s2 = -np.inf
-            n = 0
-            for b in range(BIN_COUNT - 1, 0, -1):
-                n += bin_count[a, b]
-                if bin_count[a, b] > 0:
-                    r0, r1, r2 = (
-                        min(r0, bin_lo[a, b, 0]),
-                        min(r1, bin_lo[a, b, 1]),
-                        min(r2, bin_lo[a, b, 2]),
-                    )
-                    s0, s1, s2 = (
-                        max(s0, bin_hi[a, b, 0]),
-                        max(s1, bin_hi[a, b, 1]),
-                        max(s2, bin_hi[a, b, 2]),
-                    )
-                right_count[b] = n
-                right_area[b] = _half_area(r0, r1, r2, s0, s1, s2) if n > 0 else 0.0
-            # Sweep from the left, evaluating the split before bin b
-            l0 = l1 = l2 = np.inf
-            m0 = m1 = m2 = -np.inf
-            n = 0
-            for b in range(1, BIN_COUNT):
-                n += bin_count[a, b - 1]
-                if bin_count[a, b - 1] > 0:
-                    l0, l1, l2 = (
-                        min(l0, bin_lo[a, b - 1, 0]),
-                        min(l1, bin_lo[a, b - 1, 1]),
-                        min(l2, bin_lo[a, b - 1, 2]),
-                    )
-                    m0, m1, m2 = (
-                        max(m0, bin_hi[a, b - 1, 0]),
-                        max(m1, bin_hi[a, b - 1, 1]),
-                        max(m2, bin_hi[a, b - 1, 2]),
-                    )
-                if n == 0 or right_count[b] == 0:
-                    continue
-                left_area = _half_area(l0, l1, l2, m0, m1, m2)
-                cost = left_area * n + right_area[b] * right_count[b]
-                if cost < best_cost:
-                    best_cost, best_axis, best_split = cost, a, b
-
-        if best_axis < 0:
-            # All centroids coincide: no split separates them; halve big groups by index
-            if count <= max_leaf:
-                continue
-            mid = start + count // 2
         else:
-            split_cost = traversal_cost + best_cost / node_area if node_area > 0.0 else 0.0
-            if count <= max_leaf and split_cost >= count:
+            mid = _sah_partition(
+                order, centroid, prim_lo, prim_hi, start, end, lo, hi, clo, chi, max_leaf,
+                traversal_cost, bin_count, bin_lo, bin_hi, right_area, right_count,
+            )  # fmt: skip
+            if mid < 0:
                 continue
-            extent = chi[best_axis] - clo[best_axis]
-            left, right = start, end - 1
-            while left <= right:
-                i = order[left]
-                b = int((centroid[i, best_axis] - clo[best_axis]) * (BIN_COUNT / extent))
-                if min(b, BIN_COUNT - 1) < best_split:
-                    left += 1
-                else:
-                    order[left], order[right] = order[right], order[left]
-                    right -= 1
-            mid = left
 
         child = nodes
         nodes += 2
