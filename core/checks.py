@@ -55,23 +55,33 @@ def check_vec3(owner, name, value, nonnegative=False, nonzero=False) -> np.ndarr
     return v
 
 
+def valid_affine(matrices: np.ndarray) -> np.ndarray:
+    """For (n, 4, 4) matrices, which are usable object-to-world transforms: finite, affine
+    (bottom row 0 0 0 1) and not singular. Vectorised, for scenes of thousands of shapes."""
+    ok = np.isfinite(matrices).all(axis=(1, 2))
+    ok &= np.abs(matrices[:, 3] - (0.0, 0.0, 0.0, 1.0)).max(axis=1) <= 1e-8
+    if ok.any():
+        singular_values = np.linalg.svd(matrices[ok, :3, :3], compute_uv=False)
+        ok[ok] = singular_values[:, -1] > SINGULAR_RATIO * singular_values[:, 0]
+    return ok
+
+
 def check_affine(owner: str, name: str, matrix) -> np.ndarray:
     m = np.asarray(matrix, dtype=float)
     if m.shape != (4, 4):
         raise SceneError(owner, name, f"got shape {m.shape}; use a 4x4 matrix")
+    if valid_affine(m[None])[0]:
+        return m
     if not np.all(np.isfinite(m)):
         raise SceneError(owner, name, "contains NaN or infinity; use finite numbers")
     if np.abs(m[3] - (0.0, 0.0, 0.0, 1.0)).max() > 1e-8:
         raise SceneError(owner, name, f"bottom row is {m[3]}; an affine matrix ends in 0 0 0 1")
-    singular_values = np.linalg.svd(m[:3, :3], compute_uv=False)
-    if singular_values[-1] <= SINGULAR_RATIO * singular_values[0]:
-        raise SceneError(
-            owner,
-            name,
-            "is singular (a scale of zero along some axis flattens the shape); "
-            "give every axis a non-zero scale",
-        )
-    return m
+    raise SceneError(
+        owner,
+        name,
+        "is singular (a scale of zero along some axis flattens the shape); "
+        "give every axis a non-zero scale",
+    )
 
 
 def check_array(owner: str, name: str, value, columns: int, kind: str) -> np.ndarray:

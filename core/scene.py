@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from core.checks import SINGULAR_RATIO, check_choice, check_count, check_vec3
+from core.checks import check_choice, check_count, check_vec3, valid_affine
 from core.errors import SceneError
 from core.scene_parts import AreaLight, Camera, Material, PointLight, Texture, Vec3
 from core.shapes import Box, Cone, Cylinder, Mesh, Shape, Sphere, Torus, TriangleMesh
@@ -79,12 +79,7 @@ class Scene:
             return set()
         if matrices.shape != (len(self.shapes), 4, 4):
             return set()
-        finite = np.isfinite(matrices).all(axis=(1, 2))
-        affine = np.abs(matrices[:, 3] - (0.0, 0.0, 0.0, 1.0)).max(axis=1) <= 1e-8
-        ok = finite & affine
-        if ok.any():
-            singular_values = np.linalg.svd(matrices[ok, :3, :3], compute_uv=False)
-            ok[ok] = singular_values[:, -1] > SINGULAR_RATIO * singular_values[:, 0]
+        ok = valid_affine(matrices)
         return {id(s.world_from_object) for s, good in zip(self.shapes, ok, strict=True) if good}
 
 
