@@ -71,39 +71,45 @@ def _bracketed_root(c, cubic, lo, hi, f_lo):
 
 
 @kernel
-def _sign_change_roots(c, cubic, breaks, count, roots):
-    """Roots of quartic c (or its derivative) between consecutive sorted `breaks[:count]`,
-    one per piece where the sign changes, written to `roots`. Returns how many."""
-    found = 0
-    f_lo = (_poly3(c, breaks[0]) if cubic else _poly4(c, breaks[0]))[0]
-    for k in range(count - 1):
-        lo, hi = breaks[k], breaks[k + 1]
-        f_hi = (_poly3(c, hi) if cubic else _poly4(c, hi))[0]
-        if f_lo == 0.0:
-            if found == 0 or roots[found - 1] != lo:
-                roots[found] = lo
-                found += 1
-        elif (f_lo < 0.0) != (f_hi < 0.0) and f_hi != 0.0:
-            roots[found] = _bracketed_root(c, cubic, lo, hi, f_lo)
-            found += 1
-        f_lo = f_hi
-    if f_lo == 0.0 and (found == 0 or roots[found - 1] != breaks[count - 1]):
-        roots[found] = breaks[count - 1]
-        found += 1
-    return found
+def _append(found, roots, x):
+    """roots (4 floats, the first `found` meaningful) with x added, unless already last."""
+    if found > 0 and roots[found - 1] == x or found == 4:
+        return found, roots
+    r0, r1, r2, r3 = roots
+    if found == 0:
+        r0 = x
+    elif found == 1:
+        r1 = x
+    elif found == 2:
+        r2 = x
+    else:
+        r3 = x
+    return found + 1, (r0, r1, r2, r3)
 
 
 @kernel
-def _insert_sorted(values, count, x, lo, hi):
-    """Append x to sorted values[:count] if strictly inside (lo, hi), keeping the order."""
-    if not lo < x < hi:
-        return count
-    k = count
-    while k > 0 and values[k - 1] > x:
-        values[k] = values[k - 1]
-        k -= 1
-    values[k] = x
-    return count + 1
+def _sign_change_roots(c, cubic, breaks):
+    """Roots of quartic c (or of its derivative if cubic) between consecutive values of the
+    sorted 5-tuple `breaks`, one per piece where the sign changes: (found, 4-tuple of roots,
+    sorted). Tuples rather than arrays: nothing is allocated per ray."""
+    found, roots = 0, (0.0, 0.0, 0.0, 0.0)
+    f_lo = (_poly3(c, breaks[0]) if cubic else _poly4(c, breaks[0]))[0]
+    for k in range(4):
+        lo, hi = breaks[k], breaks[k + 1]
+        f_hi = (_poly3(c, hi) if cubic else _poly4(c, hi))[0]
+        if f_lo == 0.0:
+            found, roots = _append(found, roots, lo)
+        elif (f_lo < 0.0) != (f_hi < 0.0) and f_hi != 0.0:
+            found, roots = _append(found, roots, _bracketed_root(c, cubic, lo, hi, f_lo))
+        f_lo = f_hi
+    if f_lo == 0.0:
+        found, roots = _append(found, roots, breaks[4])
+    return found, roots
+
+
+@kernel
+def _clamp(x, lo, hi):
+    return min(max(x, lo), hi)
 
 
 @kernel
@@ -143,31 +149,28 @@ def torus_roots(o, d, major, minor):
         pp * pp - 4.0 * big2 * gxy,
     )
 
-    # Pieces where f' is monotonic: split at the roots of f'' = 12 s^2 + 6 c1 s + 2 c2
-    breaks = [lo_s, 0.0, 0.0, hi_s]
-    n_breaks = 1
+    # Pieces where f' is monotonic: split at the roots of f'' = 12 s^2 + 6 c1 s + 2 c2,
+    # clamped into the chord (a clamped split is an empty piece, harmless)
+    cut0 = cut1 = lo_s
     qa, qb, qc = 12.0, 3.0 * c[1], 2.0 * c[2]  # qa s^2 + 2 qb s + qc
     disc = qb * qb - qa * qc
     if disc > 0.0:
         q = -(qb + math.copysign(math.sqrt(disc), qb))
-        for r in (q / qa, qc / q if q != 0.0 else 0.0):
-            n_breaks = _insert_sorted(breaks, n_breaks, r, lo_s, hi_s)
-    breaks[n_breaks] = hi_s
-    n_breaks += 1
-    slope_roots = [0.0, 0.0, 0.0]
-    n_slope = _sign_change_roots(c, True, breaks, n_breaks, slope_roots)
+        r_a, r_b = q / qa, (qc / q if q != 0.0 else 0.0)
+        cut0, cut1 = _clamp(min(r_a, r_b), lo_s, hi_s), _clamp(max(r_a, r_b), lo_s, hi_s)
+    n_slope, slope = _sign_change_roots(c, True, (lo_s, cut0, cut1, hi_s, hi_s))
 
-    # Pieces where f is monotonic: split at the roots of f'
-    pieces = [lo_s, 0.0, 0.0, 0.0, hi_s]
-    n_pieces = 1
-    for k in range(n_slope):
-        n_pieces = _insert_sorted(pieces, n_pieces, slope_roots[k], lo_s, hi_s)
-    pieces[n_pieces] = hi_s
-    n_pieces += 1
-    roots = [0.0, 0.0, 0.0, 0.0, 0.0]
-    n = min(_sign_change_roots(c, False, pieces, n_pieces, roots), 4)
-
-    out = [0.0, 0.0, 0.0, 0.0]
-    for k in range(n):
-        out[k] = (t_start + roots[k] * scale) / length
-    return n, out[0], out[1], out[2], out[3]
+    # Pieces where f is monotonic: split at the roots of f' (sorted; unused ones at the end)
+    cuts = (
+        slope[0] if n_slope > 0 else hi_s,
+        slope[1] if n_slope > 1 else hi_s,
+        slope[2] if n_slope > 2 else hi_s,
+    )
+    n, roots = _sign_change_roots(c, False, (lo_s, cuts[0], cuts[1], cuts[2], hi_s))
+    return (
+        n,
+        (t_start + roots[0] * scale) / length,
+        (t_start + roots[1] * scale) / length,
+        (t_start + roots[2] * scale) / length,
+        (t_start + roots[3] * scale) / length,
+    )
