@@ -6,4 +6,5 @@ OPTION_PIXEL_JITTER = 2
 OPTION_SHADOW_SAMPLES = 3
 OPTION_SHADOW_STRATIFIED = 4
 OPTION_SEED = 5
-OPTION_COUNT = 6
+OPTION_LENS_STRIDE = 6  # shuffles lens cells against pixel cells (see render_tile)
+OPTION_COUNT = 7

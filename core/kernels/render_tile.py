@@ -13,7 +13,12 @@ import math
 from core.jit import kernel
 from core.kernels.borrow import borrow_scene, borrow_workspace, borrowed
 from core.kernels.integrator import trace_ray
-from core.kernels.options import OPTION_PIXEL_JITTER, OPTION_PIXEL_SAMPLES, OPTION_SEED
+from core.kernels.options import (
+    OPTION_LENS_STRIDE,
+    OPTION_PIXEL_JITTER,
+    OPTION_PIXEL_SAMPLES,
+    OPTION_SEED,
+)
 from core.kernels.rng import PURPOSE_LENS, PURPOSE_PIXEL, sample_key, uniform2
 from core.kernels.vec import add, normalize, row, scale, sub
 
@@ -29,15 +34,6 @@ def concentric_disk(a, b):
     else:
         r, phi = y, math.pi / 2.0 - (math.pi / 4.0) * (x / y)
     return r * math.cos(phi), r * math.sin(phi)
-
-
-@kernel
-def _lens_cell(sample, cells):
-    """A fixed shuffle of the cells: a stride coprime to their number, near its golden cut."""
-    stride = max(1, int(cells * 0.6180339887498949))
-    while math.gcd(stride, cells) != 1:
-        stride += 1
-    return (sample * stride + cells // 2) % cells
 
 
 @kernel
@@ -58,7 +54,8 @@ def camera_ray(frame, image_width, image_height, px, py, sample, key):
         return eye, normalize(d)
     # d has unit length along the view direction, so eye + f d lies on the focal plane
     focus = add(eye, scale(d, frame.lens[1]))
-    cell = _lens_cell(sample, n * n)
+    # A fixed shuffle of the n x n cells: a stride coprime to their number
+    cell = (sample * frame.options[OPTION_LENS_STRIDE] + (n * n) // 2) % (n * n)
     a, b = uniform2(key, PURPOSE_LENS, 0, 0)
     lx, ly = concentric_disk(((cell % n) + a) / n, ((cell // n) + b) / n)
     origin = add(
