@@ -4,6 +4,7 @@ import math
 
 import numpy as np
 
+from core.kernels.batch import closest_hits
 from core.kernels.surface import surface_at
 from core.kernels.trace import closest_hit, transmittance
 from core.kernels.workspace import new_workspace
@@ -42,8 +43,6 @@ def light_through(packed, origin, direction, t_max):
 
 def hits(packed, origins, directions, t_max=math.inf):
     """Nearest hits of many rays: (t, shape, part) arrays."""
-    from core.kernels.batch import closest_hits
-
     n = len(origins)
     t, shape, part = np.empty(n), np.empty(n, np.int64), np.empty(n, np.int64)
     closest_hits(

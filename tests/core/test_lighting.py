@@ -9,7 +9,7 @@ import pytest
 from core import AreaLight, Box, Camera, Material, PointLight, RenderSettings, Scene, Sphere, render
 from core.kernels.integrator import fresnel_dielectric, refract
 from core.kernels.trace import spawn_point
-from tests.core.probe import surface
+from tests.core.probe import light_through, packed_shapes, surface
 from tests.core.scenes import translate_scale
 from tests.reference_tracer import camera_ray
 
@@ -116,8 +116,6 @@ def test_a_ray_through_a_glass_slab_exits_parallel_and_offset():
     """Into a slab of thickness 1 and out again: same direction, shifted sideways by
     thickness sin(i - t) / cos(t)."""
     slab = Box("Slab", Material(transparency=1.0, inner_ior=1.5), np.diag([50, 50, 0.5, 1.0]))
-    from tests.core.probe import packed_shapes
-
     packed = packed_shapes(slab)
     angle = math.radians(35.0)
     d = np.array([math.sin(angle), 0.0, -math.cos(angle)])
@@ -188,8 +186,6 @@ def test_the_plane_in_focus_stays_sharp_and_the_rest_blurs():
 def test_shadow_rays_through_glass_follow_the_documented_rule():
     """Each crossing of a surface with transparency tau passes tau of the light: through a
     sphere (two crossings) of tau = 0.5, a quarter; behind an opaque one, nothing."""
-    from tests.core.probe import light_through, packed_shapes
-
     glass = Sphere("Glass", Material(transparency=0.5, inner_ior=1.5))
     opaque = Sphere("Stone", Material(), translate_scale((0, 0, 5), 1.0))
     packed = packed_shapes(glass, opaque)

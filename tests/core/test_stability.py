@@ -48,8 +48,8 @@ def just_inside(kind, n, rng, inset=1e-9):
     """Points inside the shape within `inset` of a rim, an apex or the surface."""
     x, y = unit_circle(n, rng)
     r = 1.0 - inset
-    if kind == "sphere":
-        return np.stack([x, y, rng.uniform(-1, 1, n) * 0], axis=1) * r
+    if kind == "sphere":  # on the equator, where rays from above and below graze
+        return np.stack([x, y, np.zeros(n)], axis=1) * r
     if kind == "cylinder":  # on the rims of both caps
         z = np.where(rng.uniform(size=n) < 0.5, -r, r)
         return np.stack([x * r, y * r, z], axis=1)
