@@ -35,6 +35,13 @@ def kernel_cache_dir() -> Path:
 
 numba.config.CACHE_DIR = str(kernel_cache_dir())
 
+# The four-wide BVH's box tests are written as four straight-line copies for LLVM's SLP
+# vectorizer to merge into vector instructions (core.kernels.bvh_wide): 1.6x the rays per
+# second. numba turned SLP off by default in 0.57 after miscompilations in the LLVM of its
+# day (numba#8852); the exact BVH-against-brute-force and watertightness tests guard ours.
+# Read when numba first compiles, so this must run before any kernel is compiled.
+numba.config.SLP_VECTORIZE = 1
+
 # error_model="numpy": division by zero gives inf/nan like numpy instead of a Python exception
 # check on every division; the kernels guard their own divisions.
 kernel = numba.njit(cache=True, nogil=True, error_model="numpy")

@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from core.kernels.bvh_build import build_bvh
+from core.kernels.bvh_wide import LEAF_COUNT_BITS, collapse_to_wide, offset_links
 from core.shapes import TriangleMesh
 
 # Leaves of up to MESH_MAX_LEAF triangles; a node visit costs about as much as this many
@@ -20,6 +21,7 @@ from core.shapes import TriangleMesh
 # Mrays/s at 45 bytes per triangle; (8, 3) 2.36 and 0.50 at 33; (16, 6) 2.15 and 0.49 at 26;
 # (2, 1) 2.63 and 0.50 at 53.
 MESH_MAX_LEAF = 4
+assert MESH_MAX_LEAF < 1 << LEAF_COUNT_BITS
 MESH_TRAVERSAL_COST = 2.0
 
 
@@ -33,15 +35,15 @@ class MeshTables:
     uv_offset: list = field(default_factory=list)
     lo: list = field(default_factory=list)  # object-space bounds per mesh
     hi: list = field(default_factory=list)
-    node_bounds: list = field(default_factory=list)  # (n, 8) float32 node records
-    tri_vertices: list = field(default_factory=list)
+    node_boxes: list = field(default_factory=list)  # (n, 6, 4) float32, see bvh_wide
+    node_links: list = field(default_factory=list)  # (n, 4) int32, global
+    tri_corners: list = field(default_factory=list)  # (t, 9) float32
     tri_smooth: list = field(default_factory=list)
-    vertices: list = field(default_factory=list)
     tri_normal_index: list = field(default_factory=list)
     normals: list = field(default_factory=list)
     tri_uv_index: list = field(default_factory=list)
     uvs: list = field(default_factory=list)
-    counts: dict = field(default_factory=lambda: {"nodes": 0, "tris": 0, "vertices": 0})
+    counts: dict = field(default_factory=lambda: {"nodes": 0, "tris": 0})
     normal_rows: int = 0
     uv_rows: int = 0
     normal_entries: int = 0
@@ -82,24 +84,17 @@ def add_mesh(tables: MeshTables, mesh: TriangleMesh) -> int:
     source = keep[order]  # original triangle of each packed triangle
 
     base_node, base_tri = tables.counts["nodes"], tables.counts["tris"]
-    base_vertex = tables.counts["vertices"]
-    inner = node_info[:, 1] == 0
-    node_info = node_info.astype(np.int64)
-    node_info[:, 0] += np.where(inner, base_node, base_tri)
-    # One 32-byte record per node, children side by side: a node's box and its link share a
-    # cache line, and a pair of children fills one
-    record = np.empty((len(node_info), 8), np.float32)
     # Boxes one float32 step larger than their triangles: the watertight triangle test may
     # claim a ray that passes a hair outside a triangle at a shared vertex or edge (so that
     # exactly one neighbour claims it), and that triangle's box must not have culled it
-    record[:, :3] = np.nextafter(node_lo.astype(np.float32), np.float32(-np.inf))
-    record[:, 3:6] = np.nextafter(node_hi.astype(np.float32), np.float32(np.inf))
-    record.view(np.int32)[:, 6:8] = node_info
-    tables.node_bounds.append(record)
-    tables.tri_vertices.append((triangles[source] + base_vertex).astype(np.int32))
+    padded_lo = np.nextafter(node_lo.astype(np.float32), np.float32(-np.inf))
+    padded_hi = np.nextafter(node_hi.astype(np.float32), np.float32(np.inf))
+    boxes, links = collapse_to_wide(padded_lo, padded_hi, node_info)
+    tables.node_boxes.append(boxes)
+    tables.node_links.append(offset_links(links, base_node, base_tri))
+    tables.tri_corners.append(vertices[triangles[source]].reshape(-1, 9))
     smooth = np.broadcast_to(np.asarray(mesh.smooth, bool), (len(triangles),))[source]
     tables.tri_smooth.append(smooth.astype(np.uint8))
-    tables.vertices.append(vertices)
     tables.root.append(base_node)
     tables.tri_offset.append(base_tri)
     tables.lo.append(node_lo[0] if len(keep) else np.zeros(3))
@@ -107,9 +102,8 @@ def add_mesh(tables: MeshTables, mesh: TriangleMesh) -> int:
 
     tables.normal_offset.append(_add_normals(tables, mesh, triangles, source, smooth))
     tables.uv_offset.append(_add_uvs(tables, mesh, triangles, source))
-    tables.counts["nodes"] += len(node_info)
+    tables.counts["nodes"] += len(links)
     tables.counts["tris"] += len(source)
-    tables.counts["vertices"] += len(vertices)
     return index
 
 

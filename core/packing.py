@@ -67,7 +67,7 @@ class CompiledScene(NamedTuple):
     packed: PackedScene
     warnings: list[str]
     triangles: int  # triangles packed, each mesh counted once
-    mesh_bytes: int  # bytes of all mesh arrays (BVH nodes, triangles, vertices, normals, UVs)
+    mesh_bytes: int  # bytes of all mesh arrays (BVH nodes, corners, normals, UVs)
 
 
 def pack_scene(scene: Scene, settings: RenderSettings) -> PackedScene:
@@ -134,7 +134,6 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
     def rows(values, width=3):
         return np.array(values, float).reshape(-1, width)
 
-    nodes = concatenated(tables.node_bounds, (0, 8), np.float32)
     frame = Frame(
         camera=_pack_camera(scene, settings),
         lens=np.array([scene.camera.aperture_radius, scene.camera.focal_distance], float),
@@ -152,10 +151,9 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
         shape_mesh=shape_mesh,
         shape_transparency=np.array([s.material.transparency for s in scene.shapes], float),
         mesh_root=np.array(tables.root, np.int32),
-        node_bounds=nodes,
-        node_info=nodes.view(np.int32)[:, 6:8],
-        tri_vertices=concatenated(tables.tri_vertices, (0, 3), np.int32),
-        vertices=concatenated(tables.vertices, (0, 3), np.float32),
+        node_boxes=concatenated(tables.node_boxes, (0, 6, 4), np.float32),
+        node_links=concatenated(tables.node_links, (0, 4), np.int32),
+        tri_corners=concatenated(tables.tri_corners, (0, 9), np.float32),
     )
     surfaces = Surfaces(
         shape_material=np.array([material_index[id(s.material)] for s in scene.shapes], np.int32),
@@ -201,10 +199,10 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
         for name, count in tables.dropped.items()
     ]
     mesh_fields = [
-        "node_bounds",
-        "tri_vertices",
+        "node_boxes",
+        "node_links",
+        "tri_corners",
         "tri_smooth",
-        "vertices",
         "tri_normal_index",
         "normals",
         "tri_uv_index",

@@ -66,10 +66,9 @@ def borrow_geometry(g):
         borrowed(g.shape_mesh),
         borrowed(g.shape_transparency),
         borrowed(g.mesh_root),
-        borrowed(g.node_bounds),
-        borrowed(g.node_info),
-        borrowed(g.tri_vertices),
-        borrowed(g.vertices),
+        borrowed(g.node_boxes),
+        borrowed(g.node_links),
+        borrowed(g.tri_corners),
     )
 
 

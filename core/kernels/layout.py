@@ -36,11 +36,10 @@ class Geometry(NamedTuple):
     shape_transparency: np.ndarray  # float64 (n,): its material's, for shadow rays
     # meshes
     mesh_root: np.ndarray  # int32 (m,): its BVH's root in node_*
-    # 32-byte node records: lo xyz, hi xyz as float32, then the two int32 of node_info
-    node_bounds: np.ndarray  # float32 (nodes, 8)
-    node_info: np.ndarray  # int32 (nodes, 2) view of columns 6-7: global node or triangle
-    tri_vertices: np.ndarray  # int32 (t, 3): rows of vertices
-    vertices: np.ndarray  # float32 (v, 3), object space
+    # four-wide BVH nodes of all meshes (see core.kernels.bvh_wide), global indices
+    node_boxes: np.ndarray  # float32 (nodes, 6, 4): lo xyz, hi xyz rows, a column per child
+    node_links: np.ndarray  # int32 (nodes, 4): child node, or ~(first triangle << 3 | count)
+    tri_corners: np.ndarray  # float32 (t, 9): object-space corners, in BVH leaf order
 
 
 class Surfaces(NamedTuple):

@@ -18,8 +18,12 @@ from core.kernels.vec import (
 
 
 @kernel
-def _vertex(vertices, i):
-    return (float(vertices[i, 0]), float(vertices[i, 1]), float(vertices[i, 2]))
+def _corner(corners, tri, first):
+    return (
+        float(corners[tri, first]),
+        float(corners[tri, first + 1]),
+        float(corners[tri, first + 2]),
+    )
 
 
 @kernel
@@ -59,10 +63,10 @@ def surface_at(geo, surf, shape, part, b1, b2, o, d, t, with_uv):
     mesh = geo.shape_mesh[shape]
     tri = part
     local = tri - surf.mesh_tri_offset[mesh]
-    tris, vertices = geo.tri_vertices, geo.vertices
-    v0 = _vertex(vertices, tris[tri, 0])
-    v1 = _vertex(vertices, tris[tri, 1])
-    v2 = _vertex(vertices, tris[tri, 2])
+    corners = geo.tri_corners
+    v0 = _corner(corners, tri, 0)
+    v1 = _corner(corners, tri, 3)
+    v2 = _corner(corners, tri, 6)
     face = cross(sub(v1, v0), sub(v2, v0))
     geometric = normalize(affine_transpose_vector(transforms, shape, face))
     b0 = 1.0 - b1 - b2

@@ -5,6 +5,10 @@ The ray is sheared so that it runs along +z from the origin; each triangle edge 
 the same order by both, with swapped signs, so a ray can never slip between them: the test
 is watertight at shared edges and vertices, which ordinary Moller-Trumbore is not. Vertices
 are stored in float32 and converted exactly to float64, where all arithmetic happens.
+
+Triangles are read from `corners` (t, 9) float32: x y z of corner 0, then 1, then 2, stored
+in BVH leaf order, so a leaf's triangles are one contiguous block and no vertex index is
+followed during traversal.
 """
 
 from core.jit import kernel
@@ -31,21 +35,21 @@ def permuted(o, shear):
 
 
 @kernel
-def intersect_triangle(vertices, i0, i1, i2, o, shear, t_max):
-    """(t, b1, b2) where o + t d meets triangle (i0, i1, i2) with 0 < t < t_max, b1 and b2
-    the barycentric weights of vertices i1 and i2; (NO_HIT, 0, 0) on a miss. `o` is the
+def intersect_triangle(corners, tri, o, shear, t_max):
+    """(t, b1, b2) where o + t d meets triangle `tri` of `corners` with 0 < t < t_max, b1
+    and b2 the barycentric weights of corners 1 and 2; (NO_HIT, 0, 0) on a miss. `o` is the
     origin from `permuted`, `shear` from `shear_setup`."""
     kx, ky, kz, sx, sy, sz = shear
     ox, oy, oz = o
-    a2 = vertices[i0, kz] - oz
-    b2 = vertices[i1, kz] - oz
-    c2 = vertices[i2, kz] - oz
-    ax = vertices[i0, kx] - ox - sx * a2
-    ay = vertices[i0, ky] - oy - sy * a2
-    bx = vertices[i1, kx] - ox - sx * b2
-    by = vertices[i1, ky] - oy - sy * b2
-    cx = vertices[i2, kx] - ox - sx * c2
-    cy = vertices[i2, ky] - oy - sy * c2
+    a2 = corners[tri, kz] - oz
+    b2 = corners[tri, 3 + kz] - oz
+    c2 = corners[tri, 6 + kz] - oz
+    ax = corners[tri, kx] - ox - sx * a2
+    ay = corners[tri, ky] - oy - sy * a2
+    bx = corners[tri, 3 + kx] - ox - sx * b2
+    by = corners[tri, 3 + ky] - oy - sy * b2
+    cx = corners[tri, 6 + kx] - ox - sx * c2
+    cy = corners[tri, 6 + ky] - oy - sy * c2
     u = cx * by - cy * bx
     v = ax * cy - ay * cx
     w = bx * ay - by * ax

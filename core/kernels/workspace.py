@@ -5,6 +5,11 @@ from typing import NamedTuple
 import numpy as np
 
 from core.kernels.bvh_build import MAX_TREE_DEPTH
+from core.kernels.bvh_wide import WIDTH
+
+# A four-wide node leaves at most WIDTH - 1 children waiting besides the one visited next,
+# and the wide tree is no deeper than the binary one
+MESH_STACK_SIZE = (WIDTH - 1) * MAX_TREE_DEPTH + 1
 
 
 class Stacks(NamedTuple):
@@ -12,7 +17,7 @@ class Stacks(NamedTuple):
 
     top: np.ndarray  # int32 (MAX_TREE_DEPTH,): top-level nodes waiting
     top_t: np.ndarray  # float64: their entry distances
-    mesh: np.ndarray  # int32: mesh-level nodes waiting
+    mesh: np.ndarray  # int32 (MESH_STACK_SIZE,): mesh-level nodes or leaves waiting
     mesh_t: np.ndarray  # float64
 
 
@@ -38,8 +43,8 @@ def new_workspace(max_depth: int) -> Workspace:
         Stacks(
             np.empty(MAX_TREE_DEPTH, np.int32),
             np.empty(MAX_TREE_DEPTH),
-            np.empty(MAX_TREE_DEPTH, np.int32),
-            np.empty(MAX_TREE_DEPTH),
+            np.empty(MESH_STACK_SIZE, np.int32),
+            np.empty(MESH_STACK_SIZE),
         ),
         RayStack(
             np.empty((rays, 3)), np.empty((rays, 3)), np.empty((rays, 3)), np.empty(rays, np.int64)

@@ -120,7 +120,7 @@ def main():
     print(f"triangles: {compiled.triangles}")
     print(f"bvh_build_1m_tris_s: {build_s:.3f}")
     print(f"bytes_per_triangle: {compiled.mesh_bytes / compiled.triangles:.1f}")
-    print(f"bvh_nodes: {len(packed.geometry.node_info)}")
+    print(f"bvh_nodes: {len(packed.geometry.node_links)}")
 
     threads = available_threads()
     embree_scene = embree(vertices, triangles)

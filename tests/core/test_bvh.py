@@ -32,16 +32,13 @@ def brute_force(geo, surf, origins, directions):
             if geo.shape_kind[s] == SHAPE_MESH:
                 mesh = geo.shape_mesh[s]
                 first = surf.mesh_tri_offset[mesh]
-                last = geo.tri_vertices.shape[0]
+                last = geo.tri_corners.shape[0]
                 if mesh + 1 < len(geo.mesh_root):
                     last = surf.mesh_tri_offset[mesh + 1]
                 shear = shear_setup(dd)
                 o_sheared = permuted(oo, shear)
                 for tri in range(first, last):
-                    t, _, _ = intersect_triangle(
-                        geo.vertices, geo.tri_vertices[tri, 0], geo.tri_vertices[tri, 1],
-                        geo.tri_vertices[tri, 2], o_sheared, shear, out_t[r],
-                    )  # fmt: skip
+                    t, _, _ = intersect_triangle(geo.tri_corners, tri, o_sheared, shear, out_t[r])
                     if t < out_t[r]:
                         out_t[r], out_shape[r], out_part[r] = t, s, tri
             else:
