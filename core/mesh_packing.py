@@ -13,16 +13,17 @@ import numpy as np
 
 from core.kernels.bvh_build import build_bvh
 from core.kernels.bvh_wide import LEAF_COUNT_BITS, collapse_to_wide, offset_links
+from core.kernels.triangles import LEAF_WIDTH
 from core.shapes import TriangleMesh
 
 # Leaves of up to MESH_MAX_LEAF triangles; a node visit costs about as much as this many
-# triangle tests. Chosen on the million-triangle benchmark mesh, all variants timed in one
-# process (best of 4): (leaf, cost) = (4, 2) traced primary rays 2.61 and incoherent 0.58
-# Mrays/s at 45 bytes per triangle; (8, 3) 2.36 and 0.50 at 33; (16, 6) 2.15 and 0.49 at 26;
-# (2, 1) 2.63 and 0.50 at 53.
+# triangle tests. Chosen on the million-triangle benchmark mesh with the four-wide BVH, all
+# variants timed in one process (best of 4), as (leaf, cost): primary, incoherent, shadow
+# Mrays/s per core, bytes per triangle: (4, 3) 5.07, 1.05, 2.24, 53; (4, 2) 5.03, 1.01, 2.29,
+# 61; (4, 1) 5.02, 1.02, 2.21, 69; (2, 1) 4.81, 0.99, 2.22, 69; (6, 3) 4.88, 1.03, 2.17, 49.
 MESH_MAX_LEAF = 4
-assert MESH_MAX_LEAF < 1 << LEAF_COUNT_BITS
-MESH_TRAVERSAL_COST = 2.0
+assert MESH_MAX_LEAF <= LEAF_WIDTH and MESH_MAX_LEAF < 1 << LEAF_COUNT_BITS
+MESH_TRAVERSAL_COST = 3.0
 
 
 @dataclass

@@ -14,7 +14,7 @@ import math
 from core.jit import inlined_kernel, kernel
 from core.kernels.options import OPTION_SHADOW_SAMPLES, OPTION_SHADOW_STRATIFIED
 from core.kernels.rng import PURPOSE_LIGHT, uniform2
-from core.kernels.trace import transmittance
+from core.kernels.trace import shadow_transmittance
 from core.kernels.vec import add, as_tuple, dot, mul, row, scale, sub
 
 
@@ -31,7 +31,7 @@ def light_from(
     n_dot_l = dot(n, light_dir)
     if n_dot_l <= 0.0:
         return 0.0, 0.0, 0.0
-    visible = transmittance(geo, origin, light_dir, distance, stacks)
+    visible = shadow_transmittance(geo, origin, light_dir, distance, stacks)
     if visible == 0.0:
         return 0.0, 0.0, 0.0
     c0, c1, c2 = attenuation
