@@ -7,6 +7,7 @@ import pytest
 
 from core import Box, Mesh, RenderSettings, Scene, Sphere, Torus, TriangleMesh, render
 from core.kernels.bvh_build import build_bvh
+from core.kernels.bvh_wide import WIDTH, collapse_to_wide, leaf_range
 from core.kernels.shapes import NO_HIT, SHAPE_MESH, intersect_analytic
 from core.kernels.triangles import intersect_triangle, permuted, shear_setup
 from core.kernels.vec import affine_point, affine_vector
@@ -115,6 +116,37 @@ def test_builder_invariants_on_random_boxes():
     for node in np.flatnonzero(leaves):
         members = order[info[node, 0] : info[node, 0] + info[node, 1]]
         assert np.all(lo[members] >= node_lo[node]) and np.all(hi[members] <= node_hi[node])
+
+
+@pytest.mark.parametrize("count", [1, 3, 5, 5000])
+def test_wide_tree_keeps_every_triangle_once_inside_its_parents_boxes(count):
+    rng = np.random.default_rng(count)
+    centre = rng.uniform(-5, 5, size=(count, 3))
+    lo, hi = centre - rng.uniform(0, 0.2, size=(count, 3)), centre + 0.1
+    node_lo, node_hi, info, order = build_bvh(lo, hi, 4, 1.0)
+    boxes, links = collapse_to_wide(node_lo.astype(np.float32), node_hi.astype(np.float32), info)
+    seen = np.zeros(count, int)
+    reached = np.zeros(len(links), int)
+    pending = [(0, np.full(3, -np.inf), np.full(3, np.inf))]
+    while pending:
+        node, parent_lo, parent_hi = pending.pop()
+        reached[node] += 1
+        for c in range(WIDTH):
+            child_lo, child_hi = boxes[node, :3, c], boxes[node, 3:, c]
+            if np.all(child_lo > child_hi):
+                assert links[node, c] == -1  # an unused slot
+                continue
+            assert np.all(child_lo >= parent_lo) and np.all(child_hi <= parent_hi)
+            if links[node, c] >= 0:
+                pending.append((links[node, c], child_lo, child_hi))
+            else:
+                first, end = leaf_range(links[node, c])
+                assert 1 <= end - first <= 4
+                seen[first:end] += 1
+                members = order[first:end]
+                assert np.all(child_lo <= lo[members].min(axis=0) + 1e-6)
+                assert np.all(child_hi >= hi[members].max(axis=0) - 1e-6)
+    assert np.all(seen == 1) and np.all(reached == 1)
 
 
 def test_identical_boxes_still_give_bounded_leaves():
