@@ -14,6 +14,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from core.csg_packing import CsgTables, add_csg, csg_world_box
 from core.kernels.bvh_build import build_bvh
 from core.kernels.layout import Frame, Geometry, Lights, Materials, PackedScene, Surfaces
 from core.kernels.options import (
@@ -29,6 +30,7 @@ from core.kernels.options import (
 from core.kernels.shapes import (
     SHAPE_BOX,
     SHAPE_CONE,
+    SHAPE_CSG,
     SHAPE_CYLINDER,
     SHAPE_MESH,
     SHAPE_SPHERE,
@@ -39,6 +41,7 @@ from core.scene import (
     AreaLight,
     Box,
     Cone,
+    Csg,
     Cylinder,
     Mesh,
     PointLight,
@@ -56,6 +59,7 @@ SHAPE_KIND_OF_CLASS = {
     Cone: SHAPE_CONE,
     Torus: SHAPE_TORUS,
     Mesh: SHAPE_MESH,
+    Csg: SHAPE_CSG,
 }
 
 # Top-level leaves: shapes per leaf, and the node-visit cost relative to one shape test
@@ -80,8 +84,18 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
     scene.validate()
     settings.validate()
 
+    # Rows of the shape table: the scene's shapes, then the operands of its CSG trees
+    csg_tables, csg_of_row = CsgTables(), {}
+    for i, shape in enumerate(scene.shapes):
+        if isinstance(shape, Csg):
+            csg_of_row[i] = add_csg(csg_tables, shape, len(scene.shapes))
+    shapes = list(scene.shapes) + [operand for operand, _ in csg_tables.operands]
+    world_from_object = np.array(
+        [s.world_from_object for s in scene.shapes] + [w for _, w in csg_tables.operands], float
+    ).reshape(len(shapes), 4, 4)
+
     materials, material_index = [], {}
-    for shape in scene.shapes:
+    for shape in shapes:
         if id(shape.material) not in material_index:
             material_index[id(shape.material)] = len(materials)
             materials.append((shape.material, shape.owner))
@@ -94,32 +108,37 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
             textures.append(load_texture(texture, owner))
 
     tables, mesh_index = MeshTables(), {}
-    for shape in scene.shapes:
+    for shape in shapes:
         if isinstance(shape, Mesh) and id(shape.mesh) not in mesh_index:
             mesh_index[id(shape.mesh)] = add_mesh(tables, shape.mesh)
 
-    n = len(scene.shapes)
+    n = len(shapes)
     param = np.zeros((n, 2))
-    shape_mesh = np.full(n, -1, np.int32)
+    shape_index = np.full(n, -1, np.int32)
     box_lo, box_hi = np.full((n, 3), -1.0), np.full((n, 3), 1.0)  # object-space boxes
-    for i, shape in enumerate(scene.shapes):
-        if isinstance(shape, Torus):
+    for i, shape in enumerate(shapes):
+        if isinstance(shape, Csg):
+            shape_index[i] = csg_of_row[i]
+        elif isinstance(shape, Torus):
             param[i] = shape.major_radius, shape.minor_radius
             reach = shape.major_radius + shape.minor_radius
             box_hi[i] = reach, reach, shape.minor_radius
             box_lo[i] = -box_hi[i]
         elif isinstance(shape, Mesh):
             m = mesh_index[id(shape.mesh)]
-            shape_mesh[i] = m
+            shape_index[i] = m
             box_lo[i], box_hi[i] = tables.lo[m], tables.hi[m]
-    world_from_object = np.array([s.world_from_object for s in scene.shapes], float)
-    world_from_object = world_from_object.reshape(n, 4, 4)
     object_from_world = np.linalg.inv(world_from_object)[:, :3] if n else np.empty((0, 3, 4))
     lo, hi = _world_boxes(world_from_object, box_lo, box_hi)
-    # Meshes left without triangles (all degenerate) have nothing to hit: leave them out
+    for i, csg in csg_of_row.items():
+        lo[i], hi[i] = csg_world_box(csg_tables.program, *csg_tables.ranges[csg], lo, hi)
+    # Only the scene's own shapes enter the top level (CSG operands are reached through
+    # their tree); meshes left without triangles (all degenerate) and CSG solids whose
+    # operands' boxes do not overlap have nothing to hit: leave them out
     solid = np.array(
-        [not isinstance(s, Mesh) or len(tables.lo) and _mesh_has_triangles(tables, s, mesh_index)
-         for s in scene.shapes], bool
+        [i < len(scene.shapes) and np.all(lo[i] <= hi[i]) and (
+            not isinstance(s, Mesh) or len(tables.lo) and _mesh_has_triangles(tables, s, mesh_index)
+        ) for i, s in enumerate(shapes)], bool
     ).reshape(-1)  # fmt: skip
     top_lo, top_hi, top_info, top_order = build_bvh(
         lo[solid], hi[solid], _TOP_MAX_LEAF, _TOP_TRAVERSAL_COST
@@ -145,18 +164,20 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
         top_bounds=np.ascontiguousarray(np.hstack([top_lo, top_hi])),
         top_info=np.ascontiguousarray(top_info, np.int32),
         top_order=np.ascontiguousarray(top_order, np.int32),
-        shape_kind=np.array([SHAPE_KIND_OF_CLASS[type(s)] for s in scene.shapes], np.int32),
+        shape_kind=np.array([SHAPE_KIND_OF_CLASS[type(s)] for s in shapes], np.int32),
         shape_object_from_world=object_from_world,
         shape_param=param,
-        shape_mesh=shape_mesh,
-        shape_transparency=np.array([s.material.transparency for s in scene.shapes], float),
+        shape_index=shape_index,
+        shape_transparency=np.array([s.material.transparency for s in shapes], float),
         mesh_root=np.array(tables.root, np.int32),
         node_boxes=concatenated(tables.node_boxes, (0, 6, 4), np.float32),
         node_links=concatenated(tables.node_links, (0, 4), np.int32),
         tri_corners=concatenated(tables.tri_corners, (0, 9), np.float32),
+        csg_range=np.array(csg_tables.ranges, np.int32).reshape(-1, 2),
+        csg_program=np.array(csg_tables.program, np.int32),
     )
     surfaces = Surfaces(
-        shape_material=np.array([material_index[id(s.material)] for s in scene.shapes], np.int32),
+        shape_material=np.array([material_index[id(s.material)] for s in shapes], np.int32),
         mesh_tri_offset=np.array(tables.tri_offset, np.int64),
         mesh_normal_offset=np.array(tables.normal_offset, np.int64),
         mesh_uv_offset=np.array(tables.uv_offset, np.int64),

@@ -16,13 +16,14 @@ import numpy as np
 from core.checks import check_choice, check_count, check_vec3, valid_affine
 from core.errors import SceneError
 from core.scene_parts import AreaLight, Camera, Material, PointLight, Texture, Vec3
-from core.shapes import Box, Cone, Cylinder, Mesh, Shape, Sphere, Torus, TriangleMesh
+from core.shapes import Box, Cone, Csg, Cylinder, Mesh, Shape, Sphere, Torus, TriangleMesh
 
 __all__ = [
     "AreaLight",
     "Box",
     "Camera",
     "Cone",
+    "Csg",
     "Cylinder",
     "Material",
     "Mesh",
@@ -42,7 +43,7 @@ class Scene:
     """Everything that is rendered.
 
     camera      -- the `Camera`
-    shapes      -- the `Shape`s (Sphere, Box, Cylinder, Cone, Torus, Mesh)
+    shapes      -- the `Shape`s (Sphere, Box, Cylinder, Cone, Torus, Mesh, Csg)
     lights      -- `PointLight`s and `AreaLight`s
     ambient     -- linear RGB ambient light, added as kd * ambient
     background  -- linear RGB colour of rays that hit nothing

@@ -12,6 +12,7 @@ non-uniform scale included. The canonical forms match Blender's own primitives (
               `major_radius` in the xy plane
     Mesh      triangles of a `TriangleMesh`; meshes that share one `TriangleMesh` object are
               instances, and share its triangles and BVH
+    Csg       union, intersection or difference of two shapes (see `Csg`)
 """
 
 from __future__ import annotations
@@ -20,7 +21,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from core.checks import check_affine, check_array, check_number
+from core.checks import check_affine, check_array, check_choice, check_number
 from core.errors import SceneError
 from core.scene_parts import Material
 
@@ -115,6 +116,22 @@ class TriangleMesh:
     corner_uvs: np.ndarray | None = None
     name: str = "Mesh"
 
+    def open_edge_count(self) -> int:
+        """How many directed edges have no opposite edge (b, a) used exactly once: 0 for
+        a closed, consistently oriented mesh (what a CSG operand must be)."""
+        triangles = np.asarray(self.triangles, np.int64)
+        if len(triangles) == 0:
+            return 0
+        edges = triangles[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+        base = int(triangles.max()) + 1
+        keys = edges[:, 0] * base + edges[:, 1]
+        unique, counts = np.unique(keys, return_counts=True)
+        opposite = edges[:, 1] * base + edges[:, 0]
+        position = np.searchsorted(unique, opposite).clip(0, len(unique) - 1)
+        matched = (unique[position] == opposite) & (counts[position] == 1)
+        repeated = counts[np.searchsorted(unique, keys)] > 1
+        return int(np.count_nonzero(~matched | repeated))
+
     def validate(self, owner: str) -> None:
         vertices = check_array(owner, "vertices", self.vertices, 3, "float")
         triangles = check_array(owner, "triangles", self.triangles, 3, "int")
@@ -164,3 +181,69 @@ class Mesh(Shape):
 
 
 ANALYTIC_SHAPES = (Sphere, Box, Cylinder, Cone, Torus)
+
+
+CSG_OPERATIONS = ("union", "intersection", "difference")
+
+
+@dataclass(eq=False)
+class Csg(Shape):
+    """A constructive solid: `left` combined with `right` by `operation`, one of "union",
+    "intersection" or "difference" (left minus right).
+
+    Operands are any shapes, other `Csg` nodes included, to any depth. An operand's
+    `world_from_object` places it in this node's object space, so the node's own
+    `world_from_object` moves the whole solid. One operand may serve several nodes (one
+    cutter for many objects). Each surface keeps its operand's material; a subtracted
+    operand's surface faces into the hole. The node's own `material` is not used. A mesh
+    operand must be closed and consistently oriented (`TriangleMesh.is_closed`).
+    """
+
+    operation: str = "union"
+    left: Shape | None = None
+    right: Shape | None = None
+
+    kind_name = "CSG"
+
+    def validate(self, checked: set | None = None) -> None:
+        checked = checked if checked is not None else set()
+        self._validate_tree(checked, path=[])
+
+    def _validate_tree(self, checked: set, path: list) -> None:
+        if id(self) in checked:
+            return
+        super().validate(checked)
+        check_choice(self.owner, "operation", self.operation, CSG_OPERATIONS)
+        path = [*path, self]
+        for field_name in ("left", "right"):
+            operand = getattr(self, field_name)
+            if not isinstance(operand, Shape) or type(operand) is Shape:
+                raise SceneError(
+                    self.owner, field_name, f"got {operand!r}; need a shape or a Csg node"
+                )
+            if any(operand is node for node in path):
+                cycle = " -> ".join(node.owner for node in [*path, operand])
+                raise SceneError(
+                    self.owner,
+                    field_name,
+                    f"the tree contains itself ({cycle}); a CSG tree cannot have a cycle",
+                )
+            if isinstance(operand, Csg):
+                operand._validate_tree(checked, path)
+            else:
+                operand.validate(checked)
+                if isinstance(operand, Mesh):
+                    _check_closed(operand, self.owner, field_name)
+        checked.add(id(self))
+
+
+def _check_closed(operand: Mesh, owner: str, field_name: str) -> None:
+    open_edges = operand.mesh.open_edge_count()
+    if open_edges:
+        raise SceneError(
+            owner,
+            field_name,
+            f"{operand.owner} is not a closed solid: {open_edges} of its edges lack a "
+            "matching opposite edge; a CSG operand mesh must be closed and consistently "
+            "oriented (every edge shared by two faces, in opposite directions)",
+        )

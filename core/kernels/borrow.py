@@ -17,7 +17,7 @@ from numba.extending import intrinsic
 
 from core.jit import kernel
 from core.kernels.layout import Frame, Geometry, Lights, Materials, PackedScene, Surfaces
-from core.kernels.workspace import RayStack, Stacks, Workspace
+from core.kernels.workspace import CsgScratch, RayStack, Stacks, Workspace
 
 
 @intrinsic
@@ -63,12 +63,14 @@ def borrow_geometry(g):
         borrowed(g.shape_kind),
         borrowed(g.shape_object_from_world),
         borrowed(g.shape_param),
-        borrowed(g.shape_mesh),
+        borrowed(g.shape_index),
         borrowed(g.shape_transparency),
         borrowed(g.mesh_root),
         borrowed(g.node_boxes),
         borrowed(g.node_links),
         borrowed(g.tri_corners),
+        borrowed(g.csg_range),
+        borrowed(g.csg_program),
     )
 
 
@@ -119,11 +121,21 @@ def _borrow_lights(li):
 
 @kernel
 def borrow_stacks(stacks):
+    c = stacks.csg
     return Stacks(
         borrowed(stacks.top),
         borrowed(stacks.top_t),
         borrowed(stacks.mesh),
         borrowed(stacks.mesh_t),
+        CsgScratch(
+            borrowed(c.span_f),
+            borrowed(c.span_i),
+            borrowed(c.segments),
+            borrowed(c.cross_f),
+            borrowed(c.cross_i),
+            borrowed(c.stack),
+            borrowed(c.overflow),
+        ),
     )
 
 

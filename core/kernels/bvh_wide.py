@@ -123,7 +123,7 @@ def near_far_rows(ix, iy, iz):
 
 
 @inlined_kernel
-def _slab_entry(b, c, rows, ox, oy, oz, ix, iy, iz, t_max):
+def _slab_entry(b, c, rows, ox, oy, oz, ix, iy, iz, t_min, t_max):
     nx, ny, nz, fx, fy, fz = rows
     t0 = (b[nx, c] - ox) * ix
     t1 = (b[fx, c] - ox) * ix
@@ -133,7 +133,7 @@ def _slab_entry(b, c, rows, ox, oy, oz, ix, iy, iz, t_max):
     t5 = (b[fz, c] - oz) * iz
     # Written as comparisons so that a NaN (the ray in a face's plane) is skipped and never
     # culls, and so that LLVM maps them onto vector max/min
-    near = 0.0
+    near = t_min
     near = t0 if t0 > near else near
     near = t2 if t2 > near else near
     near = t4 if t4 > near else near
@@ -145,13 +145,13 @@ def _slab_entry(b, c, rows, ox, oy, oz, ix, iy, iz, t_max):
 
 
 @inlined_kernel
-def child_entries(boxes, node, rows, ox, oy, oz, ix, iy, iz, t_max):
-    """Entry distances of the ray into the four children of `node` within [0, t_max]; inf
-    for a child it misses. Four straight-line copies, which the SLP vectorizer merges."""
+def child_entries(boxes, node, rows, ox, oy, oz, ix, iy, iz, t_min, t_max):
+    """Entry distances of the ray into the four children of `node` within [t_min, t_max];
+    inf for a child it misses. Four straight-line copies, which the SLP vectorizer merges."""
     b = boxes[node]
     return (
-        _slab_entry(b, 0, rows, ox, oy, oz, ix, iy, iz, t_max),
-        _slab_entry(b, 1, rows, ox, oy, oz, ix, iy, iz, t_max),
-        _slab_entry(b, 2, rows, ox, oy, oz, ix, iy, iz, t_max),
-        _slab_entry(b, 3, rows, ox, oy, oz, ix, iy, iz, t_max),
+        _slab_entry(b, 0, rows, ox, oy, oz, ix, iy, iz, t_min, t_max),
+        _slab_entry(b, 1, rows, ox, oy, oz, ix, iy, iz, t_min, t_max),
+        _slab_entry(b, 2, rows, ox, oy, oz, ix, iy, iz, t_min, t_max),
+        _slab_entry(b, 3, rows, ox, oy, oz, ix, iy, iz, t_min, t_max),
     )

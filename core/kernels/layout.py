@@ -28,11 +28,11 @@ class Geometry(NamedTuple):
     top_bounds: np.ndarray  # float64 (k, 6): lo xyz, hi xyz
     top_info: np.ndarray  # int32 (k, 2)
     top_order: np.ndarray  # int32 (n,): shapes in leaf order
-    # shapes
+    # shapes: the scene's, then the operands of its CSG trees (which the top level skips)
     shape_kind: np.ndarray  # int32 (n,)
     shape_object_from_world: np.ndarray  # float64 (n, 3, 4): affine rows, inverse transform
     shape_param: np.ndarray  # float64 (n, 2): torus major and minor radius
-    shape_mesh: np.ndarray  # int32 (n,): row in mesh_root for meshes, else -1
+    shape_index: np.ndarray  # int32 (n,): row in mesh_root (meshes), csg_range (CSG), or -1
     shape_transparency: np.ndarray  # float64 (n,): its material's, for shadow rays
     # meshes
     mesh_root: np.ndarray  # int32 (m,): its BVH's root in node_*
@@ -40,6 +40,10 @@ class Geometry(NamedTuple):
     node_boxes: np.ndarray  # float32 (nodes, 6, 4): lo xyz, hi xyz rows, a column per child
     node_links: np.ndarray  # int32 (nodes, 4): child node, or ~(first triangle << 3 | count)
     tri_corners: np.ndarray  # float32 (t, 9): object-space corners, in BVH leaf order
+    # CSG trees as postfix programs (see core.kernels.csg): a step >= 0 pushes the spans of
+    # that shape row, CSG_UNION / CSG_INTERSECTION / CSG_DIFFERENCE combine the top two
+    csg_range: np.ndarray  # int32 (c, 2): first and end step of each tree's program
+    csg_program: np.ndarray  # int32 (steps,)
 
 
 class Surfaces(NamedTuple):

@@ -27,6 +27,7 @@ SHAPE_CYLINDER = 2
 SHAPE_CONE = 3
 SHAPE_TORUS = 4
 SHAPE_MESH = 5
+SHAPE_CSG = 6  # a CSG tree: its operands are rows of their own (core.kernels.csg)
 
 # Surface parts: which piece of a shape a hit lies on
 PART_SIDE = 0

@@ -41,10 +41,22 @@ def _blend3(table, index, row_, b0, b1, b2):
 def surface_at(geo, surf, shape, part, b1, b2, o, d, t, with_uv):
     """(p, geometric normal, shading normal, u, v) at a hit, normals unit and outward;
     u = v = 0 unless with_uv (texture coordinates cost trigonometry on analytic shapes).
-
-    The shading normal differs from the geometric one only on smooth-shaded mesh faces,
-    where the corner normals are interpolated with the barycentric weights.
+    A part stored as ~part (a CSG surface facing into its solid) gets its normals flipped
+    and keeps its own texture coordinates.
     """
+    if part < 0:
+        p, n_geometric, n_shading, u, v = _outward_surface(
+            geo, surf, shape, ~part, b1, b2, o, d, t, with_uv
+        )
+        return p, scale(n_geometric, -1.0), scale(n_shading, -1.0), u, v
+    return _outward_surface(geo, surf, shape, part, b1, b2, o, d, t, with_uv)
+
+
+@kernel
+def _outward_surface(geo, surf, shape, part, b1, b2, o, d, t, with_uv):
+    """`surface_at` for a part as stored by the shape itself. The shading normal differs
+    from the geometric one only on smooth-shaded mesh faces, where the corner normals are
+    interpolated with the barycentric weights."""
     transforms = geo.shape_object_from_world
     p = add(o, scale(d, t))
     kind = geo.shape_kind[shape]
@@ -60,7 +72,7 @@ def surface_at(geo, surf, shape, part, b1, b2, o, d, t, with_uv):
             u, v = analytic_uv(kind, major, p_object, part)
         return p, n, n, u, v
 
-    mesh = geo.shape_mesh[shape]
+    mesh = geo.shape_index[shape]
     tri = part
     local = tri - surf.mesh_tri_offset[mesh]
     corners = geo.tri_corners

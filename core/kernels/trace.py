@@ -11,18 +11,17 @@ box a ray truly crosses. Mesh BVHs are four wide (`core.kernels.bvh_wide`); thei
 float32 corners of float32 vertices, padded one float32 step; the arithmetic is float64.
 """
 
-import numpy as np
-
 from core.jit import inlined_kernel, kernel
-from core.kernels.bvh_wide import (
-    SLAB_WIDEN,
-    WIDTH,
-    child_entries,
-    leaf_range,
-    near_far_rows,
+from core.kernels.bvh_wide import SLAB_WIDEN
+from core.kernels.csg import csg_closest, csg_transmittance
+from core.kernels.mesh_trace import inverse, mesh_closest, mesh_crossings
+from core.kernels.shapes import (
+    NO_HIT,
+    SHAPE_CSG,
+    SHAPE_MESH,
+    count_crossings,
+    intersect_analytic,
 )
-from core.kernels.shapes import NO_HIT, SHAPE_MESH, count_crossings, intersect_analytic
-from core.kernels.triangles import LEAF_WIDTH, intersect_leaf, permuted, shear_setup
 from core.kernels.vec import add, affine_point, affine_vector, max_abs, scale
 
 # Secondary rays start this far off the surface, relative to the magnitude of the
@@ -69,11 +68,6 @@ def box_entry(bounds, k, ox, oy, oz, ix, iy, iz, t_max):
     return NO_HIT
 
 
-@kernel
-def _inverse(d):
-    return (1.0 / d[0], 1.0 / d[1], 1.0 / d[2])
-
-
 @inlined_kernel
 def descend(bounds, child, ox, oy, oz, ix, iy, iz, t_max, stack, stack_t, top):
     """One step down from an inner node whose children are `child` and `child + 1`: test
@@ -104,103 +98,23 @@ def pop_nearer(stack, stack_t, top, t_max):
 
 
 @inlined_kernel
-def push_by_distance(stack, stack_t, top, base, link, t):
-    """Put (link, t) among the entries stack[base:top], which are kept farthest first, so
-    that the nearest is popped first. Returns the new top."""
-    j = top
-    while j > base and stack_t[j - 1] < t:
-        stack[j], stack_t[j] = stack[j - 1], stack_t[j - 1]
-        j -= 1
-    stack[j], stack_t[j] = link, t
-    return top + 1
-
-
-@inlined_kernel
-def mesh_closest(boxes, links, corners, root, o, d, t_max, stack, stack_t):
-    """Nearest triangle of the mesh whose four-wide BVH starts at node `root`, for a ray in
-    its object space: (t, triangle, b1, b2). Children are visited nearest first: those a ray
-    enters go onto the stack sorted by entry distance. Inlined into `closest_hit` by numba:
-    measured 8% more primary rays per second than a call."""
-    ox, oy, oz = o
-    ix, iy, iz = _inverse(d)
-    rows = near_far_rows(ix, iy, iz)
-    shear = shear_setup(d)
-    o_sheared = permuted(o, shear)
-    best_t, best_tri, best_b1, best_b2 = t_max, -1, 0.0, 0.0
-    stack[0], stack_t[0] = root, 0.0
-    top = 1
-    while top > 0:
-        top -= 1
-        link = stack[top]
-        if stack_t[top] >= best_t:
-            continue
-        if link < 0:
-            first, end = leaf_range(link)
-            hits = intersect_leaf(corners, first, end, o_sheared, shear, best_t)
-            for k in range(LEAF_WIDTH):
-                t, b1, b2 = hits[k]
-                if t < best_t:
-                    best_t, best_tri, best_b1, best_b2 = t, first + k, b1, b2
-            continue
-        entries = child_entries(boxes, link, rows, ox, oy, oz, ix, iy, iz, best_t)
-        base = top
-        for c in range(WIDTH):
-            if entries[c] != np.inf:
-                top = push_by_distance(stack, stack_t, top, base, links[link, c], entries[c])
-    if best_tri < 0:
-        return NO_HIT, -1, 0.0, 0.0
-    return best_t, best_tri, best_b1, best_b2
-
-
-@inlined_kernel
-def mesh_crossings(boxes, links, corners, root, o, d, t_max, stop_at_first, stack, stack_t):
-    """How many triangles of the mesh whose four-wide BVH starts at `root` the segment
-    crosses (stopping at 1 if stop_at_first). Nearer boxes first: an occluder is found
-    sooner."""
-    ox, oy, oz = o
-    ix, iy, iz = _inverse(d)
-    rows = near_far_rows(ix, iy, iz)
-    shear = shear_setup(d)
-    o_sheared = permuted(o, shear)
-    crossings = 0
-    stack[0] = root
-    top = 1
-    while top > 0:
-        top -= 1
-        link = stack[top]
-        if link < 0:
-            first, end = leaf_range(link)
-            hits = intersect_leaf(corners, first, end, o_sheared, shear, t_max)
-            for k in range(LEAF_WIDTH):
-                if hits[k][0] < t_max:
-                    crossings += 1
-                    if stop_at_first:
-                        return crossings
-            continue
-        entries = child_entries(boxes, link, rows, ox, oy, oz, ix, iy, iz, t_max)
-        base = top
-        for c in range(WIDTH):
-            if entries[c] != np.inf:
-                top = push_by_distance(stack, stack_t, top, base, links[link, c], entries[c])
-    return crossings
-
-
-@inlined_kernel
 def closest_hit(geo, o, d, t_max, stacks):
     """Nearest hit along o + t d with 0 < t < t_max: (shape, t, part, b1, b2).
 
     part is the surface part for analytic shapes, the triangle for meshes; b1 and b2 are
-    barycentric weights on meshes. A miss returns (-1, NO_HIT, -1, 0, 0). Inlined into its
+    barycentric weights on meshes. On a CSG solid, shape is the operand's row and part is
+    stored as ~part where the surface faces into the solid (see `core.kernels.csg`). A miss
+    returns (-1, NO_HIT, -1, 0, 0). Inlined into its
     two callers (the integrator and the batch entry point): a call passes every array of
     `geo` and `stacks` field by field, which cost 60 ns a ray, 20% of a primary ray's time
     against the million-triangle mesh."""
-    stack, stack_t, mesh_stack, mesh_stack_t = stacks
+    stack, stack_t, mesh_stack, mesh_stack_t, scratch = stacks
     bounds, info, order = geo.top_bounds, geo.top_info, geo.top_order
-    kinds, params, meshes = geo.shape_kind, geo.shape_param, geo.shape_mesh
+    kinds, params, meshes = geo.shape_kind, geo.shape_param, geo.shape_index
     transforms, roots = geo.shape_object_from_world, geo.mesh_root
     boxes, links, corners = geo.node_boxes, geo.node_links, geo.tri_corners
     ox, oy, oz = o
-    ix, iy, iz = _inverse(d)
+    ix, iy, iz = inverse(d)
     best_shape, best_t, best_part, best_b1, best_b2 = -1, t_max, -1, 0.0, 0.0
     node = -1
     if info.shape[0] > 0 and box_entry(bounds, 0, ox, oy, oz, ix, iy, iz, t_max) != NO_HIT:
@@ -212,9 +126,14 @@ def closest_hit(geo, o, d, t_max, stacks):
             first = info[node, 0]
             for k in range(first, first + count):
                 shape = order[k]
+                kind = kinds[shape]
+                if kind == SHAPE_CSG:
+                    row, t, part, b1, b2 = csg_closest(geo, meshes[shape], o, d, best_t, scratch)
+                    if t < best_t:
+                        best_shape, best_t, best_part, best_b1, best_b2 = row, t, part, b1, b2
+                    continue
                 o_obj = affine_point(transforms, shape, o)
                 d_obj = affine_vector(transforms, shape, d)
-                kind = kinds[shape]
                 if kind == SHAPE_MESH:
                     t, part, b1, b2 = mesh_closest(
                         boxes, links, corners, roots[meshes[shape]], o_obj, d_obj, best_t,
@@ -246,13 +165,13 @@ def transmittance(geo, o, d, t_max, stacks):
     transparency tau multiplies the light by tau, without bending or Fresnel loss (a shadow
     ray cannot follow refraction to the light). Opaque surfaces (tau = 0) block it outright,
     and the search stops at the first of them, as an any-hit query."""
-    stack, stack_t, mesh_stack, mesh_stack_t = stacks
+    stack, stack_t, mesh_stack, mesh_stack_t, scratch = stacks
     bounds, info, order = geo.top_bounds, geo.top_info, geo.top_order
-    kinds, params, meshes = geo.shape_kind, geo.shape_param, geo.shape_mesh
+    kinds, params, meshes = geo.shape_kind, geo.shape_param, geo.shape_index
     transforms, tau_of_shape = geo.shape_object_from_world, geo.shape_transparency
     boxes, links, corners, roots = geo.node_boxes, geo.node_links, geo.tri_corners, geo.mesh_root
     ox, oy, oz = o
-    ix, iy, iz = _inverse(d)
+    ix, iy, iz = inverse(d)
     light = 1.0
     node = -1
     if info.shape[0] > 0 and box_entry(bounds, 0, ox, oy, oz, ix, iy, iz, t_max) != NO_HIT:
@@ -264,10 +183,15 @@ def transmittance(geo, o, d, t_max, stacks):
             first = info[node, 0]
             for k in range(first, first + count):
                 shape = order[k]
+                kind = kinds[shape]
+                if kind == SHAPE_CSG:
+                    light *= csg_transmittance(geo, meshes[shape], o, d, t_max, scratch)
+                    if light == 0.0:
+                        return 0.0
+                    continue
                 tau = tau_of_shape[shape]
                 o_obj = affine_point(transforms, shape, o)
                 d_obj = affine_vector(transforms, shape, d)
-                kind = kinds[shape]
                 if kind == SHAPE_MESH:
                     crossings = mesh_crossings(
                         boxes, links, corners, roots[meshes[shape]], o_obj, d_obj, t_max,

@@ -15,6 +15,8 @@ from core.jit import inlined_kernel, kernel
 from core.kernels.shapes import NO_HIT
 
 LEAF_WIDTH = 4  # triangles tested at once by `intersect_leaf`; no leaf holds more
+# Makes `facing` positive on a triangle's front: the sign of the sheared determinant there
+FACING_SIGN = 1.0
 
 
 @kernel
@@ -37,9 +39,10 @@ def permuted(o, shear):
 
 
 @inlined_kernel
-def _triangle_lane(corners, tri, shear, o, t_max):
-    """(t, b1, b2) of one triangle, or NO_HIT in t, written without early exits so that
-    several copies side by side can be merged into vector instructions."""
+def _triangle_lane(corners, tri, shear, o, t_min, t_max):
+    """(t, b1, b2, facing) of one triangle, NO_HIT in t on a miss; facing > 0 where the
+    ray meets the triangle's front (counter-clockwise) side. Written without early exits so
+    that several copies side by side can be merged into vector instructions."""
     kx, ky, kz, sx, sy, sz = shear
     ox, oy, oz = o
     a2 = corners[tri, kz] - oz
@@ -60,33 +63,34 @@ def _triangle_lane(corners, tri, shear, o, t_max):
     det = u + v + w
     t = (u * a2 + v * b2 + w * c2) * sz / det
     # det == 0 (the ray in the triangle's plane) gives t = nan or inf, which fails here
-    hit = (not outside) & (t > 0.0) & (t < t_max)
-    return (t if hit else NO_HIT), v / det, w / det
+    hit = (not outside) & (t > t_min) & (t < t_max)
+    return (t if hit else NO_HIT), v / det, w / det, FACING_SIGN * det
 
 
 @kernel
-def intersect_triangle(corners, tri, o, shear, t_max):
-    """(t, b1, b2) where o + t d meets triangle `tri` of `corners` with 0 < t < t_max, b1
-    and b2 the barycentric weights of corners 1 and 2; NO_HIT in t on a miss. `o` is the
-    origin from `permuted`, `shear` from `shear_setup`."""
-    return _triangle_lane(corners, tri, shear, o, t_max)
+def intersect_triangle(corners, tri, o, shear, t_min, t_max):
+    """(t, b1, b2, facing) where o + t d meets triangle `tri` of `corners` with
+    t_min < t < t_max, b1 and b2 the barycentric weights of corners 1 and 2, facing > 0 on
+    the front side; NO_HIT in t on a miss. `o` is the origin from `permuted`, `shear` from
+    `shear_setup`."""
+    return _triangle_lane(corners, tri, shear, o, t_min, t_max)
 
 
 @inlined_kernel
-def intersect_leaf(corners, first, end, o, shear, t_max):
+def intersect_leaf(corners, first, end, o, shear, t_min, t_max):
     """`intersect_triangle` for the up to four triangles first .. end - 1 of a BVH leaf at
-    once, as four (t, b1, b2). Lanes past the leaf's end repeat its last triangle, so every
+    once, as four (t, b1, b2, facing). Lanes past the leaf's end repeat its last triangle, so every
     load is valid, and report NO_HIT. Straight-line lanes for the SLP vectorizer: measured
     5% more primary and 12% more incoherent rays per second than a loop of single tests."""
     last = end - 1
-    h0 = _triangle_lane(corners, first, shear, o, t_max)
-    h1 = _triangle_lane(corners, min(first + 1, last), shear, o, t_max)
-    h2 = _triangle_lane(corners, min(first + 2, last), shear, o, t_max)
-    h3 = _triangle_lane(corners, min(first + 3, last), shear, o, t_max)
+    h0 = _triangle_lane(corners, first, shear, o, t_min, t_max)
+    h1 = _triangle_lane(corners, min(first + 1, last), shear, o, t_min, t_max)
+    h2 = _triangle_lane(corners, min(first + 2, last), shear, o, t_min, t_max)
+    h3 = _triangle_lane(corners, min(first + 3, last), shear, o, t_min, t_max)
     count = end - first
     return (
         h0,
-        h1 if count > 1 else (NO_HIT, 0.0, 0.0),
-        h2 if count > 2 else (NO_HIT, 0.0, 0.0),
-        h3 if count > 3 else (NO_HIT, 0.0, 0.0),
+        h1 if count > 1 else (NO_HIT, 0.0, 0.0, 0.0),
+        h2 if count > 2 else (NO_HIT, 0.0, 0.0, 0.0),
+        h3 if count > 3 else (NO_HIT, 0.0, 0.0, 0.0),
     )

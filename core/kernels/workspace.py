@@ -6,19 +6,34 @@ import numpy as np
 
 from core.kernels.bvh_build import MAX_TREE_DEPTH
 from core.kernels.bvh_wide import WIDTH
+from core.kernels.csg import CROSSING_CAPACITY, MAX_OPERANDS, SPAN_CAPACITY
 
 # A four-wide node leaves at most WIDTH - 1 children waiting besides the one visited next,
 # and the wide tree is no deeper than the binary one
 MESH_STACK_SIZE = (WIDTH - 1) * MAX_TREE_DEPTH + 1
 
 
+class CsgScratch(NamedTuple):
+    """Span lists of one ray's CSG evaluation (see core.kernels.csg)."""
+
+    span_f: np.ndarray  # float64 (SPAN_CAPACITY, 2, 3): (t, b1, b2) of entry and exit
+    span_i: np.ndarray  # int32 (SPAN_CAPACITY, 2, 2): (shape row, part) of entry and exit
+    segments: np.ndarray  # int64 (MAX_OPERANDS,): where each pending operand's list starts
+    cross_f: np.ndarray  # float64 (CROSSING_CAPACITY, 3): a mesh operand's crossings
+    cross_i: np.ndarray  # int32 (CROSSING_CAPACITY, 2): (triangle, +1 entering / -1 leaving)
+    stack: np.ndarray  # int32 (MESH_STACK_SIZE,): the mesh traversal's
+    overflow: np.ndarray  # int64 (1,): rays whose spans or crossings did not all fit
+
+
 class Stacks(NamedTuple):
-    """BVH traversal stacks, one for the top level and one for the mesh level."""
+    """BVH traversal stacks, one for the top level and one for the mesh level, and the
+    CSG scratch lists."""
 
     top: np.ndarray  # int32 (MAX_TREE_DEPTH,): top-level nodes waiting
     top_t: np.ndarray  # float64: their entry distances
     mesh: np.ndarray  # int32 (MESH_STACK_SIZE,): mesh-level nodes or leaves waiting
     mesh_t: np.ndarray  # float64
+    csg: CsgScratch
 
 
 class RayStack(NamedTuple):
@@ -45,6 +60,15 @@ def new_workspace(max_depth: int) -> Workspace:
             np.empty(MAX_TREE_DEPTH),
             np.empty(MESH_STACK_SIZE, np.int32),
             np.empty(MESH_STACK_SIZE),
+            CsgScratch(
+                np.empty((SPAN_CAPACITY, 2, 3)),
+                np.empty((SPAN_CAPACITY, 2, 2), np.int32),
+                np.empty(MAX_OPERANDS, np.int64),
+                np.empty((CROSSING_CAPACITY, 3)),
+                np.empty((CROSSING_CAPACITY, 2), np.int32),
+                np.empty(MESH_STACK_SIZE, np.int32),
+                np.zeros(1, np.int64),
+            ),
         ),
         RayStack(
             np.empty((rays, 3)), np.empty((rays, 3)), np.empty((rays, 3)), np.empty(rays, np.int64)

@@ -31,7 +31,7 @@ def brute_force(geo, surf, origins, directions):
             oo = affine_point(geo.shape_object_from_world, s, o)
             dd = affine_vector(geo.shape_object_from_world, s, d)
             if geo.shape_kind[s] == SHAPE_MESH:
-                mesh = geo.shape_mesh[s]
+                mesh = geo.shape_index[s]
                 first = surf.mesh_tri_offset[mesh]
                 last = geo.tri_corners.shape[0]
                 if mesh + 1 < len(geo.mesh_root):
@@ -39,7 +39,9 @@ def brute_force(geo, surf, origins, directions):
                 shear = shear_setup(dd)
                 o_sheared = permuted(oo, shear)
                 for tri in range(first, last):
-                    t, _, _ = intersect_triangle(geo.tri_corners, tri, o_sheared, shear, out_t[r])
+                    t, _, _, _ = intersect_triangle(
+                        geo.tri_corners, tri, o_sheared, shear, 0.0, out_t[r]
+                    )
                     if t < out_t[r]:
                         out_t[r], out_shape[r], out_part[r] = t, s, tri
             else:
