@@ -63,9 +63,10 @@ def _copy_end(span_f, span_i, src, src_end, dst, dst_end):
 @kernel
 def _mesh_spans(geo, row, o, d, scratch, at):
     """Spans of a closed mesh along the line: every crossing, sorted, with the winding
-    number counted from -inf. Crossings at the same distance (a ray through a shared edge or
-    vertex, reported by each triangle there) count once per facing: a ray through an edge
-    between two front faces enters once, one grazing a silhouette edge enters and leaves."""
+    number counted from -inf; inside is where it is not zero, so either orientation works.
+    Crossings at the same distance (a ray through a shared edge or vertex, reported by each
+    triangle there) count once per facing: a ray through an edge between two faces facing it
+    enters once; one grazing a silhouette edge enters and leaves, and stays outside."""
     span_f, span_i = scratch.span_f, scratch.span_i
     cross_f, cross_i = scratch.cross_f, scratch.cross_i
     n = mesh_line_crossings(
@@ -98,16 +99,15 @@ def _mesh_spans(geo, row, o, d, scratch, at):
         change = (entering >= 0) - (leaving >= 0)
         if change == 0:
             continue
+        c = entering if change > 0 else leaving
         before = winding
         winding += change
-        if before <= 0 < winding:
+        if before == 0:
             if k >= span_f.shape[0]:
                 scratch.overflow[0] += 1
                 return k
-            c = entering
             _put(span_f, span_i, k, 0, t, row, cross_i[c, 0], cross_f[c, 1], cross_f[c, 2])
-        elif winding <= 0 < before:
-            c = leaving
+        elif winding == 0:
             _put(span_f, span_i, k, 1, t, row, cross_i[c, 0], cross_f[c, 1], cross_f[c, 2])
             k += 1
     return k
