@@ -169,6 +169,7 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
         shape_param=param,
         shape_index=shape_index,
         shape_transparency=np.array([s.material.transparency for s in shapes], float),
+        shape_bounds=np.ascontiguousarray(np.hstack([lo, hi]).reshape(n, 6)),
         mesh_root=np.array(tables.root, np.int32),
         node_boxes=concatenated(tables.node_boxes, (0, 6, 4), np.float32),
         node_links=concatenated(tables.node_links, (0, 4), np.int32),

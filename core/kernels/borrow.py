@@ -65,6 +65,7 @@ def borrow_geometry(g):
         borrowed(g.shape_param),
         borrowed(g.shape_index),
         borrowed(g.shape_transparency),
+        borrowed(g.shape_bounds),
         borrowed(g.mesh_root),
         borrowed(g.node_boxes),
         borrowed(g.node_links),

@@ -34,6 +34,7 @@ class Geometry(NamedTuple):
     shape_param: np.ndarray  # float64 (n, 2): torus major and minor radius
     shape_index: np.ndarray  # int32 (n,): row in mesh_root (meshes), csg_range (CSG), or -1
     shape_transparency: np.ndarray  # float64 (n,): its material's, for shadow rays
+    shape_bounds: np.ndarray  # float64 (n, 6): world box (lo xyz, hi xyz), for CSG operands
     # meshes
     mesh_root: np.ndarray  # int32 (m,): its BVH's root in node_*
     # four-wide BVH nodes of all meshes (see core.kernels.bvh_wide), global indices
