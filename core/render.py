@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from core.kernels.csg import CROSSING_CAPACITY, SPAN_CAPACITY
 from core.kernels.render_tile import render_borrowed_tile
 from core.kernels.workspace import new_workspace
 from core.packing import PackedScene, compile_scene
@@ -110,7 +111,7 @@ def render(
     tiles = split_into_tiles(settings.pixel_region(), settings.tile_size)
     image = np.zeros((settings.height, settings.width, 4), np.float32)
 
-    def render_one(tile: Tile) -> np.ndarray:
+    def render_one(tile: Tile) -> tuple[np.ndarray, int]:
         pixels = np.empty((tile.height, tile.width, 4), np.float32)
         workspace = new_workspace(settings.max_depth)
         render_borrowed_tile(
@@ -124,10 +125,11 @@ def render(
             pixels,
             workspace,
         )
-        return pixels
+        return pixels, int(workspace.stacks.csg.overflow[0])
 
     start = time.perf_counter()
     tiles_done = 0
+    csg_overflows = 0
     cancelled = False
     with ThreadPoolExecutor(max_workers=threads, thread_name_prefix="whitted") as pool:
         queue = iter(tiles)
@@ -144,7 +146,8 @@ def render(
             finished, _ = wait(running, timeout=_CANCEL_POLL_S, return_when=FIRST_COMPLETED)
             for future in finished:
                 tile = running.pop(future)
-                pixels = future.result()
+                pixels, overflows = future.result()
+                csg_overflows += overflows
                 image[tile.y : tile.y + tile.height, tile.x : tile.x + tile.width] = pixels
                 tiles_done += 1
                 if on_tile is not None:
@@ -161,4 +164,11 @@ def render(
         tiles_total=len(tiles),
         threads=threads,
     )
-    return RenderOutput(image=image, stats=stats, cancelled=cancelled, warnings=compiled.warnings)
+    warnings = list(compiled.warnings)
+    if csg_overflows:
+        warnings.append(
+            f"{csg_overflows} rays met more CSG surfaces than one ray can hold "
+            f"({SPAN_CAPACITY} spans, {CROSSING_CAPACITY} crossings of one mesh operand): "
+            "the excess were dropped, and those pixels may be wrong"
+        )
+    return RenderOutput(image=image, stats=stats, cancelled=cancelled, warnings=warnings)

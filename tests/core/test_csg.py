@@ -390,3 +390,34 @@ def test_disjoint_intersection_is_empty_and_costs_nothing():
     assert len(packed.geometry.top_order) == 0
     t, _, _ = hits(packed, np.array([[0, 0, 5.0]]), np.array([[0, 0, -1.0]]))
     assert np.isinf(t[0])
+
+
+def test_shadow_rays_through_glass_csg_pass_each_surfaces_transparency():
+    half = Material((1, 1, 1), transparency=0.5)
+    quarter = Material((1, 1, 1), transparency=0.25)
+    hollow = Csg("Hollow", operation="difference", left=Sphere("Ball", half),
+                 right=Sphere("Cavity", quarter, placed((0.5, 0.5, 0.5))))  # fmt: skip
+    packed = packed_shapes(hollow)
+    # Through the centre: the ball's surface twice, the cavity's twice
+    assert light_through(packed, (0, 0, -3.0), (0, 0, 1.0), 6.0) == pytest.approx(0.5**2 * 0.25**2)
+    # From inside the glass wall, out through the ball's surface only
+    assert light_through(packed, (0, 0, 0.75), (0, 0, 1.0), 6.0) == pytest.approx(0.5)
+
+
+def comb(teeth):
+    """`teeth` separate unit cubes along x in one closed mesh."""
+    cube = closed_cube_mesh()
+    vertices = np.concatenate([cube.vertices * 0.4 + (3.0 * k, 0, 0) for k in range(teeth)])
+    triangles = np.concatenate([cube.triangles + 8 * k for k in range(teeth)])
+    return TriangleMesh(vertices, triangles)
+
+
+def test_a_ray_crossing_more_csg_surfaces_than_fit_is_reported():
+    solid = Csg("Comb", operation="union", left=Mesh("Teeth", mesh=comb(600)),
+                right=Sphere("Bead", world_from_object=placed((0.1, 0.1, 0.1))))  # fmt: skip
+    along = Camera((-5.0, 0, 0), (1.0, 0, 0), (0, 0, 1.0), 1)
+    out = render(Scene(along, [solid]), RenderSettings(3, 3))
+    assert any("rays met more CSG surfaces" in w for w in out.warnings)
+    few = Csg("Comb", operation="union", left=Mesh("Teeth", mesh=comb(100)),
+              right=Sphere("Bead", world_from_object=placed((0.1, 0.1, 0.1))))  # fmt: skip
+    assert render(Scene(along, [few]), RenderSettings(3, 3)).warnings == []
