@@ -421,3 +421,26 @@ def test_a_ray_crossing_more_csg_surfaces_than_fit_is_reported():
     few = Csg("Comb", operation="union", left=Mesh("Teeth", mesh=comb(100)),
               right=Sphere("Bead", world_from_object=placed((0.1, 0.1, 0.1))))  # fmt: skip
     assert render(Scene(along, [few]), RenderSettings(3, 3)).warnings == []
+    # Two hundred crossings along the axis, sorted right: from the gap after tooth 50 the
+    # nearest faces are tooth 51's front and tooth 50's back
+    packed = packed_shapes(few)
+    origins = np.array([[151.5, 0.05, 0.02]] * 2 + [[-5.0, 0.05, 0.02]])
+    t, _, _ = hits(packed, origins, np.array([[1.0, 0, 0], [-1.0, 0, 0], [1.0, 0, 0]]))
+    np.testing.assert_allclose(t, [1.1, 1.1, 4.6], rtol=1e-5)  # float32 vertices
+
+
+def test_a_flush_cut_renders_the_same_pixels_for_any_tiling_and_threads():
+    tilt = random_affine(np.random.default_rng(9), translate=0.5)
+    solid = Csg(
+        "Flush", world_from_object=tilt, operation="difference",
+        left=Box("Block", Material((0.8, 0.3, 0.2))),
+        right=Cylinder("Bore", Material((0.2, 0.3, 0.8)), placed((0.5, 0.5, 0.75), (0, 0, 0.25))),
+    )  # fmt: skip
+    eye = tilt[:3, :3] @ np.array([0.3, -0.2, 6.0]) + tilt[:3, 3]
+    camera = Camera(tuple(eye), tuple(tilt[:3, 3] - eye), (0, 0, 1.0), 30)
+    scene = Scene(camera, [solid], [PointLight(tuple(eye), (1, 1, 1))], ambient=(0.1,) * 3)
+    images = [
+        render(scene, RenderSettings(48, 40, tile_size=tile, threads=threads)).image
+        for tile, threads in ((7, 1), (64, 2), (16, 2))
+    ]
+    assert np.array_equal(images[0], images[1]) and np.array_equal(images[0], images[2])
