@@ -16,12 +16,93 @@ from __future__ import annotations
 
 import math
 
-import bpy
 import numpy as np
 
 import core
 
+from .compat import node_tree_in_use
+from .csg_export import boolean_modifiers, solid
+from .mesh_export import triangle_mesh
+
 _WATTS_TO_INTENSITY = 1.0 / (4.0 * math.pi**2)
+
+
+GEOMETRY_TYPES = {"MESH", "CURVE", "SURFACE", "META", "FONT"}
+ANALYTIC = {
+    "SPHERE": core.Sphere,
+    "CUBE": core.Box,
+    "CYLINDER": core.Cylinder,
+    "CONE": core.Cone,
+    "TORUS": core.Torus,
+}
+
+
+class Exporter:
+    """Collects shapes from object instances: one `TriangleMesh` per distinct mesh, one
+    `Material` per Blender material, and the warnings for the user."""
+
+    def __init__(self, depsgraph):
+        self.depsgraph = depsgraph
+        self.shapes: list = []
+        self.warnings: list[str] = []
+        self.materials: dict[str, core.Material] = {}
+        self.meshes: dict = {}
+
+    def warn(self, text: str) -> None:
+        self.warnings.append(text)
+
+    def add_instance(self, obj, matrix: np.ndarray) -> None:
+        """One object instance (evaluated) placed by `matrix`."""
+        original = obj.original
+        if obj.type == "MESH" and boolean_modifiers(original):
+            shape = solid(original, self, self.depsgraph)
+        elif obj.type == "MESH" and obj.whitted.shape != "MESH":
+            shape = self.base_shape(obj)
+        else:
+            mesh = self._instance_mesh(obj)
+            if mesh is None:
+                return
+            shape = core.Mesh(obj.name, self.material(obj), mesh=mesh)
+        shape.world_from_object = matrix
+        self.shapes.append(shape)
+
+    def base_shape(self, obj) -> core.Shape:
+        """The object's own shape in its object space: its tagged primitive, or its mesh as
+        it is before modifiers (the Boolean modifiers' input)."""
+        settings = obj.whitted
+        material = self.material(obj)
+        if settings.shape == "TORUS":
+            return core.Torus(obj.name, material, major_radius=settings.major_radius,
+                              minor_radius=settings.minor_radius)  # fmt: skip
+        if settings.shape in ANALYTIC:
+            return ANALYTIC[settings.shape](obj.name, material)
+        key = ("original", obj.data.as_pointer())
+        if key not in self.meshes:
+            self.meshes[key] = triangle_mesh(obj.original.data, obj.data.name)
+        return core.Mesh(obj.name, material, mesh=self.meshes[key])
+
+    def _instance_mesh(self, obj):
+        """The evaluated mesh of an instance, converted once per distinct mesh datablock
+        (linked duplicates and instancers share it); None when it has no faces."""
+        if obj.type == "MESH":
+            key = ("evaluated", obj.data.as_pointer())
+            if key not in self.meshes:
+                self.meshes[key] = triangle_mesh(obj.data, obj.data.name)
+        else:
+            key = ("object", obj.name)
+            if key not in self.meshes:
+                mesh = obj.to_mesh()
+                self.meshes[key] = None if mesh is None else triangle_mesh(mesh, obj.name)
+                obj.to_mesh_clear()
+        mesh = self.meshes[key]
+        return mesh if mesh is not None and len(mesh.triangles) else None
+
+    def material(self, obj) -> core.Material:
+        blender_material = obj.active_material
+        key = blender_material.name if blender_material is not None else ""
+        if key not in self.materials:
+            self.materials[key] = _convert_material(blender_material)
+        return self.materials[key]
 
 
 def convert(depsgraph) -> tuple[core.Scene, core.RenderSettings, list[str]]:
@@ -29,28 +110,38 @@ def convert(depsgraph) -> tuple[core.Scene, core.RenderSettings, list[str]]:
     scene = depsgraph.scene
     settings = render_settings(scene)
     world = world_colour(scene.world)
-    shapes, lights, skipped = [], [], []
-    materials: dict[str, core.Material] = {}
+    exporter = Exporter(depsgraph)
+    lights, skipped = [], []
     for instance in depsgraph.object_instances:
         obj = instance.object
-        if obj.type == "MESH" and obj.whitted.shape == "SPHERE":
-            material = _material(obj, materials)
-            matrix = np.array(instance.matrix_world, dtype=float)
-            shapes.append(core.Sphere(name=obj.name, material=material, world_from_object=matrix))
+        matrix = np.array(instance.matrix_world, dtype=float)
+        if obj.type in GEOMETRY_TYPES:
+            exporter.add_instance(obj, matrix)
         elif obj.type == "LIGHT" and obj.data.type == "POINT":
             lights.append(_point_light(obj, instance.matrix_world))
-        elif obj.type in {"MESH", "LIGHT", "CURVE", "SURFACE", "META", "FONT"}:
+        elif obj.type == "LIGHT" and obj.data.type == "AREA":
+            light = _area_light(obj, instance.matrix_world)
+            if light is None:
+                skipped.append(obj.name)
+            else:
+                lights.append(light)
+        elif obj.type == "LIGHT":
             skipped.append(obj.name)
-    warnings = []
+        elif obj.type == "EMPTY" and obj.whitted.shape != "MESH":
+            exporter.warn(
+                f"object '{obj.name}' is an Empty tagged {obj.whitted.shape.title()}: only "
+                "mesh objects can carry a Whitted shape; it is not rendered"
+            )
+    warnings = list(exporter.warnings)
     if skipped:
         names = ", ".join(f"'{name}'" for name in sorted(set(skipped))[:5])
         warnings.append(
-            f"Whitted skipped {len(skipped)} object(s) it cannot render yet ({names}); "
-            "tag meshes as Sphere in Object Properties > Whitted Shape; only point lights light"
+            f"Whitted skipped {len(skipped)} light(s) it cannot render ({names}): it renders "
+            "point lights and square or rectangular area lights"
         )
     camera = export_camera(scene, depsgraph, settings)
     result = core.Scene(
-        camera=camera, shapes=shapes, lights=lights, ambient=world, background=world
+        camera=camera, shapes=exporter.shapes, lights=lights, ambient=world, background=world
     )
     return result, settings, warnings
 
@@ -75,6 +166,7 @@ def render_settings(scene) -> core.RenderSettings:
         tile_size=scene.whitted.tile_size,
         threads=threads,
         region=_border_region(render, width, height),
+        shadow_samples=scene.whitted.shadow_samples,
     )
 
 
@@ -151,12 +243,24 @@ def _point_light(obj, matrix_world) -> core.PointLight:
     )
 
 
-def _material(obj, cache: dict[str, core.Material]) -> core.Material:
-    blender_material = obj.active_material
-    key = blender_material.name if blender_material is not None else ""
-    if key not in cache:
-        cache[key] = _convert_material(blender_material)
-    return cache[key]
+def _area_light(obj, matrix_world) -> core.AreaLight | None:
+    """A square or rectangular area light, its edges along the object's x and y axes (so
+    scaled and rotated with it), lighting both sides; None for disk and ellipse shapes."""
+    light = obj.data
+    if light.shape not in {"SQUARE", "RECTANGLE"}:
+        return None
+    width = light.size
+    height = light.size if light.shape == "SQUARE" else light.size_y
+    axes = np.array(matrix_world.to_3x3(), float)
+    intensity = tuple(float(c) * light.energy * _WATTS_TO_INTENSITY for c in light.color)
+    return core.AreaLight(
+        centre=tuple(matrix_world.translation),
+        edge_u=tuple(axes[:, 0] * width),
+        edge_v=tuple(axes[:, 1] * height),
+        intensity=intensity,
+        attenuation=tuple(light.whitted.attenuation),
+        name=obj.name,
+    )
 
 
 def _convert_material(material) -> core.Material:
@@ -176,15 +280,6 @@ def _base_colour(material) -> tuple[float, float, float]:
     if principled is not None:
         return tuple(float(c) for c in principled.inputs["Base Color"].default_value[:3])
     return tuple(float(c) for c in material.diffuse_color[:3])
-
-
-def node_tree_in_use(datablock):
-    """The node tree a material or world renders with, or None. Blender 5.0 always uses nodes
-    (and deprecates `use_nodes`); before 5.0 the flag decides."""
-    tree = datablock.node_tree
-    if tree is None or (bpy.app.version < (5, 0, 0) and not datablock.use_nodes):
-        return None
-    return tree
 
 
 def find_node(datablock, node_type):

@@ -7,23 +7,41 @@ colour and power), so an untouched scene renders sensibly.
 import bpy
 from bpy.props import EnumProperty, FloatProperty, FloatVectorProperty, IntProperty, PointerProperty
 
+# Each analytic shape matches the Blender primitive added with default settings, so tagging
+# that primitive renders the exact shape where its mesh sits
 SHAPE_ITEMS = [
-    ("MESH", "Mesh", "Render the object's mesh (mesh rendering is not supported yet: skipped)"),
-    (
-        "SPHERE",
-        "Sphere",
-        "Render the exact sphere of radius 1 around the object origin, under the object's "
-        "transform (matches Blender's UV sphere of radius 1)",
-    ),
+    ("MESH", "Mesh", "Render the object's mesh triangles (smooth or flat per face, UVs)"),
+    ("SPHERE", "Sphere", "Exact sphere of radius 1 (Blender's UV sphere)"),
+    ("CUBE", "Cube", "Exact cube from -1 to 1 on each axis (Blender's cube)"),
+    ("CYLINDER", "Cylinder", "Exact capped cylinder, radius 1, z from -1 to 1 (Blender's)"),
+    ("CONE", "Cone", "Exact cone, base radius 1 at z = -1, apex at z = 1 (Blender's)"),
+    ("TORUS", "Torus", "Exact torus around the z axis (Blender's torus: radii 1 and 0.25)"),
 ]
 
 
 class WhittedObjectSettings(bpy.types.PropertyGroup):
     shape: EnumProperty(
         name="Shape",
-        description="What Whitted renders for this object",
+        description=(
+            "What Whitted renders for this mesh object: its triangles, or an exact shape under "
+            "the object's transform (the mesh then only stands in for it in the viewport)"
+        ),
         items=SHAPE_ITEMS,
         default="MESH",
+    )
+    major_radius: FloatProperty(
+        name="Major Radius",
+        description="Torus: radius of the ring, from the centre to the middle of the tube",
+        min=0.0,
+        default=1.0,
+        unit="LENGTH",
+    )
+    minor_radius: FloatProperty(
+        name="Minor Radius",
+        description="Torus: radius of the tube",
+        min=0.0,
+        default=0.25,
+        unit="LENGTH",
     )
 
 
@@ -60,6 +78,16 @@ class WhittedLightSettings(bpy.types.PropertyGroup):
 
 
 class WhittedSceneSettings(bpy.types.PropertyGroup):
+    shadow_samples: IntProperty(
+        name="Soft Shadow Samples",
+        description=(
+            "Shadow rays per area light per shading point, stratified over the light; render "
+            "time grows in proportion, noise falls as its square root"
+        ),
+        min=1,
+        soft_max=256,
+        default=16,
+    )
     tile_size: IntProperty(
         name="Tile Size",
         description="Edge of the square tiles rendered in parallel and streamed to the image",

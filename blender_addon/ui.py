@@ -6,6 +6,7 @@ colour and power, material slots) are opened to Whitted by adding it to their CO
 
 import bpy
 
+from .csg_export import OPERATIONS, boolean_modifiers, operand_objects
 from .engine import WhittedRenderEngine
 from .export import find_node
 
@@ -52,6 +53,7 @@ class WHITTED_PT_render(WhittedPanel, bpy.types.Panel):
 
     def draw(self, context):
         self.layout.use_property_split = True
+        self.layout.prop(context.scene.whitted, "shadow_samples")
         self.layout.prop(context.scene.whitted, "tile_size")
 
 
@@ -68,9 +70,18 @@ class WHITTED_PT_object_shape(WhittedPanel, bpy.types.Panel):
     def draw(self, context):
         layout = self.layout
         layout.use_property_split = True
-        layout.prop(context.object.whitted, "shape")
-        if context.object.whitted.shape == "SPHERE":
-            layout.label(text="Exact sphere, radius 1, under the object transform", icon="INFO")
+        obj = context.object
+        layout.prop(obj.whitted, "shape")
+        if obj.whitted.shape == "TORUS":
+            layout.prop(obj.whitted, "major_radius")
+            layout.prop(obj.whitted, "minor_radius")
+        booleans = boolean_modifiers(obj)
+        if booleans:
+            box = layout.box()
+            box.label(text="Renders as CSG, exactly:", icon="MOD_BOOLEAN")
+            for modifier in booleans:
+                operands = ", ".join(o.name for o in operand_objects(modifier)) or "(none)"
+                box.label(text=f"{OPERATIONS[modifier.operation]} {operands}")
 
 
 class WHITTED_PT_material(WhittedPanel, bpy.types.Panel):
@@ -99,9 +110,11 @@ class WHITTED_PT_light(WhittedPanel, bpy.types.Panel):
     def draw(self, context):
         layout = self.layout
         layout.use_property_split = True
-        if context.light.type != "POINT":
-            layout.label(text="Whitted renders point lights only so far", icon="ERROR")
+        if context.light.type not in {"POINT", "AREA"}:
+            layout.label(text="Whitted renders point and area lights", icon="ERROR")
             return
+        if context.light.type == "AREA" and context.light.shape not in {"SQUARE", "RECTANGLE"}:
+            layout.label(text="Area lights must be square or rectangular", icon="ERROR")
         layout.prop(context.light.whitted, "attenuation")
 
 

@@ -1,0 +1,21 @@
+"""Differences between the Blender versions Whitted supports (3.4 and 5.0), in one place."""
+
+import bpy
+
+# Blender 4.1 computes split (corner) normals on demand; before it they must be asked for
+NEEDS_CALC_NORMALS_SPLIT = bpy.app.version < (4, 1, 0)
+
+
+def prepare_corner_normals(mesh) -> None:
+    """Make `mesh.loop_triangles[*].split_normals` valid."""
+    if NEEDS_CALC_NORMALS_SPLIT:
+        mesh.calc_normals_split()
+
+
+def node_tree_in_use(datablock):
+    """The node tree a material or world renders with, or None. Blender 5.0 always uses nodes
+    (and deprecates `use_nodes`); before 5.0 the flag decides."""
+    tree = datablock.node_tree
+    if tree is None or (bpy.app.version < (5, 0, 0) and not datablock.use_nodes):
+        return None
+    return tree
