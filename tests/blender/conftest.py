@@ -26,3 +26,13 @@ def sample_scene(bpy_with_whitted):
     scene = bpy.context.scene
     scene.render.resolution_percentage = 50
     return scene
+
+
+def clear_scene(bpy):
+    """Remove every object and mesh from the open file, keeping the add-on enabled (reading
+    factory settings would unregister it)."""
+    for obj in list(bpy.data.objects):
+        bpy.data.objects.remove(obj)
+    for mesh in list(bpy.data.meshes):
+        bpy.data.meshes.remove(mesh)
+    return bpy.context.scene

@@ -55,3 +55,18 @@ def test_bad_input_is_a_clear_message_not_a_traceback(tmp_path):
     assert "Error: Whitted: sphere 'Blue': world_from_object: is singular" in output
     assert "non-zero scale" in output
     assert "Traceback" not in output
+
+
+def test_meshes_tagged_shapes_booleans_and_area_lights_render_in_blender_34(tmp_path):
+    script = ROOT / "tests" / "blender" / "scripts" / "bored_cube.py"
+    out = tmp_path / "bored.png"
+    run = blender_34("--addons", "whitted", "--python", str(script), "--", str(out))
+    assert run.returncode == 0 and "Traceback" not in run.stdout + run.stderr, run.stdout
+    assert "Error" not in run.stdout, run.stdout
+    image = np.asarray(Image.open(out), dtype=float)[..., :3]
+    background = image[2, 2]
+    # Straight down the bore: the background; the cube's face beside it: lit
+    np.testing.assert_allclose(image[30, 40], background, atol=1.0)
+    assert image[30, 52].mean() > background.mean() + 20
+    # The smooth mesh sphere, left of the cube
+    assert image[30, 12].mean() > background.mean() + 20

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from core import Mesh, TriangleMesh
+from tests.blender.conftest import clear_scene
 from tests.core.probe import hits, packed_shapes
 from tests.csg_examples import EXAMPLES, analytic_tree
 
@@ -35,7 +36,7 @@ def blender_object(bpy, kind, matrix):
 
 def blender_boolean_mesh(bpy, first, steps):
     """The solid made by Blender's Boolean modifiers, as world-space triangles."""
-    bpy.ops.wm.read_factory_settings(use_empty=True)
+    clear_scene(bpy)
     base = blender_object(bpy, *first)
     for operation, operand in steps:
         cutter = blender_object(bpy, *operand)

@@ -1,0 +1,181 @@
+"""What the add-on exports from Blender 5.0 (the bpy module): tagged primitives where their
+meshes sit, Boolean modifiers as CSG, shared meshes, smooth normals and UVs, area lights."""
+
+import sys
+
+import numpy as np
+import pytest
+
+import core
+from tests.blender.conftest import clear_scene
+from tests.core.probe import hits, packed_shapes
+
+pytestmark = pytest.mark.bpy5
+
+
+@pytest.fixture
+def empty_scene(bpy_with_whitted):
+    bpy = bpy_with_whitted
+    scene = clear_scene(bpy)
+    scene.render.engine = "WHITTED"
+    scene.render.resolution_x = scene.render.resolution_y = 8
+    bpy.ops.object.camera_add(location=(0, -10, 0), rotation=(np.pi / 2, 0, 0))
+    scene.camera = bpy.context.active_object
+    return scene
+
+
+def exported(bpy, monkeypatch):
+    """Render (8x8) and return what the add-on handed to core: (scene, settings, warnings)."""
+    export = sys.modules["whitted.export"]
+    captured = []
+    original = export.convert
+
+    def capture(depsgraph):
+        captured.append(original(depsgraph))
+        return captured[-1]
+
+    monkeypatch.setattr(export, "convert", capture)
+    bpy.ops.render.render()
+    assert captured, "the engine did not export (see the log)"
+    return captured[-1]
+
+
+def add_primitive(bpy, kind, **placement):
+    fine = 128
+    if kind == "SPHERE":
+        bpy.ops.mesh.primitive_uv_sphere_add(segments=fine, ring_count=fine // 2, **placement)
+    elif kind == "CUBE":
+        bpy.ops.mesh.primitive_cube_add(**placement)
+    elif kind == "CYLINDER":
+        bpy.ops.mesh.primitive_cylinder_add(vertices=fine, **placement)
+    elif kind == "CONE":
+        bpy.ops.mesh.primitive_cone_add(vertices=fine, **placement)
+    else:
+        bpy.ops.mesh.primitive_torus_add(major_segments=fine, minor_segments=fine // 2,
+                                         **placement)  # fmt: skip
+    return bpy.context.active_object
+
+
+def view_rays(size=120, eye=(4.0, -6.0, 3.0)):
+    eye = np.array(eye)
+    forward = -eye / np.linalg.norm(eye)
+    right = np.cross(forward, (0, 0, 1.0))
+    right /= np.linalg.norm(right)
+    up = np.cross(right, forward)
+    s = np.linspace(-0.35, 0.35, size)
+    x, y = np.meshgrid(s, -s)
+    d = (forward + x[..., None] * right + y[..., None] * up).reshape(-1, 3)
+    return np.broadcast_to(eye, d.shape).copy(), d / np.linalg.norm(d, axis=1, keepdims=True)
+
+
+def mask(shapes):
+    origins, directions = view_rays()
+    _, row, _ = hits(packed_shapes(*shapes), origins, directions)
+    return row >= 0
+
+
+def iou(a, b):
+    return np.count_nonzero(a & b) / np.count_nonzero(a | b)
+
+
+@pytest.mark.parametrize("kind", ["SPHERE", "CUBE", "CYLINDER", "CONE", "TORUS"])
+def test_a_tagged_primitive_renders_where_its_mesh_sits(empty_scene, monkeypatch, kind):
+    bpy = sys.modules["bpy"]
+    obj = add_primitive(bpy, kind, location=(0.3, -0.2, 0.1), rotation=(0.4, -0.3, 0.7))
+    obj.scale = (1.2, 0.7, 0.9)
+    as_mesh, _, _ = exported(bpy, monkeypatch)
+    obj.whitted.shape = kind
+    as_shape, _, _ = exported(bpy, monkeypatch)
+    (mesh,), (shape,) = as_mesh.shapes, as_shape.shapes
+    assert isinstance(mesh, core.Mesh) and not isinstance(shape, core.Mesh)
+    overlap = iou(mask([mesh]), mask([shape]))
+    assert overlap >= 0.99, f"{kind}: IoU {overlap:.4f}"
+
+
+def test_boolean_modifiers_render_as_exact_csg_and_hidden_cutters_only_cut(
+    empty_scene, monkeypatch
+):
+    bpy = sys.modules["bpy"]
+    cutter = add_primitive(bpy, "CYLINDER", location=(0.2, 0, 0), rotation=(np.pi / 2, 0, 0))
+    cutter.scale = (0.5, 0.5, 2.0)
+    cutter.whitted.shape = "CYLINDER"
+    cutter.hide_render = True
+    block = add_primitive(bpy, "CUBE", rotation=(0, 0, 0.3))
+    block.whitted.shape = "CUBE"
+    modifier = block.modifiers.new("Bore", "BOOLEAN")
+    modifier.operation = "DIFFERENCE"
+    modifier.object = cutter
+    scene, _, warnings = exported(bpy, monkeypatch)
+    assert warnings == []
+    (solid,) = scene.shapes  # the hidden cutter is not rendered on its own
+    assert isinstance(solid, core.Csg) and solid.operation == "difference"
+    assert isinstance(solid.left, core.Box) and isinstance(solid.right, core.Cylinder)
+    # Blender's own Boolean result (the viewport mesh) as the reference
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    evaluated = block.evaluated_get(depsgraph)
+    reference = sys.modules["whitted.mesh_export"].triangle_mesh(evaluated.data, "ref")
+    world = np.array(block.matrix_world)
+    overlap = iou(mask([solid]), mask([core.Mesh("ref", mesh=reference, world_from_object=world)]))
+    assert overlap >= 0.99, f"IoU {overlap:.4f}"
+    origins, directions = view_rays(eye=(0.2, -6.0, 0.0))
+    row = hits(packed_shapes(solid), origins, directions)[1].reshape(120, 120)
+    assert row[60, 60] < 0  # looking down the bore: the background
+
+
+def test_linked_duplicates_share_one_triangle_mesh(empty_scene, monkeypatch):
+    bpy = sys.modules["bpy"]
+    original = add_primitive(bpy, "SPHERE")
+    bpy.ops.object.duplicate_move_linked(TRANSFORM_OT_translate={"value": (3, 0, 0)})
+    scene, _, _ = exported(bpy, monkeypatch)
+    first, second = scene.shapes
+    assert first.mesh is second.mesh
+    assert not np.allclose(first.world_from_object, second.world_from_object)
+    assert original.data.name == first.mesh.name
+
+
+def test_smooth_faces_corner_normals_and_uvs_are_exported(empty_scene, monkeypatch):
+    bpy = sys.modules["bpy"]
+    obj = add_primitive(bpy, "SPHERE")
+    bpy.ops.object.shade_smooth()
+    obj.data.polygons[0].use_smooth = False
+    flat_triangles = len(obj.data.polygons[0].vertices) - 2
+    scene, _, _ = exported(bpy, monkeypatch)
+    mesh = scene.shapes[0].mesh
+    assert mesh.smooth.sum() == len(mesh.triangles) - flat_triangles
+    normals = mesh.corner_normals
+    # Smooth corners carry Blender's vertex normals, within 0.01 of the sphere's radial
+    # direction, where the flat face normals are up to 0.025 off it
+    corners = mesh.vertices[mesh.triangles]
+    radial = corners / np.linalg.norm(corners, axis=2, keepdims=True)
+    smooth = mesh.smooth
+    np.testing.assert_allclose(normals[smooth], radial[smooth], atol=0.01)
+    assert mesh.corner_uvs is not None and mesh.corner_uvs.shape == (len(mesh.triangles), 3, 2)
+
+
+def test_area_light_edges_follow_the_object_and_its_size(empty_scene, monkeypatch):
+    bpy = sys.modules["bpy"]
+    bpy.ops.object.light_add(type="AREA", location=(1, 2, 3), rotation=(0, 0, np.pi / 2))
+    light = bpy.context.active_object
+    light.data.shape = "RECTANGLE"
+    light.data.size, light.data.size_y = 2.0, 0.5
+    scene, _, _ = exported(bpy, monkeypatch)
+    (area,) = scene.lights
+    np.testing.assert_allclose(area.centre, (1, 2, 3), atol=1e-6)
+    np.testing.assert_allclose(area.edge_u, (0, 2.0, 0), atol=1e-6)
+    np.testing.assert_allclose(area.edge_v, (-0.5, 0, 0), atol=1e-6)
+
+
+def test_bad_blender_input_is_reported_clearly(empty_scene, monkeypatch):
+    bpy = sys.modules["bpy"]
+    bpy.ops.object.empty_add()
+    bpy.context.active_object.whitted.shape = "SPHERE"
+    _, _, warnings = exported(bpy, monkeypatch)
+    assert any("is an Empty tagged Sphere" in w for w in warnings)
+    bpy.ops.object.light_add(type="AREA")
+    bpy.context.active_object.data.size = 0.0
+    bpy.context.active_object.name = "Flat"
+    # The engine reports the error (the bpy module raises it from the operator)
+    with pytest.raises(RuntimeError, match=r"Whitted: area light 'Flat': edge_u.*non-zero"):
+        bpy.ops.render.render()
+    bpy.data.objects.remove(bpy.data.objects["Flat"])
+    bpy.ops.render.render()  # Blender stays usable
