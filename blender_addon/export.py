@@ -6,8 +6,7 @@ Mapping of Blender's values onto the report's model:
 - point light: intensity = colour * power / (4 pi^2). With attenuation (0, 0, 1) a white
   diffuse surface facing the light then has the brightness Cycles gives it: a point light of
   power P has radiant intensity P / (4 pi) W/sr and a Lambertian surface divides by pi;
-- material: diffuse = the Principled BSDF's base colour (or the viewport colour without
-  nodes); specular and shininess from the Whitted material panel;
+- material: from the Principled BSDF, or the Whitted material panel (`material_export`);
 - world: its colour (Background node colour times strength) is both the ambient term and the
   background.
 """
@@ -20,8 +19,8 @@ import numpy as np
 
 import core
 
-from .compat import node_tree_in_use
 from .csg_export import boolean_modifiers, solid
+from .material_export import convert_material, find_node
 from .mesh_export import triangle_mesh
 
 _WATTS_TO_INTENSITY = 1.0 / (4.0 * math.pi**2)
@@ -101,7 +100,7 @@ class Exporter:
         blender_material = obj.active_material
         key = blender_material.name if blender_material is not None else ""
         if key not in self.materials:
-            self.materials[key] = _convert_material(blender_material)
+            self.materials[key] = convert_material(blender_material)
         return self.materials[key]
 
 
@@ -261,29 +260,3 @@ def _area_light(obj, matrix_world) -> core.AreaLight | None:
         attenuation=tuple(light.whitted.attenuation),
         name=obj.name,
     )
-
-
-def _convert_material(material) -> core.Material:
-    if material is None:
-        return core.Material(name="(no material)")
-    settings = material.whitted
-    return core.Material(
-        diffuse=_base_colour(material),
-        specular=tuple(settings.specular),
-        shininess=settings.shininess,
-        name=material.name,
-    )
-
-
-def _base_colour(material) -> tuple[float, float, float]:
-    principled = find_node(material, "BSDF_PRINCIPLED")
-    if principled is not None:
-        return tuple(float(c) for c in principled.inputs["Base Color"].default_value[:3])
-    return tuple(float(c) for c in material.diffuse_color[:3])
-
-
-def find_node(datablock, node_type):
-    tree = node_tree_in_use(datablock)
-    if tree is None:
-        return None
-    return next((node for node in tree.nodes if node.type == node_type), None)

@@ -5,7 +5,14 @@ colour and power), so an untouched scene renders sensibly.
 """
 
 import bpy
-from bpy.props import EnumProperty, FloatProperty, FloatVectorProperty, IntProperty, PointerProperty
+from bpy.props import (
+    BoolProperty,
+    EnumProperty,
+    FloatProperty,
+    FloatVectorProperty,
+    IntProperty,
+    PointerProperty,
+)
 
 # Each analytic shape matches the Blender primitive added with default settings, so tagging
 # that primitive renders the exact shape where its mesh sits
@@ -46,6 +53,50 @@ class WhittedObjectSettings(bpy.types.PropertyGroup):
 
 
 class WhittedMaterialSettings(bpy.types.PropertyGroup):
+    use_whitted: BoolProperty(
+        name="Whitted Settings",
+        description=(
+            "Use the values below; off, the material renders from its Principled BSDF (base "
+            "colour, metallic, roughness, IOR, transmission)"
+        ),
+        default=False,
+    )
+    reflectivity: FloatProperty(
+        name="Reflectivity",
+        description="Weight of the mirror reflection added to the surface colour (one more ray)",
+        min=0.0,
+        max=1.0,
+        default=0.0,
+    )
+    transparency: FloatProperty(
+        name="Transparency",
+        description=(
+            "Fraction of the colour that comes through the surface, refracted, with Fresnel "
+            "reflection (two more rays at each hit)"
+        ),
+        min=0.0,
+        max=1.0,
+        default=0.0,
+    )
+    outer_ior: FloatProperty(
+        name="Outer IOR",
+        description="Index of refraction outside the surface (air: 1)",
+        min=0.01,
+        soft_max=3.0,
+        default=1.0,
+    )
+    inner_ior: FloatProperty(
+        name="Inner IOR",
+        description="Index of refraction inside the surface (water 1.33, glass 1.5)",
+        min=0.01,
+        soft_max=3.0,
+        default=1.5,
+    )
+    image: PointerProperty(
+        name="Texture",
+        description="Image replacing the diffuse colour, mapped by the shape's UVs",
+        type=bpy.types.Image,
+    )
     specular: FloatVectorProperty(
         name="Specular",
         description="Phong specular reflectance ks",

@@ -8,7 +8,7 @@ import bpy
 
 from .csg_export import OPERATIONS, boolean_modifiers, operand_objects
 from .engine import WhittedRenderEngine
-from .export import find_node
+from .material_export import find_node
 
 ENGINE = WhittedRenderEngine.bl_idname
 
@@ -93,13 +93,25 @@ class WHITTED_PT_material(WhittedPanel, bpy.types.Panel):
         layout = self.layout
         layout.use_property_split = True
         material = context.material
+        settings = material.whitted
         principled = find_node(material, "BSDF_PRINCIPLED")
+        if principled is not None:
+            layout.prop(settings, "use_whitted")
+        if principled is not None and not settings.use_whitted:
+            layout.label(text="From the Principled BSDF (base colour, metallic,", icon="INFO")
+            layout.label(text="roughness, IOR, transmission)")
+            return
         if principled is not None:
             layout.prop(principled.inputs["Base Color"], "default_value", text="Diffuse")
         else:
             layout.prop(material, "diffuse_color", text="Diffuse")
-        layout.prop(material.whitted, "specular")
-        layout.prop(material.whitted, "shininess")
+        layout.template_ID(settings, "image", open="image.open")
+        for name in ("specular", "shininess", "reflectivity", "transparency"):
+            layout.prop(settings, name)
+        column = layout.column(align=True)
+        column.active = settings.transparency > 0.0
+        column.prop(settings, "outer_ior")
+        column.prop(settings, "inner_ior")
 
 
 class WHITTED_PT_light(WhittedPanel, bpy.types.Panel):

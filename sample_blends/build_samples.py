@@ -25,6 +25,7 @@ def make_material(name, base_colour, specular=(0.5, 0.5, 0.5), shininess=25.0):
     principled = next(n for n in material.node_tree.nodes if n.type == "BSDF_PRINCIPLED")
     principled.inputs["Base Color"].default_value = (*base_colour, 1.0)
     material.diffuse_color = (*base_colour, 1.0)
+    material.whitted.use_whitted = True  # the report's Phong values, not the Principled mapping
     material.whitted.specular = specular
     material.whitted.shininess = shininess
     return material

@@ -179,3 +179,68 @@ def test_bad_blender_input_is_reported_clearly(empty_scene, monkeypatch):
         bpy.ops.render.render()
     bpy.data.objects.remove(bpy.data.objects["Flat"])
     bpy.ops.render.render()  # Blender stays usable
+
+
+def material_of(bpy, monkeypatch):
+    scene, _, _ = exported(bpy, monkeypatch)
+    return scene.shapes[0].material
+
+
+def principled(material):
+    return next(n for n in material.node_tree.nodes if n.type == "BSDF_PRINCIPLED")
+
+
+def test_untouched_materials_follow_their_principled_bsdf(empty_scene, monkeypatch):
+    bpy = sys.modules["bpy"]
+    obj = add_primitive(bpy, "SPHERE")
+    material = bpy.data.materials.new("Chrome")
+    if bpy.app.version < (5, 0, 0):  # 5.0 always uses nodes and deprecates the flag
+        material.use_nodes = True
+    obj.data.materials.append(material)
+    bsdf = principled(material)
+    bsdf.inputs["Base Color"].default_value = (0.9, 0.6, 0.2, 1.0)
+    bsdf.inputs["Metallic"].default_value = 1.0
+    bsdf.inputs["Roughness"].default_value = 0.0
+    chrome = material_of(bpy, monkeypatch)
+    assert chrome.reflectivity == pytest.approx(1.0) and chrome.diffuse == pytest.approx((0, 0, 0))
+    assert chrome.specular == pytest.approx((0.9, 0.6, 0.2), abs=1e-6)
+    bsdf.inputs["Metallic"].default_value = 0.0
+    bsdf.inputs["Roughness"].default_value = 0.5
+    bsdf.inputs["IOR"].default_value = 1.33
+    transmission = "Transmission Weight" if bpy.app.version >= (4, 0, 0) else "Transmission"
+    bsdf.inputs[transmission].default_value = 1.0
+    water = material_of(bpy, monkeypatch)
+    assert water.transparency == pytest.approx(1.0) and water.inner_ior == pytest.approx(1.33)
+    assert water.shininess == pytest.approx(2 / 0.5**4 - 2)
+    material.whitted.use_whitted = True
+    material.whitted.reflectivity = 0.25
+    material.whitted.inner_ior = 1.7
+    own = material_of(bpy, monkeypatch)
+    assert own.reflectivity == 0.25 and own.inner_ior == pytest.approx(1.7)
+    assert own.diffuse == pytest.approx((0.9, 0.6, 0.2), abs=1e-6)
+
+
+def test_an_image_texture_on_the_base_colour_replaces_the_diffuse(empty_scene, monkeypatch):
+    bpy = sys.modules["bpy"]
+    obj = add_primitive(bpy, "SPHERE")
+    material = bpy.data.materials.new("Checker")
+    if bpy.app.version < (5, 0, 0):  # 5.0 always uses nodes and deprecates the flag
+        material.use_nodes = True
+    obj.data.materials.append(material)
+    image = bpy.data.images.new("Ramp", 4, 2)
+    pixels = np.zeros((2, 4, 4), np.float32)
+    pixels[0, :, 0] = 1.0  # Blender's bottom row red
+    pixels[1, :, 2] = 1.0  # its top row blue
+    pixels[..., 3] = 1.0
+    image.pixels.foreach_set(pixels.ravel())
+    node = material.node_tree.nodes.new("ShaderNodeTexImage")
+    node.image = image
+    material.node_tree.links.new(node.outputs["Color"], principled(material).inputs["Base Color"])
+    texture = material_of(bpy, monkeypatch).texture
+    assert texture is not None and texture.pixels.shape == (2, 4, 3)
+    np.testing.assert_allclose(texture.pixels[0, 0], (0, 0, 1))  # core: top row first
+    np.testing.assert_allclose(texture.pixels[1, 0], (1, 0, 0))
+    image.filepath = "/nonexistent/missing.png"
+    image.source = "FILE"
+    with pytest.raises(RuntimeError, match=r"material 'Checker'.*image 'Ramp'.*missing"):
+        bpy.ops.render.render()
