@@ -159,13 +159,19 @@ def render_settings(scene) -> core.RenderSettings:
                 "set Output Properties > Format > Resolution to at least 1",
             )
     threads = render.threads if render.threads_mode == "FIXED" else 0
+    settings = scene.whitted
     return core.RenderSettings(
         width=width,
         height=height,
-        tile_size=scene.whitted.tile_size,
+        tile_size=settings.tile_size,
         threads=threads,
         region=_border_region(render, width, height),
-        shadow_samples=scene.whitted.shadow_samples,
+        max_depth=settings.max_depth,
+        pixel_samples=settings.pixel_samples,
+        pixel_sampling=settings.pixel_sampling.lower(),
+        shadow_samples=settings.shadow_samples,
+        shadow_sampling=settings.shadow_sampling.lower(),
+        seed=settings.seed,
     )
 
 
@@ -212,13 +218,40 @@ def export_camera(scene, depsgraph, settings: core.RenderSettings) -> core.Camer
     )
     fovy = math.degrees(2.0 * math.atan(1.0 / projection[1][1]))
     rotation = camera.matrix_world.to_3x3().normalized()
+    eye, view = camera.matrix_world.translation, -rotation.col[2]
+    aperture, focus = _depth_of_field(scene, camera, eye, view)
     return core.Camera(
-        eye=tuple(camera.matrix_world.translation),
-        view=tuple(-rotation.col[2]),
+        eye=tuple(eye),
+        view=tuple(view),
         up=tuple(rotation.col[1]),
         fovy=fovy,
         name=camera.name,
+        aperture_radius=aperture,
+        focal_distance=focus,
+        # The off-axis terms of Blender's projection: the lens shift, in half-widths/heights
+        shift=(float(projection[0][2]), float(projection[1][2])),
     )
+
+
+def _depth_of_field(scene, camera, eye, view) -> tuple[float, float]:
+    """(aperture radius, focus distance) from Blender's own camera depth of field, as
+    Cycles reads it: radius = focal length / (2 f-stop), in scene units; the focus object's
+    distance along the view, else the focus distance. A pinhole when depth of field is off."""
+    dof = camera.data.dof
+    if not dof.use_dof:
+        return 0.0, 10.0
+    focus = dof.focus_distance
+    if dof.focus_object is not None:
+        focus = float((dof.focus_object.matrix_world.translation - eye).dot(view))
+    if focus <= 0.0:
+        raise core.SceneError(
+            f"camera '{camera.name}'",
+            "depth of field focus",
+            f"is {focus:.4g} in front of the camera; put the focus object in front of it or "
+            "set a positive Focus Distance",
+        )
+    radius = camera.data.lens * 1e-3 / (2.0 * dof.aperture_fstop)
+    return radius / scene.unit_settings.scale_length, focus
 
 
 def world_colour(world) -> tuple[float, float, float]:

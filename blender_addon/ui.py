@@ -53,8 +53,16 @@ class WHITTED_PT_render(WhittedPanel, bpy.types.Panel):
 
     def draw(self, context):
         self.layout.use_property_split = True
-        self.layout.prop(context.scene.whitted, "shadow_samples")
-        self.layout.prop(context.scene.whitted, "tile_size")
+        settings = context.scene.whitted
+        for name in ("max_depth", "pixel_samples", "pixel_sampling", "shadow_samples"):
+            self.layout.prop(settings, name)
+        for name in ("shadow_sampling", "seed", "tile_size"):
+            self.layout.prop(settings, name)
+        render = context.scene.render
+        self.layout.prop(render, "threads_mode")
+        row = self.layout.row()
+        row.enabled = render.threads_mode == "FIXED"
+        row.prop(render, "threads")
 
 
 class WHITTED_PT_object_shape(WhittedPanel, bpy.types.Panel):

@@ -287,4 +287,7 @@ def _pack_camera(scene: Scene, settings: RenderSettings) -> np.ndarray:
     up = np.cross(right, forward)
     half_height = math.tan(math.radians(cam.fovy) / 2.0)
     half_width = half_height * settings.width / settings.height
-    return np.array([cam.eye, forward, right * half_width, up * half_height], float)
+    # The ray through the image centre: shifted in the image plane, still one unit along
+    # the view direction, so the plane in focus stays perpendicular to the view
+    centre = forward + right * half_width * cam.shift[0] + up * half_height * cam.shift[1]
+    return np.array([cam.eye, centre, right * half_width, up * half_height], float)

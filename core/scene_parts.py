@@ -27,6 +27,9 @@ class Camera:
     fovy            -- vertical field of view in degrees, strictly between 0 and 180
     aperture_radius -- radius of the lens; 0 is a pinhole (everything sharp)
     focal_distance  -- distance along `view` of the plane that is in focus, > 0
+    shift           -- (x, y) offset of the image on the image plane, in half-widths and
+                       half-heights of the image (a view-camera lens shift, as Blender's
+                       projection matrix gives it): verticals stay vertical
     """
 
     eye: Vec3 = (0.0, 0.0, 0.0)
@@ -36,6 +39,7 @@ class Camera:
     name: str = "Camera"
     aperture_radius: float = 0.0
     focal_distance: float = 10.0
+    shift: tuple[float, float] = (0.0, 0.0)
 
     def validate(self) -> None:
         owner = f"camera '{self.name}'"
@@ -50,6 +54,10 @@ class Camera:
             raise SceneError(owner, "up", f"{self.up} is parallel to view {self.view}")
         check_number(owner, "aperture_radius", self.aperture_radius, low=0.0)
         check_number(owner, "focal_distance", self.focal_distance, low=0.0, low_open=True)
+        if len(self.shift) != 2:
+            raise SceneError(owner, "shift", f"got {self.shift!r}; use two numbers (x, y)")
+        for value in self.shift:
+            check_number(owner, "shift", value)
 
 
 def _check_attenuation(owner: str, attenuation) -> None:

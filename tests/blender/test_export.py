@@ -244,3 +244,34 @@ def test_an_image_texture_on_the_base_colour_replaces_the_diffuse(empty_scene, m
     image.source = "FILE"
     with pytest.raises(RuntimeError, match=r"material 'Checker'.*image 'Ramp'.*missing"):
         bpy.ops.render.render()
+
+
+def test_camera_shift_and_depth_of_field_come_from_blenders_camera(empty_scene, monkeypatch):
+    bpy = sys.modules["bpy"]
+    scene = empty_scene
+    scene.render.resolution_x, scene.render.resolution_y = 40, 30
+    camera = scene.camera
+    camera.data.shift_x, camera.data.shift_y = 0.2, -0.1
+    camera.data.dof.use_dof = True
+    camera.data.dof.aperture_fstop = 2.0
+    camera.data.lens = 50.0
+    add_primitive(bpy, "CUBE", location=(0, 0, 0))
+    camera.data.dof.focus_object = bpy.context.active_object
+    exported_scene, settings, _ = exported(bpy, monkeypatch)
+    cam = exported_scene.camera
+    assert cam.aperture_radius == pytest.approx(0.05 / 4.0)
+    assert cam.focal_distance == pytest.approx(10.0)
+    # The centre of Blender's own camera frame, seen from the camera
+    frame = [np.array(corner) for corner in camera.data.view_frame(scene=scene)]
+    centre = sum(frame) / 4.0
+    half_width = abs(frame[0][0] - frame[2][0]) / 2.0
+    half_height = abs(frame[0][1] - frame[2][1]) / 2.0
+    expected = (centre[0] / half_width, centre[1] / half_height)
+    assert cam.shift == pytest.approx(expected, abs=1e-6)
+    scene.whitted.max_depth, scene.whitted.pixel_samples = 9, 3
+    scene.whitted.pixel_sampling, scene.whitted.seed = "JITTERED", 7
+    _, settings, _ = exported(bpy, monkeypatch)
+    assert (settings.max_depth, settings.pixel_samples, settings.pixel_sampling) == (
+        9, 3, "jittered",
+    )  # fmt: skip
+    assert settings.seed == 7

@@ -122,3 +122,22 @@ def test_a_texture_replaces_the_diffuse_colour(tmp_path):
     centre = attempt(scene, RenderSettings(5, 5)).image[2, 2, :3]
     expected = [1.0, ((128 / 255 + 0.055) / 1.055) ** 2.4, 0.0]
     np.testing.assert_allclose(centre, expected, atol=0.01)
+
+
+def test_lens_shift_moves_the_image_not_the_perspective():
+    """A shift of (0.5, -0.25) half-widths/heights is the unshifted picture of a wider view
+    cropped off-centre: the shifted 32x24 image is the block of an unshifted 64x48 image of
+    twice the field that starts 24 pixels right and 15 down (verticals stay vertical)."""
+    from core import Camera, Material, PointLight, RenderSettings, Scene, Sphere, render
+
+    shapes = [Sphere("S", Material((0.8, 0.5, 0.2)), np.diag([1.0, 1.0, 1.0, 1.0]))]
+    light = [PointLight((3, 4, 5), (20, 20, 20))]
+
+    def picture(fovy_tan, shift, size):
+        fovy = 2 * np.degrees(np.arctan(fovy_tan))
+        camera = Camera((0, 0, 6.0), (0, 0, -1.0), (0, 1.0, 0), fovy, shift=shift)
+        return render(Scene(camera, shapes, light), RenderSettings(*size)).image
+
+    shifted = picture(0.2, (0.5, -0.25), (32, 24))
+    wide = picture(0.4, (0.0, 0.0), (64, 48))
+    np.testing.assert_allclose(shifted, wide[15:39, 24:56], atol=1e-5)
