@@ -38,9 +38,9 @@ def _make_core_importable() -> None:
 
 _make_core_importable()
 
-from . import engine, properties, ui  # noqa: E402  (needs core on sys.path first)
+from . import engine, operators, properties, ui  # noqa: E402  (needs core on sys.path first)
 
-_modules = (properties, engine, ui)
+_modules = (properties, engine, operators, ui)
 
 
 def register():

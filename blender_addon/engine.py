@@ -21,7 +21,11 @@ class WhittedRenderEngine(bpy.types.RenderEngine):
             scene, settings, warnings = export.convert(depsgraph)
             for warning in warnings:
                 self.report({"WARNING"}, warning)
-            self.update_stats("", "Whitted | Preparing kernels")
+            self.update_stats(
+                "",
+                "Whitted | Loading kernels (the first render after an install compiles "
+                "them, a minute or two)",
+            )
             layer = depsgraph.view_layer.name
 
             region = settings.pixel_region()
@@ -38,11 +42,15 @@ class WhittedRenderEngine(bpy.types.RenderEngine):
         for warning in output.warnings:
             self.report({"WARNING"}, f"Whitted: {warning}")
         stats = output.stats
+        _, _, width, height = settings.pixel_region()
+        done = stats.tiles_done / max(stats.tiles_total, 1)
+        camera_rays = width * height * settings.pixel_samples**2 * done
+        rate = camera_rays / stats.render_s / 1e6 if stats.render_s > 0 else 0.0
         summary = (
             f"Whitted | {settings.width}x{settings.height} | kernels {stats.kernel_source} "
             f"{stats.kernel_s:.2f} s | render {stats.render_s:.2f} s | "
-            f"{stats.tiles_done}/{stats.tiles_total} tiles | {stats.threads} threads"
-            + (" | cancelled" if output.cancelled else "")
+            f"{rate:.2f} M camera rays/s | {stats.tiles_done}/{stats.tiles_total} tiles | "
+            f"{stats.threads} threads" + (" | cancelled" if output.cancelled else "")
         )
         self.update_stats("", summary)
         print(summary)

@@ -275,3 +275,11 @@ def test_camera_shift_and_depth_of_field_come_from_blenders_camera(empty_scene, 
         9, 3, "jittered",
     )  # fmt: skip
     assert settings.seed == 7
+
+
+@pytest.mark.parametrize("kind", ["SPHERE", "CUBE", "CYLINDER", "CONE", "TORUS"])
+def test_add_menu_creates_a_tagged_stand_in(empty_scene, kind):
+    bpy = sys.modules["bpy"]
+    assert bpy.ops.whitted.add_shape(shape=kind) == {"FINISHED"}
+    obj = bpy.context.active_object
+    assert obj.type == "MESH" and obj.whitted.shape == kind and len(obj.data.polygons) > 0
