@@ -118,6 +118,8 @@ def convert(depsgraph) -> tuple[core.Scene, core.RenderSettings, list[str]]:
             exporter.add_instance(obj, matrix)
         elif obj.type == "LIGHT" and obj.data.type == "POINT":
             lights.append(_point_light(obj, instance.matrix_world))
+        elif obj.type == "LIGHT" and obj.data.type == "SUN":
+            lights.append(_sun_light(obj, instance.matrix_world))
         elif obj.type == "LIGHT" and obj.data.type == "AREA":
             light = _area_light(obj, instance.matrix_world)
             if light is None:
@@ -136,7 +138,7 @@ def convert(depsgraph) -> tuple[core.Scene, core.RenderSettings, list[str]]:
         names = ", ".join(f"'{name}'" for name in sorted(set(skipped))[:5])
         warnings.append(
             f"Whitted skipped {len(skipped)} light(s) it cannot render ({names}): it renders "
-            "point lights and square or rectangular area lights"
+            "point and sun lights and square or rectangular area lights"
         )
     camera = export_camera(scene, depsgraph, settings)
     result = core.Scene(
@@ -271,6 +273,18 @@ def _point_light(obj, matrix_world) -> core.PointLight:
         position=tuple(matrix_world.translation),
         intensity=intensity,
         attenuation=tuple(light.whitted.attenuation),
+        name=obj.name,
+    )
+
+
+def _sun_light(obj, matrix_world) -> core.DirectionalLight:
+    """A sun: light along the object's -Z axis, irradiance colour x strength / pi (a white
+    diffuse surface facing it is then as bright as Cycles makes it)."""
+    light = obj.data
+    axes = np.array(matrix_world.to_3x3(), float)
+    return core.DirectionalLight(
+        direction=tuple(-axes[:, 2]),
+        intensity=tuple(float(c) * light.energy / math.pi for c in light.color),
         name=obj.name,
     )
 

@@ -130,8 +130,11 @@ class WHITTED_PT_light(WhittedPanel, bpy.types.Panel):
     def draw(self, context):
         layout = self.layout
         layout.use_property_split = True
+        if context.light.type == "SUN":
+            layout.label(text="Parallel light along the object's -Z axis", icon="INFO")
+            return
         if context.light.type not in {"POINT", "AREA"}:
-            layout.label(text="Whitted renders point and area lights", icon="ERROR")
+            layout.label(text="Whitted renders point, sun and area lights", icon="ERROR")
             return
         if context.light.type == "AREA" and context.light.shape not in {"SQUARE", "RECTANGLE"}:
             layout.label(text="Area lights must be square or rectangular", icon="ERROR")

@@ -43,6 +43,7 @@ from core.scene import (
     Cone,
     Csg,
     Cylinder,
+    DirectionalLight,
     Mesh,
     PointLight,
     RenderSettings,
@@ -149,6 +150,8 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
 
     point_lights = [lt for lt in scene.lights if isinstance(lt, PointLight)]
     area_lights = [lt for lt in scene.lights if isinstance(lt, AreaLight)]
+    suns = [lt for lt in scene.lights if isinstance(lt, DirectionalLight)]
+    toward = [-np.asarray(lt.direction, float) / np.linalg.norm(lt.direction) for lt in suns]
 
     def rows(values, width=3):
         return np.array(values, float).reshape(-1, width)
@@ -213,6 +216,8 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
         area_edge_v=rows([lt.edge_v for lt in area_lights]),
         area_intensity=rows([lt.intensity for lt in area_lights]),
         area_attenuation=rows([lt.attenuation for lt in area_lights]),
+        sun_toward=rows(toward),
+        sun_intensity=rows([lt.intensity for lt in suns]),
     )
     packed = PackedScene(frame, geometry, surfaces, materials, lights)
     warnings = [

@@ -15,7 +15,15 @@ import numpy as np
 
 from core.checks import check_choice, check_count, check_vec3, valid_affine
 from core.errors import SceneError
-from core.scene_parts import AreaLight, Camera, Material, PointLight, Texture, Vec3
+from core.scene_parts import (
+    AreaLight,
+    Camera,
+    DirectionalLight,
+    Material,
+    PointLight,
+    Texture,
+    Vec3,
+)
 from core.shapes import Box, Cone, Csg, Cylinder, Mesh, Shape, Sphere, Torus, TriangleMesh
 
 __all__ = [
@@ -25,6 +33,7 @@ __all__ = [
     "Cone",
     "Csg",
     "Cylinder",
+    "DirectionalLight",
     "Material",
     "Mesh",
     "PointLight",
@@ -44,7 +53,7 @@ class Scene:
 
     camera      -- the `Camera`
     shapes      -- the `Shape`s (Sphere, Box, Cylinder, Cone, Torus, Mesh, Csg)
-    lights      -- `PointLight`s and `AreaLight`s
+    lights      -- `PointLight`s, `AreaLight`s and `DirectionalLight`s
     ambient     -- linear RGB ambient light, added as kd * ambient
     background  -- linear RGB colour of rays that hit nothing
     """
@@ -58,7 +67,7 @@ class Scene:
     def validate(self) -> None:
         self.camera.validate()
         for i, light in enumerate(self.lights):
-            if not isinstance(light, (PointLight, AreaLight)):
+            if not isinstance(light, (PointLight, AreaLight, DirectionalLight)):
                 raise SceneError("scene", f"lights[{i}]", f"got {light!r}; need a light")
             light.validate()
         for i, shape in enumerate(self.shapes):

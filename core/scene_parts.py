@@ -87,6 +87,24 @@ class PointLight:
 
 
 @dataclass
+class DirectionalLight:
+    """Parallel light from infinitely far away (the sun): no falloff, sharp shadows.
+
+    direction  -- the direction the light travels, from the light onto the scene; non-zero
+    intensity  -- linear RGB irradiance on a surface facing the light, each channel >= 0
+    """
+
+    direction: Vec3 = (0.0, 0.0, -1.0)
+    intensity: Vec3 = (1.0, 1.0, 1.0)
+    name: str = "Sun"
+
+    def validate(self) -> None:
+        owner = f"directional light '{self.name}'"
+        check_vec3(owner, "direction", self.direction, nonzero=True)
+        check_vec3(owner, "intensity", self.intensity, nonnegative=True)
+
+
+@dataclass
 class AreaLight:
     """A rectangular light: the parallelogram centre + s edge_u + t edge_v, s, t in [-1/2, 1/2].
 

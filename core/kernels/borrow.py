@@ -117,6 +117,8 @@ def _borrow_lights(li):
         borrowed(li.area_edge_v),
         borrowed(li.area_intensity),
         borrowed(li.area_attenuation),
+        borrowed(li.sun_toward),
+        borrowed(li.sun_intensity),
     )
 
 

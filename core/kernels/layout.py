@@ -83,6 +83,8 @@ class Lights(NamedTuple):
     area_edge_v: np.ndarray  # float64 (a, 3)
     area_intensity: np.ndarray  # float64 (a, 3)
     area_attenuation: np.ndarray  # float64 (a, 3)
+    sun_toward: np.ndarray  # float64 (s, 3): unit vector towards a directional light
+    sun_intensity: np.ndarray  # float64 (s, 3)
 
 
 class PackedScene(NamedTuple):

@@ -27,15 +27,25 @@ def light_from(
     distance = math.sqrt(dot(to_light, to_light))
     if distance == 0.0:
         return 0.0, 0.0, 0.0
+    c0, c1, c2 = attenuation
+    falloff = 1.0 / (c0 + c1 * distance + c2 * distance * distance)
     light_dir = scale(to_light, 1.0 / distance)
+    return _phong_lit(
+        geo, stacks, light_dir, distance, scale(intensity, falloff), origin, n, to_viewer,
+        kd, ks, shininess,
+    )  # fmt: skip
+
+
+@inlined_kernel
+def _phong_lit(geo, stacks, light_dir, distance, radiance, origin, n, to_viewer, kd, ks, shininess):
+    """The report's Phong terms for light arriving along unit light_dir with `radiance`,
+    through whatever lies within `distance` (shadow ray)."""
     n_dot_l = dot(n, light_dir)
     if n_dot_l <= 0.0:
         return 0.0, 0.0, 0.0
     visible = shadow_transmittance(geo, origin, light_dir, distance, stacks)
     if visible == 0.0:
         return 0.0, 0.0, 0.0
-    c0, c1, c2 = attenuation
-    radiance = scale(intensity, visible / (c0 + c1 * distance + c2 * distance * distance))
     reflectance = scale(kd, n_dot_l)
     if ks[0] > 0.0 or ks[1] > 0.0 or ks[2] > 0.0:
         # Unit length already: n and light_dir are unit vectors
@@ -43,7 +53,7 @@ def light_from(
         r_dot_v = dot(reflected, to_viewer)
         if r_dot_v > 0.0:
             reflectance = add(reflectance, scale(ks, r_dot_v**shininess))
-    return mul(reflectance, radiance)
+    return mul(reflectance, scale(radiance, visible))
 
 
 @kernel
@@ -68,6 +78,14 @@ def local_colour(frame, lights, geo, stacks, origin, n, d, kd, ks, shininess, ke
     select the area lights' random numbers."""
     to_viewer = scale(d, -1.0)
     colour = mul(kd, as_tuple(frame.ambient))
+    for light in range(lights.sun_toward.shape[0]):
+        colour = add(
+            colour,
+            _phong_lit(
+                geo, stacks, row(lights.sun_toward, light), math.inf,
+                row(lights.sun_intensity, light), origin, n, to_viewer, kd, ks, shininess,
+            ),
+        )  # fmt: skip
     for light in range(lights.point_position.shape[0]):
         colour = add(
             colour,

@@ -283,3 +283,15 @@ def test_add_menu_creates_a_tagged_stand_in(empty_scene, kind):
     assert bpy.ops.whitted.add_shape(shape=kind) == {"FINISHED"}
     obj = bpy.context.active_object
     assert obj.type == "MESH" and obj.whitted.shape == kind and len(obj.data.polygons) > 0
+
+
+def test_a_sun_is_parallel_light_along_its_minus_z(empty_scene, monkeypatch):
+    bpy = sys.modules["bpy"]
+    bpy.ops.object.light_add(type="SUN", rotation=(np.pi / 2, 0, 0))
+    sun = bpy.context.active_object.data
+    sun.energy, sun.color = 3.0, (1.0, 0.5, 0.25)
+    scene, _, warnings = exported(bpy, monkeypatch)
+    (light,) = scene.lights
+    assert isinstance(light, core.DirectionalLight) and warnings == []
+    np.testing.assert_allclose(light.direction, (0, 1.0, 0), atol=1e-6)
+    np.testing.assert_allclose(light.intensity, np.array([1.0, 0.5, 0.25]) * 3.0 / np.pi)

@@ -6,7 +6,18 @@ import math
 import numpy as np
 import pytest
 
-from core import AreaLight, Box, Camera, Material, PointLight, RenderSettings, Scene, Sphere, render
+from core import (
+    AreaLight,
+    Box,
+    Camera,
+    DirectionalLight,
+    Material,
+    PointLight,
+    RenderSettings,
+    Scene,
+    Sphere,
+    render,
+)
 from core.kernels.integrator import fresnel_dielectric, refract
 from core.kernels.trace import spawn_point
 from tests.core.probe import light_through, packed_shapes, surface
@@ -43,6 +54,35 @@ def test_plane_under_a_point_light_matches_the_formula():
             0.1 + np.array(light.intensity) * (to_light[2] / r) / (c0 + c1 * r + c2 * r * r)
         )
         np.testing.assert_allclose(image[py, px, :3], expected, rtol=1e-5)
+
+
+def test_plane_under_a_directional_light_is_lit_by_the_cosine_and_shadowed():
+    sun = DirectionalLight((1.0, -0.5, -2.0), (2.0, 1.5, 1.0))
+    post = Sphere("Post", Material((0.9, 0.9, 0.9)), translate_scale((0.0, 0.0, 1.2), 1.0))
+    scene = Scene(look_down(), [ground(), post], [sun], ambient=(0.1, 0.1, 0.1))
+    width, height = 40, 30
+    image = render(scene, RenderSettings(width, height)).image
+    toward = -np.array(sun.direction) / np.linalg.norm(sun.direction)
+    lit = np.array(GROUND_KD) * (0.1 + np.array(sun.intensity) * toward[2])
+    dark = np.array(GROUND_KD) * 0.1
+    checked = {"lit": 0, "shadow": 0}
+    for px in range(width):
+        for py in range(height):
+            o, d = camera_ray(scene.camera.eye, scene.camera.view, scene.camera.up, 60.0,
+                              width, height, px, py)  # fmt: skip
+            p = o + d * (-o[2] / d[2])
+            # The sun's ray from p passes the post (radius 1 around (0, 0, 1.2)) or not
+            centre = np.array([0.0, 0.0, 1.2]) - p
+            along = centre @ toward
+            miss = np.linalg.norm(centre - along * toward)
+            seen = np.array([0.0, 0.0, 1.2]) - o
+            view_miss = np.linalg.norm(seen - (seen @ d) * d)
+            if abs(miss - 1.0) < 0.02 or view_miss < 1.02:
+                continue  # the shadow's rim, or the post itself in the way of the view
+            expected, kind = (dark, "shadow") if miss < 1.0 and along > 0 else (lit, "lit")
+            np.testing.assert_allclose(image[py, px, :3], expected, rtol=1e-5)
+            checked[kind] += 1
+    assert checked["lit"] > 500 and checked["shadow"] > 10
 
 
 def area_light_integral(light, point, samples=96):
