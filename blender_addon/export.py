@@ -21,12 +21,15 @@ import core
 
 from .csg_export import boolean_modifiers, solid
 from .material_export import convert_material, find_node
-from .mesh_export import triangle_mesh
+from .mesh_export import MeshCache
 
 _WATTS_TO_INTENSITY = 1.0 / (4.0 * math.pi**2)
 
 
-GEOMETRY_TYPES = {"MESH", "CURVE", "SURFACE", "META", "FONT"}
+# Curves, text, surfaces and metaballs are listed too as the mesh instances they evaluate to
+GEOMETRY_TYPES = {"MESH"}
+# Meshes converted for earlier renders in this Blender session (frames of an animation)
+MESH_CACHE = MeshCache()
 ANALYTIC = {
     "SPHERE": core.Sphere,
     "CUBE": core.Box,
@@ -75,26 +78,25 @@ class Exporter:
                               minor_radius=settings.minor_radius)  # fmt: skip
         if settings.shape in ANALYTIC:
             return ANALYTIC[settings.shape](obj.name, material)
-        key = ("original", obj.data.as_pointer())
+        mesh = obj.original.data
+        key = ("original", mesh.name_full)
         if key not in self.meshes:
-            self.meshes[key] = triangle_mesh(obj.original.data, obj.data.name)
+            self.meshes[key] = MESH_CACHE.get(key, mesh, mesh.name)
         return core.Mesh(obj.name, material, mesh=self.meshes[key])
 
     def _instance_mesh(self, obj):
         """The evaluated mesh of an instance, converted once per distinct mesh datablock
-        (linked duplicates and instancers share it); None when it has no faces."""
-        if obj.type == "MESH":
-            key = ("evaluated", obj.data.as_pointer())
-            if key not in self.meshes:
-                self.meshes[key] = triangle_mesh(obj.data, obj.data.name)
-        else:
-            key = ("object", obj.name)
-            if key not in self.meshes:
-                mesh = obj.to_mesh()
-                self.meshes[key] = None if mesh is None else triangle_mesh(mesh, obj.name)
-                obj.to_mesh_clear()
+        (linked duplicates and instancers share it); None when it has no faces. Curves, text,
+        surfaces and metaballs arrive here as the mesh instances Blender evaluates them to."""
+        # Modifiers, or another object type, make a mesh of the object's own; otherwise
+        # objects share their mesh data
+        source = obj.original
+        owner = source.name_full if len(obj.modifiers) or source.type != "MESH" else ""
+        key = ("evaluated", owner, obj.data.original.name_full)
+        if key not in self.meshes:
+            self.meshes[key] = MESH_CACHE.get(key, obj.data, obj.data.name)
         mesh = self.meshes[key]
-        return mesh if mesh is not None and len(mesh.triangles) else None
+        return mesh if len(mesh.triangles) else None
 
     def material(self, obj) -> core.Material:
         blender_material = obj.active_material
@@ -133,6 +135,7 @@ def convert(depsgraph) -> tuple[core.Scene, core.RenderSettings, list[str]]:
                 f"object '{obj.name}' is an Empty tagged {obj.whitted.shape.title()}: only "
                 "mesh objects can carry a Whitted shape; it is not rendered"
             )
+    MESH_CACHE.keep_only(exporter.meshes.keys())
     warnings = list(exporter.warnings)
     if skipped:
         names = ", ".join(f"'{name}'" for name in sorted(set(skipped))[:5])

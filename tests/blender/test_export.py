@@ -295,3 +295,37 @@ def test_a_sun_is_parallel_light_along_its_minus_z(empty_scene, monkeypatch):
     assert isinstance(light, core.DirectionalLight) and warnings == []
     np.testing.assert_allclose(light.direction, (0, 1.0, 0), atol=1e-6)
     np.testing.assert_allclose(light.intensity, np.array([1.0, 0.5, 0.25]) * 3.0 / np.pi)
+
+
+def test_an_unchanged_mesh_is_not_exported_again_on_the_next_frame(empty_scene, monkeypatch):
+    bpy = sys.modules["bpy"]
+    obj = add_primitive(bpy, "SPHERE")
+    mesh_export = sys.modules["whitted.mesh_export"]
+    calls = []
+    original = mesh_export.triangle_mesh
+
+    def counting(mesh, name):
+        calls.append(name)
+        return original(mesh, name)
+
+    monkeypatch.setattr(mesh_export, "triangle_mesh", counting)
+    first, _, _ = exported(bpy, monkeypatch)
+    empty_scene.frame_set(2)
+    second, _, _ = exported(bpy, monkeypatch)
+    assert len(calls) <= 1 and second.shapes[0].mesh is first.shapes[0].mesh
+    obj.data.vertices[0].co.z += 0.1
+    third, _, _ = exported(bpy, monkeypatch)
+    assert third.shapes[0].mesh is not first.shapes[0].mesh
+    assert third.shapes[0].mesh.vertices[0, 2] == pytest.approx(
+        first.shapes[0].mesh.vertices[0, 2] + 0.1
+    )
+
+
+def test_text_and_curves_render_through_their_evaluated_meshes(empty_scene, monkeypatch):
+    bpy = sys.modules["bpy"]
+    bpy.ops.object.text_add()
+    bpy.ops.curve.primitive_bezier_circle_add(location=(0, 0, 2))
+    bpy.context.active_object.data.bevel_depth = 0.1
+    scene, _, warnings = exported(bpy, monkeypatch)
+    assert warnings == [] and len(scene.shapes) == 2
+    assert all(isinstance(s, core.Mesh) and len(s.mesh.triangles) > 10 for s in scene.shapes)
