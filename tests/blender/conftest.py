@@ -29,10 +29,11 @@ def sample_scene(bpy_with_whitted):
 
 
 def clear_scene(bpy):
-    """Remove every object and mesh from the open file, keeping the add-on enabled (reading
-    factory settings would unregister it)."""
+    """Remove every object and its geometry from the open file, keeping the add-on enabled
+    (reading factory settings would unregister it)."""
     for obj in list(bpy.data.objects):
         bpy.data.objects.remove(obj)
-    for mesh in list(bpy.data.meshes):
-        bpy.data.meshes.remove(mesh)
+    for collection in (bpy.data.meshes, bpy.data.curves, bpy.data.metaballs):
+        for datablock in list(collection):
+            collection.remove(datablock)
     return bpy.context.scene
