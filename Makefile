@@ -16,7 +16,7 @@ export WHITTED_CACHE_DIR ?= $(CURDIR)/.cache/kernels
 export BLENDER_USER_SCRIPTS := $(CURDIR)/$(BUILD)/blender_scripts
 BLENDER_RUN := PYTHONPATH=$(CURDIR):$(CURDIR)/$(SITE) blender -b --python-use-system-env
 
-.PHONY: setup render test bench samples lint format clean
+.PHONY: setup render test bench samples addon lint format clean
 
 setup: $(VENV)/.installed $(BUILD)/blender.ok $(BLENDER_USER_SCRIPTS)/addons/whitted
 
@@ -51,6 +51,10 @@ render: setup
 	$(BLENDER_RUN) "$(SCENE)" --addons whitted -E WHITTED \
 	  -o "$(RENDERS)/$(basename $(notdir $(SCENE)))_####" -F PNG -f 1
 	@echo "Rendered: $(RENDERS)/$(basename $(notdir $(SCENE)))_0001.png"
+
+# The zip a Blender 4.2+ user installs (Preferences > Get Extensions > Install from Disk)
+addon: $(VENV)/.installed
+	$(VENV)/bin/python blender_addon/packaging/build_extension.py dist
 
 samples: setup
 	$(BLENDER_RUN) --factory-startup --addons whitted --python sample_blends/build_samples.py

@@ -20,15 +20,20 @@ bl_info = {
 
 
 def _make_core_importable() -> None:
-    """Find `core` and its packages when Blender loads us from a link into its add-ons folder.
-
-    The add-on folder is normally a symbolic link to `blender_addon/` in a Whitted checkout:
-    `core` sits next to it, and `make` puts numpy and numba in the checkout's `.venv`. Both
-    are appended to sys.path, after Blender's own modules, so Blender's bpy and numpy win.
+    """Find `core` and its packages: in the zip a user installed (`core` inside the add-on,
+    numba and Pillow as the extension's wheels), or from a link into Blender's add-ons
+    folder to `blender_addon/` in a Whitted checkout (`core` beside it, numpy and numba in
+    the checkout's `.venv`). Paths are appended to sys.path, after Blender's own modules, so
+    Blender's bpy and numpy win.
     """
-    checkout = Path(__file__).resolve().parent.parent
-    if importlib.util.find_spec("core") is None and (checkout / "core").is_dir():
-        sys.path.append(str(checkout))
+    here = Path(__file__).resolve().parent
+    checkout = here.parent
+    if importlib.util.find_spec("core") is None:
+        # An installed zip carries `core` inside the add-on; a checkout has it beside it
+        for folder in (here, checkout):
+            if (folder / "core").is_dir():
+                sys.path.append(str(folder))
+                break
     if importlib.util.find_spec("numba") is None:
         version = f"python{sys.version_info[0]}.{sys.version_info[1]}"
         site = checkout / ".venv" / "lib" / version / "site-packages"

@@ -1,0 +1,81 @@
+"""Build the zip a Blender user installs: a Blender 4.2+ extension (blender_manifest.toml,
+with numba, llvmlite and Pillow bundled as wheels; Blender brings numpy). Blender 3.4 to 4.1
+load the same modules as a legacy add-on (bl_info) from a checkout's link instead.
+
+    python blender_addon/packaging/build_extension.py OUT_DIR
+
+The zip holds the add-on's modules, the `core` renderer (found next to them at import),
+the wheels for Linux x86-64 and CPython 3.11 (Blender 4.2 to 5.0's Python), and a manifest
+naming them. Run by `make addon`.
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import zipfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+ADDON = ROOT / "blender_addon"
+# The versions the project pins (pyproject.toml), for Blender's Python 3.11 on Linux
+WHEELS = ("numba==0.68.1", "llvmlite==0.50.0", "Pillow==13.0.0")
+PLATFORM = ("manylinux2014_x86_64", "manylinux_2_17_x86_64", "manylinux_2_28_x86_64")
+
+MANIFEST = """schema_version = "1.0.0"
+id = "whitted"
+version = "{version}"
+name = "Whitted"
+tagline = "Exact recursive ray tracer: analytic shapes, CSG, Whitted shading"
+maintainer = "Whitted developers"
+type = "add-on"
+tags = ["Render"]
+blender_version_min = "4.2.0"
+license = ["SPDX:GPL-3.0-or-later"]
+platforms = ["linux-x64"]
+wheels = [
+{wheels}
+]
+
+[permissions]
+files = "Reads image textures from disk and keeps compiled kernels in a cache folder"
+"""
+
+
+def download_wheels(folder: Path) -> list[Path]:
+    folder.mkdir(parents=True, exist_ok=True)
+    platforms = [arg for p in PLATFORM for arg in ("--platform", p)]
+    subprocess.run(
+        [sys.executable, "-m", "pip", "download", "--quiet", "--no-deps", "--only-binary=:all:",
+         "--python-version", "3.11", *platforms, "--dest", str(folder), *WHEELS],
+        check=True,
+    )  # fmt: skip
+    return sorted(folder.glob("*.whl"))
+
+
+def build(out_dir: Path, with_wheels: bool = True) -> Path:
+    """The zip in out_dir; without wheels (for tests, offline) it relies on the numba and
+    Pillow Blender can already import."""
+    sys.path.insert(0, str(ROOT))
+    from core.version import VERSION
+
+    out_dir.mkdir(parents=True, exist_ok=True)
+    wheels = download_wheels(out_dir / "wheels") if with_wheels else []
+    listed = "\n".join(f'  "./wheels/{w.name}",' for w in wheels)
+    manifest = MANIFEST.format(version=VERSION, wheels=listed)
+    if not wheels:
+        manifest = manifest.replace("wheels = [\n\n]\n", "")
+    target = out_dir / f"whitted-{VERSION}.zip"
+    with zipfile.ZipFile(target, "w", zipfile.ZIP_DEFLATED) as archive:
+        archive.writestr("blender_manifest.toml", manifest)
+        for path in sorted(ADDON.glob("*.py")):
+            archive.write(path, path.name)
+        for path in sorted((ROOT / "core").rglob("*.py")):
+            archive.write(path, str(path.relative_to(ROOT)))
+        for wheel in wheels:
+            archive.write(wheel, f"wheels/{wheel.name}")
+    return target
+
+
+if __name__ == "__main__":
+    print(build(Path(sys.argv[1]) if len(sys.argv) > 1 else ROOT / "dist"))
