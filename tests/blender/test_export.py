@@ -329,3 +329,16 @@ def test_text_and_curves_render_through_their_evaluated_meshes(empty_scene, monk
     scene, _, warnings = exported(bpy, monkeypatch)
     assert warnings == [] and len(scene.shapes) == 2
     assert all(isinstance(s, core.Mesh) and len(s.mesh.triangles) > 10 for s in scene.shapes)
+
+
+def test_spot_and_disk_lights_are_skipped_with_their_names(empty_scene, monkeypatch):
+    bpy = sys.modules["bpy"]
+    bpy.ops.object.light_add(type="SPOT")
+    bpy.context.active_object.name = "Stage"
+    bpy.ops.object.light_add(type="AREA")
+    bpy.context.active_object.data.shape = "DISK"
+    bpy.context.active_object.name = "Round"
+    scene, _, warnings = exported(bpy, monkeypatch)
+    assert scene.lights == []
+    (warning,) = warnings
+    assert "'Round'" in warning and "'Stage'" in warning and "skipped 2 light" in warning
