@@ -61,10 +61,11 @@ class Exporter:
         elif obj.type == "MESH" and obj.whitted.shape != "MESH":
             shape = self.base_shape(obj)
         else:
-            mesh = self._instance_mesh(obj)
-            if mesh is None:
-                return
-            shape = core.Mesh(obj.name, self.material(obj), mesh=mesh)
+            for slot, part in self._instance_mesh(obj).items():
+                if len(part.triangles):
+                    material = self.material(obj, slot)
+                    self.shapes.append(core.Mesh(obj.name, material, matrix, mesh=part))
+            return
         shape.world_from_object = matrix
         self.shapes.append(shape)
 
@@ -82,12 +83,12 @@ class Exporter:
         key = ("original", mesh.name_full)
         if key not in self.meshes:
             self.meshes[key] = MESH_CACHE.get(key, mesh, mesh.name)
-        return core.Mesh(obj.name, material, mesh=self.meshes[key])
+        return core.Mesh(obj.name, material, mesh=self.meshes[key][0])
 
-    def _instance_mesh(self, obj):
-        """The evaluated mesh of an instance, converted once per distinct mesh datablock
-        (linked duplicates and instancers share it); None when it has no faces. Curves, text,
-        surfaces and metaballs arrive here as the mesh instances Blender evaluates them to."""
+    def _instance_mesh(self, obj) -> dict:
+        """The evaluated mesh of an instance by material slot, converted once per distinct
+        mesh datablock (linked duplicates and instancers share it). Curves, text, surfaces
+        and metaballs arrive here as the mesh instances Blender evaluates them to."""
         # Modifiers, or another object type, make a mesh of the object's own; otherwise
         # objects share their mesh data
         source = obj.original
@@ -95,11 +96,14 @@ class Exporter:
         key = ("evaluated", owner, obj.data.original.name_full)
         if key not in self.meshes:
             self.meshes[key] = MESH_CACHE.get(key, obj.data, obj.data.name)
-        mesh = self.meshes[key]
-        return mesh if len(mesh.triangles) else None
+        return self.meshes[key][1]
 
-    def material(self, obj) -> core.Material:
+    def material(self, obj, slot: int | None = None) -> core.Material:
+        """The object's material in `slot`, or its active one."""
         blender_material = obj.active_material
+        if slot is not None:
+            slots = obj.material_slots
+            blender_material = slots[slot].material if 0 <= slot < len(slots) else None
         key = blender_material.name if blender_material is not None else ""
         if key not in self.materials:
             self.materials[key] = convert_material(blender_material)

@@ -22,14 +22,15 @@ class MeshCache:
     def __init__(self):
         self._entries: dict = {}
 
-    def get(self, key, mesh, name: str) -> core.TriangleMesh:
+    def get(self, key, mesh, name: str):
+        """(whole `TriangleMesh`, its parts by material slot)."""
         if mesh.has_custom_normals:
-            return triangle_mesh(mesh, name)
+            return _converted(mesh, name)
         fingerprint = _fingerprint(mesh)
         cached = self._entries.get(key)
         if cached is not None and cached[0] == fingerprint:
             return cached[1]
-        converted = triangle_mesh(mesh, name)
+        converted = _converted(mesh, name)
         self._entries[key] = (fingerprint, converted)
         return converted
 
@@ -38,12 +39,18 @@ class MeshCache:
         self._entries = {k: v for k, v in self._entries.items() if k in keys}
 
 
+def _converted(mesh, name):
+    whole, material_index = convert_mesh(mesh, name)
+    return whole, by_material(whole, material_index)
+
+
 def _fingerprint(mesh) -> tuple:
     parts = []
     for collection, attribute, dtype, width in (
         (mesh.vertices, "co", np.float32, 3),
         (mesh.polygons, "use_smooth", bool, 1),
         (mesh.polygons, "loop_total", np.int32, 1),
+        (mesh.polygons, "material_index", np.int32, 1),
         (mesh.edges, "use_edge_sharp", bool, 1),
         (mesh.loops, "vertex_index", np.int32, 1),
     ):
@@ -59,7 +66,12 @@ def _fingerprint(mesh) -> tuple:
 
 
 def triangle_mesh(mesh, name: str) -> core.TriangleMesh:
-    """The triangles of a Blender mesh (object space)."""
+    """The triangles of a Blender mesh (object space), whatever their materials."""
+    return convert_mesh(mesh, name)[0]
+
+
+def convert_mesh(mesh, name: str):
+    """(the mesh's triangles as one `TriangleMesh`, each triangle's material slot)."""
     mesh.calc_loop_triangles()
     prepare_corner_normals(mesh)
     triangles_blender = mesh.loop_triangles
@@ -83,6 +95,8 @@ def triangle_mesh(mesh, name: str) -> core.TriangleMesh:
         uvs = np.empty(len(mesh.loops) * 2, np.float32)
         uv_layer.data.foreach_get("uv", uvs)
         corner_uvs = uvs.reshape(-1, 2)[loops].reshape(count, 3, 2)
+    material_index = np.empty(count, np.int32)
+    triangles_blender.foreach_get("material_index", material_index)
     return core.TriangleMesh(
         vertices=vertices.reshape(-1, 3),
         triangles=triangles.reshape(-1, 3),
@@ -90,4 +104,28 @@ def triangle_mesh(mesh, name: str) -> core.TriangleMesh:
         corner_normals=corner_normals,
         corner_uvs=corner_uvs,
         name=name,
-    )
+    ), material_index
+
+
+def by_material(whole: core.TriangleMesh, material_index) -> dict[int, core.TriangleMesh]:
+    """The mesh split by material slot (core gives a shape one material): {slot: part}.
+    The parts share the vertex array; a mesh with one slot is its own single part."""
+    slots = np.unique(material_index)
+    if len(slots) <= 1:
+        return {int(slots[0]) if len(slots) else 0: whole}
+    parts = {}
+    for slot in slots:
+        rows = material_index == slot
+
+        def pick(table, rows=rows):
+            return None if table is None else table[rows]
+
+        parts[int(slot)] = core.TriangleMesh(
+            vertices=whole.vertices,
+            triangles=whole.triangles[rows],
+            smooth=np.asarray(whole.smooth)[rows],
+            corner_normals=pick(whole.corner_normals),
+            corner_uvs=pick(whole.corner_uvs),
+            name=f"{whole.name}[{slot}]",
+        )
+    return parts

@@ -342,3 +342,18 @@ def test_spot_and_disk_lights_are_skipped_with_their_names(empty_scene, monkeypa
     assert scene.lights == []
     (warning,) = warnings
     assert "'Round'" in warning and "'Stage'" in warning and "skipped 2 light" in warning
+
+
+def test_faces_keep_the_material_of_their_slot(empty_scene, monkeypatch):
+    bpy = sys.modules["bpy"]
+    obj = add_primitive(bpy, "CUBE")
+    for name in ("Paint", "Rust"):
+        obj.data.materials.append(bpy.data.materials.new(name))
+    obj.data.polygons[0].material_index = 1
+    obj.data.polygons[3].material_index = 1
+    scene, _, _ = exported(bpy, monkeypatch)
+    by_name = {s.material.name: s for s in scene.shapes}
+    assert set(by_name) == {"Paint", "Rust"}
+    assert len(by_name["Rust"].mesh.triangles) == 4 and len(by_name["Paint"].mesh.triangles) == 8
+    # One solid still: the parts share the vertices and a Boolean base stays whole
+    assert by_name["Rust"].mesh.vertices is by_name["Paint"].mesh.vertices
