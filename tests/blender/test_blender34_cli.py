@@ -70,3 +70,27 @@ def test_meshes_tagged_shapes_booleans_and_area_lights_render_in_blender_34(tmp_
     assert image[30, 52].mean() > background.mean() + 20
     # The smooth mesh sphere, left of the cube
     assert image[30, 12].mean() > background.mean() + 20
+
+
+def test_the_in_process_blender_tests_pass_inside_blender_34_too():
+    """The export, engine and CSG-silhouette tests, written against the bpy 5.0 module, run
+    by pytest inside Debian's Blender 3.4: every version difference is covered."""
+    files = ["test_export.py", "test_bpy_engine.py", "test_csg_silhouettes.py"]
+    paths = [str(ROOT / "tests" / "blender" / name) for name in files]
+    code = (
+        "import os, sys, pytest; "
+        f"code = pytest.main(['-q', '-p', 'no:cacheprovider', *{paths!r}]); "
+        "sys.stdout.flush(); os._exit(int(code))"
+    )
+    run = blender_34("--addons", "whitted", "--python-expr", code, timeout=900)
+    assert run.returncode == 0, run.stdout[-4000:] + run.stderr[-2000:]
+    assert "Blender 3.4" in run.stdout and " passed" in run.stdout
+
+
+def test_an_animation_renders_frame_by_frame(tmp_path):
+    run = blender_34(
+        str(SAMPLE), "--addons", "whitted", "-E", "WHITTED", "-o", f"{tmp_path}/frame_####",
+        "-F", "PNG", "-s", "3", "-e", "4", "-a",
+    )  # fmt: skip
+    assert run.returncode == 0 and "Traceback" not in run.stdout + run.stderr, run.stdout
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["frame_0003.png", "frame_0004.png"]
