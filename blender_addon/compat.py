@@ -12,6 +12,10 @@ def prepare_corner_normals(mesh) -> None:
         mesh.calc_normals_split()
 
 
+# Principled BSDF inputs renamed in Blender 4.0; the newer name first
+TRANSMISSION_INPUTS = ("Transmission Weight", "Transmission")
+
+
 def node_tree_in_use(datablock):
     """The node tree a material or world renders with, or None. Blender 5.0 always uses nodes
     (and deprecates `use_nodes`); before 5.0 the flag decides."""

@@ -23,7 +23,7 @@ import numpy as np
 
 import core
 
-from .compat import node_tree_in_use
+from .compat import TRANSMISSION_INPUTS, node_tree_in_use
 
 MAX_SHININESS = 10000.0
 
@@ -67,7 +67,7 @@ def convert_material(material) -> core.Material:
     base = np.array(_base_colour(material, principled))
     metallic = float(_input(principled, "Metallic"))
     roughness = float(_input(principled, "Roughness", default=0.5))
-    transmission = float(_input(principled, "Transmission Weight", "Transmission"))
+    transmission = float(_input(principled, *TRANSMISSION_INPUTS))
     ior = float(_input(principled, "IOR", default=1.45))
     specular = (0.04 * (1.0 - metallic) + base * metallic) * (1.0 - roughness)
     shininess = MAX_SHININESS if roughness <= 0.0 else 2.0 / roughness**4 - 2.0

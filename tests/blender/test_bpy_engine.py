@@ -176,3 +176,22 @@ def test_four_border_renders_stitch_into_the_whole_frame_bit_for_bit(
         row, column = int(y0 * height), int(x0 * width)
         stitched[row : row + part.shape[0], column : column + part.shape[1]] = part
     np.testing.assert_array_equal(stitched, whole)
+
+
+def test_a_border_without_crop_fills_its_region_of_the_whole_frame(
+    sample_scene, bpy_with_whitted, tmp_path
+):
+    bpy = bpy_with_whitted
+    whole = render_float(bpy, sample_scene, tmp_path / "whole.exr")
+    render = sample_scene.render
+    render.use_border, render.use_crop_to_border = True, False
+    render.border_min_x, render.border_max_x = 0.25, 0.75
+    render.border_min_y, render.border_max_y = 0.5, 1.0
+    framed = render_float(bpy, sample_scene, tmp_path / "framed.exr")
+    assert framed.shape == whole.shape
+    height, width = whole.shape[:2]
+    rows, columns = slice(height // 2, height), slice(width // 4, 3 * width // 4)
+    np.testing.assert_array_equal(framed[rows, columns], whole[rows, columns])
+    outside = np.ones(whole.shape[:2], bool)
+    outside[rows, columns] = False
+    assert np.all(framed[outside] == 0.0)  # Blender leaves the rest empty

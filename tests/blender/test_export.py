@@ -357,3 +357,38 @@ def test_faces_keep_the_material_of_their_slot(empty_scene, monkeypatch):
     assert len(by_name["Rust"].mesh.triangles) == 4 and len(by_name["Paint"].mesh.triangles) == 8
     # One solid still: the parts share the vertices and a Boolean base stays whole
     assert by_name["Rust"].mesh.vertices is by_name["Paint"].mesh.vertices
+
+
+def test_boolean_operands_nest_and_collections_cut_as_their_union(empty_scene, monkeypatch):
+    bpy = sys.modules["bpy"]
+    bead = add_primitive(bpy, "SPHERE", location=(0, 0, 1.0))
+    bead.whitted.shape, bead.hide_render = "SPHERE", True
+    bead.scale = (0.3, 0.3, 0.3)
+    cutter = add_primitive(bpy, "CYLINDER", location=(0, 0, 0))
+    cutter.whitted.shape, cutter.hide_render = "CYLINDER", True
+    cutter.scale = (0.5, 0.5, 2.0)
+    inner = cutter.modifiers.new("Notch", "BOOLEAN")
+    inner.operation, inner.object = "DIFFERENCE", bead
+    tools = bpy.data.collections.new("Tools")
+    bpy.context.scene.collection.children.link(tools)
+    for x in (-0.7, 0.7):
+        pin = add_primitive(bpy, "CUBE", location=(x, 0, 0))
+        pin.whitted.shape, pin.hide_render = "CUBE", True
+        pin.scale = (0.1, 0.1, 2.0)
+        tools.objects.link(pin)
+    block = add_primitive(bpy, "CUBE")
+    block.whitted.shape = "CUBE"
+    first = block.modifiers.new("Bore", "BOOLEAN")
+    first.operation, first.object = "DIFFERENCE", cutter
+    second = block.modifiers.new("Pins", "BOOLEAN")
+    second.operand_type, second.collection = "COLLECTION", tools
+    second.operation = "DIFFERENCE"
+    scene, _, _ = exported(bpy, monkeypatch)
+    (solid,) = scene.shapes
+    assert solid.operation == "difference" and solid.right.operation == "union"
+    bored = solid.left
+    assert bored.operation == "difference" and isinstance(bored.right, core.Csg)
+    assert isinstance(bored.right.right, core.Sphere)  # the cutter's own notch, nested
+    # Down the bore the ray meets the bead (a notch left in the cutter: material stays)
+    t, row, _ = hits(packed_shapes(solid), np.array([[0.0, 0, 5.0]]), np.array([[0, 0, -1.0]]))
+    assert t[0] == pytest.approx(5.0 - 1.0)  # the block's top face inside the notch sphere
