@@ -392,3 +392,16 @@ def test_boolean_operands_nest_and_collections_cut_as_their_union(empty_scene, m
     # Down the bore the ray meets the bead (a notch left in the cutter: material stays)
     t, row, _ = hits(packed_shapes(solid), np.array([[0.0, 0, 5.0]]), np.array([[0, 0, -1.0]]))
     assert t[0] == pytest.approx(5.0 - 1.0)  # the block's top face inside the notch sphere
+
+
+def test_custom_split_normals_are_honoured(empty_scene, monkeypatch):
+    bpy = sys.modules["bpy"]
+    obj = add_primitive(bpy, "SPHERE")
+    bpy.ops.object.shade_smooth()
+    if bpy.app.version < (4, 1, 0):
+        obj.data.use_auto_smooth = True  # custom normals need it before 4.1
+    obj.data.normals_split_custom_set([(0.0, 0.0, 1.0)] * len(obj.data.loops))
+    scene, _, _ = exported(bpy, monkeypatch)
+    normals = scene.shapes[0].mesh.corner_normals.reshape(-1, 3)
+    # Blender stores custom normals compressed, to about 1e-4
+    np.testing.assert_allclose(normals, np.tile([0, 0, 1.0], (len(normals), 1)), atol=1e-3)
