@@ -4,13 +4,14 @@ load the same modules as a legacy add-on (bl_info) from a checkout's link instea
 
     python blender_addon/packaging/build_extension.py OUT_DIR
 
-The zip holds the add-on's modules, the `core` renderer (found next to them at import),
-the wheels for Linux x86-64 and CPython 3.11 (Blender 4.2 to 5.0's Python), and a manifest
-naming them. Run by `make addon`.
+The zip holds blender_addon/'s manifest and modules, the `core` renderer (found next to
+them at import) and the wheels the manifest names, for Linux x86-64 and CPython 3.11
+(Blender 4.2 to 5.0's Python). Run by `make addon`.
 """
 
 from __future__ import annotations
 
+import re
 import subprocess
 import sys
 import zipfile
@@ -21,25 +22,6 @@ ADDON = ROOT / "blender_addon"
 # The versions the project pins (pyproject.toml), for Blender's Python 3.11 on Linux
 WHEELS = ("numba==0.68.1", "llvmlite==0.50.0", "Pillow==13.0.0")
 PLATFORM = ("manylinux2014_x86_64", "manylinux_2_17_x86_64", "manylinux_2_28_x86_64")
-
-MANIFEST = """schema_version = "1.0.0"
-id = "whitted"
-version = "{version}"
-name = "Whitted"
-tagline = "Exact recursive ray tracer: analytic shapes, CSG, Whitted shading"
-maintainer = "Whitted developers"
-type = "add-on"
-tags = ["Render"]
-blender_version_min = "4.2.0"
-license = ["SPDX:GPL-3.0-or-later"]
-platforms = ["linux-x64"]
-wheels = [
-{wheels}
-]
-
-[permissions]
-files = "Reads image textures from disk and keeps compiled kernels in a cache folder"
-"""
 
 
 def download_wheels(folder: Path) -> list[Path]:
@@ -54,17 +36,27 @@ def download_wheels(folder: Path) -> list[Path]:
 
 
 def build(out_dir: Path, with_wheels: bool = True) -> Path:
-    """The zip in out_dir; without wheels (for tests, offline) it relies on the numba and
-    Pillow Blender can already import."""
+    """The zip in out_dir, with blender_manifest.toml as it stands in blender_addon/; the
+    wheels it names must be the ones downloaded. Without wheels (for tests, offline) their
+    list is left out and the extension relies on the numba and Pillow Blender can import."""
     sys.path.insert(0, str(ROOT))
     from core.version import VERSION
 
+    manifest = (ADDON / "blender_manifest.toml").read_text()
+    if f'version = "{VERSION}"' not in manifest:
+        raise SystemExit(f"blender_manifest.toml: version must be {VERSION} (core/version.py)")
+    listed = re.findall(r'"\./wheels/([^"]+)"', manifest)
     out_dir.mkdir(parents=True, exist_ok=True)
-    wheels = download_wheels(out_dir / "wheels") if with_wheels else []
-    listed = "\n".join(f'  "./wheels/{w.name}",' for w in wheels)
-    manifest = MANIFEST.format(version=VERSION, wheels=listed)
-    if not wheels:
-        manifest = manifest.replace("wheels = [\n\n]\n", "")
+    wheels = []
+    if with_wheels:
+        wheels = download_wheels(out_dir / "wheels")
+        if sorted(w.name for w in wheels) != sorted(listed):
+            raise SystemExit(
+                f"downloaded wheels {[w.name for w in wheels]} differ from the manifest's "
+                f"{listed}: update blender_addon/blender_manifest.toml"
+            )
+    else:
+        manifest = re.sub(r"wheels = \[.*?\]\n", "", manifest, flags=re.S)
     target = out_dir / f"whitted-{VERSION}.zip"
     with zipfile.ZipFile(target, "w", zipfile.ZIP_DEFLATED) as archive:
         archive.writestr("blender_manifest.toml", manifest)
