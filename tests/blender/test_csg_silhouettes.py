@@ -13,6 +13,7 @@ from core import Mesh, TriangleMesh
 from tests.blender.conftest import clear_scene
 from tests.core.probe import hits, packed_shapes
 from tests.csg_examples import EXAMPLES, analytic_tree
+from tests.rays import rays_towards_origin
 
 pytestmark = pytest.mark.bpy5
 
@@ -58,17 +59,9 @@ def blender_boolean_mesh(bpy, first, steps):
     return TriangleMesh(vertices, triangles.reshape(-1, 3))
 
 
-def camera_rays(size=160):
+def camera_rays():
     # Nearly along the cube-minus-cylinder hole (the y axis), so the background shows through
-    eye = np.array([1.2, -5.0, 1.5])
-    forward = -eye / np.linalg.norm(eye)
-    right = np.cross(forward, (0, 0, 1.0))
-    right /= np.linalg.norm(right)
-    up = np.cross(right, forward)
-    s = np.linspace(-0.3, 0.3, size)
-    x, y = np.meshgrid(s, -s)
-    d = (forward + x[..., None] * right + y[..., None] * up).reshape(-1, 3)
-    return np.broadcast_to(eye, d.shape).copy(), d / np.linalg.norm(d, axis=1, keepdims=True)
+    return rays_towards_origin((1.2, -5.0, 1.5), 160, 0.3)
 
 
 @pytest.mark.parametrize(("name", "first", "steps"), EXAMPLES, ids=[e[0] for e in EXAMPLES])

@@ -9,6 +9,7 @@ import pytest
 import core
 from tests.blender.conftest import clear_scene
 from tests.core.probe import hits, packed_shapes
+from tests.rays import rays_towards_origin
 
 pytestmark = pytest.mark.bpy5
 
@@ -56,16 +57,8 @@ def add_primitive(bpy, kind, **placement):
     return bpy.context.active_object
 
 
-def view_rays(size=120, eye=(4.0, -6.0, 3.0)):
-    eye = np.array(eye)
-    forward = -eye / np.linalg.norm(eye)
-    right = np.cross(forward, (0, 0, 1.0))
-    right /= np.linalg.norm(right)
-    up = np.cross(right, forward)
-    s = np.linspace(-0.35, 0.35, size)
-    x, y = np.meshgrid(s, -s)
-    d = (forward + x[..., None] * right + y[..., None] * up).reshape(-1, 3)
-    return np.broadcast_to(eye, d.shape).copy(), d / np.linalg.norm(d, axis=1, keepdims=True)
+def view_rays(eye=(4.0, -6.0, 3.0)):
+    return rays_towards_origin(eye, 120, 0.35)
 
 
 def mask(shapes):
@@ -190,13 +183,19 @@ def principled(material):
     return next(n for n in material.node_tree.nodes if n.type == "BSDF_PRINCIPLED")
 
 
-def test_untouched_materials_follow_their_principled_bsdf(empty_scene, monkeypatch):
-    bpy = sys.modules["bpy"]
+def sphere_with_material(bpy, name):
+    """A UV sphere with a new node material `name`: (object, material)."""
     obj = add_primitive(bpy, "SPHERE")
-    material = bpy.data.materials.new("Chrome")
+    material = bpy.data.materials.new(name)
     if bpy.app.version < (5, 0, 0):  # 5.0 always uses nodes and deprecates the flag
         material.use_nodes = True
     obj.data.materials.append(material)
+    return obj, material
+
+
+def test_untouched_materials_follow_their_principled_bsdf(empty_scene, monkeypatch):
+    bpy = sys.modules["bpy"]
+    _, material = sphere_with_material(bpy, "Chrome")
     bsdf = principled(material)
     bsdf.inputs["Base Color"].default_value = (0.9, 0.6, 0.2, 1.0)
     bsdf.inputs["Metallic"].default_value = 1.0
@@ -222,11 +221,7 @@ def test_untouched_materials_follow_their_principled_bsdf(empty_scene, monkeypat
 
 def test_an_image_texture_on_the_base_colour_replaces_the_diffuse(empty_scene, monkeypatch):
     bpy = sys.modules["bpy"]
-    obj = add_primitive(bpy, "SPHERE")
-    material = bpy.data.materials.new("Checker")
-    if bpy.app.version < (5, 0, 0):  # 5.0 always uses nodes and deprecates the flag
-        material.use_nodes = True
-    obj.data.materials.append(material)
+    _, material = sphere_with_material(bpy, "Checker")
     image = bpy.data.images.new("Ramp", 4, 2)
     pixels = np.zeros((2, 4, 4), np.float32)
     pixels[0, :, 0] = 1.0  # Blender's bottom row red
