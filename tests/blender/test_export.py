@@ -400,3 +400,21 @@ def test_custom_split_normals_are_honoured(empty_scene, monkeypatch):
     normals = scene.shapes[0].mesh.corner_normals.reshape(-1, 3)
     # Blender stores custom normals compressed, to about 1e-4
     np.testing.assert_allclose(normals, np.tile([0, 0, 1.0], (len(normals), 1)), atol=1e-3)
+
+
+def test_collection_instances_share_the_instanced_mesh(empty_scene, monkeypatch):
+    bpy = sys.modules["bpy"]
+    props = bpy.data.collections.new("Props")
+    bpy.context.scene.collection.children.link(props)
+    ball = add_primitive(bpy, "SPHERE")
+    for collection in list(ball.users_collection):
+        collection.objects.unlink(ball)
+    props.objects.link(ball)
+    bpy.context.view_layer.layer_collection.children["Props"].exclude = True
+    for x in (-3.0, 3.0):
+        bpy.ops.object.collection_instance_add(collection="Props", location=(x, 0, 0))
+    scene, _, _ = exported(bpy, monkeypatch)
+    first, second = scene.shapes
+    assert first.mesh is second.mesh
+    gap = second.world_from_object[0, 3] - first.world_from_object[0, 3]
+    assert abs(gap) == pytest.approx(6.0)
