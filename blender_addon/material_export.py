@@ -19,6 +19,8 @@ and on-disk images all work.
 
 from __future__ import annotations
 
+import contextlib
+
 import numpy as np
 
 import core
@@ -103,9 +105,13 @@ def _base_colour_image(principled):
 def image_texture(image, material_name: str) -> core.Texture:
     """The image's pixels, top row first, as a core texture; sRGB unless Blender says the
     image holds linear (non-colour) data."""
-    width, height = image.size
     owner = f"material '{material_name}'"
-    if width == 0 or height == 0 or not image.has_data and not _load(image):
+    if not image.has_data:
+        # An image on disk not read yet (generated ones keep their pixels); a missing file
+        # leaves it without data, reported below
+        with contextlib.suppress(RuntimeError):
+            image.reload()
+    if not image.has_data or 0 in tuple(image.size):
         raise core.SceneError(
             owner,
             f"image '{image.name}'",
@@ -122,11 +128,3 @@ def image_texture(image, material_name: str) -> core.Texture:
     # Float images hold linear values whatever their colour space says
     srgb = not linear and not image.is_float
     return core.Texture(pixels=np.ascontiguousarray(pixels), srgb=srgb)
-
-
-def _load(image) -> bool:
-    try:
-        image.reload()
-    except RuntimeError:
-        return False
-    return image.has_data and image.size[0] > 0

@@ -138,11 +138,10 @@ def _line_misses_box(bounds, row, o, inverse_d):
 
 
 @inlined_kernel
-def operand_spans(geo, row, o, d, scratch, at):
+def operand_spans(geo, row, o, d, inverse_d, scratch, at):
     """Write the spans of shape row `row` along the world line o + t d into the scratch
     lists from position `at`; returns the position after the last. A line that misses the
-    operand's world box costs one slab test."""
-    inverse_d = (1.0 / d[0], 1.0 / d[1], 1.0 / d[2])
+    operand's world box costs one slab test (inverse_d = 1 / d, per component)."""
     if _line_misses_box(geo.shape_bounds, row, o, inverse_d):
         return at
     span_f, span_i = scratch.span_f, scratch.span_i
@@ -254,6 +253,7 @@ def csg_spans(geo, csg, o, d, scratch):
     scale = max(abs(o[0]), abs(o[1]), abs(o[2])) / math.sqrt(
         d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
     )
+    inverse_d = (1.0 / d[0], 1.0 / d[1], 1.0 / d[2])
     pending = 0
     end = 0
     for k in range(first, last):
@@ -261,7 +261,7 @@ def csg_spans(geo, csg, o, d, scratch):
         if step >= 0:
             segments[pending] = end
             pending += 1
-            end = operand_spans(geo, step, o, d, scratch, end)
+            end = operand_spans(geo, step, o, d, inverse_d, scratch, end)
         else:
             pending -= 1
             end = combine(step, scratch, segments[pending - 1], segments[pending], end, scale)
