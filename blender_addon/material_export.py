@@ -19,8 +19,6 @@ and on-disk images all work.
 
 from __future__ import annotations
 
-import contextlib
-
 import numpy as np
 
 import core
@@ -106,12 +104,10 @@ def image_texture(image, material_name: str) -> core.Texture:
     """The image's pixels, top row first, as a core texture; sRGB unless Blender says the
     image holds linear (non-colour) data."""
     owner = f"material '{material_name}'"
-    if not image.has_data:
-        # An image on disk not read yet (generated ones keep their pixels); a missing file
-        # leaves it without data, reported below
-        with contextlib.suppress(RuntimeError):
-            image.reload()
-    if not image.has_data or 0 in tuple(image.size):
+    # Reading the pixels loads an on-disk image not read yet (has_data stays False until
+    # then in Blender 3.4); a missing or unreadable file gives none
+    count = len(image.pixels)
+    if count == 0 or 0 in tuple(image.size):
         raise core.SceneError(
             owner,
             f"image '{image.name}'",

@@ -1,0 +1,239 @@
+"""Building blocks for the sample scenes (run inside Blender with the Whitted add-on).
+
+Everything is made the way a user would make it: Blender primitives tagged as exact shapes,
+Boolean modifiers for CSG, materials with the Whitted panel's values, Blender lights and
+cameras. Colours and intensities are the report's: a light of intensity I has colour (1,1,1)
+and the power that the add-on turns back into I.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import addon_utils
+import bpy
+from mathutils import Matrix, Vector
+
+HERE = Path(__file__).resolve().parent
+# The add-on's point-light intensity is colour x power / (4 pi^2), as Cycles makes it
+WATTS_PER_INTENSITY = 4.0 * math.pi**2
+
+
+def new_file():
+    """An empty file with one scene, the add-on still enabled."""
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    addon_utils.enable("whitted", default_set=True)  # factory settings unloaded it
+    bpy.context.preferences.filepaths.save_version = 0  # no .blend1 backups
+    return bpy.context.scene
+
+
+def save(name: str) -> Path:
+    path = HERE / name
+    bpy.ops.wm.save_as_mainfile(filepath=str(path), compress=True)
+    bpy.ops.file.make_paths_relative()  # textures as //textures/..., next to the file
+    bpy.ops.wm.save_mainfile(compress=True)
+    return path
+
+
+def image(name: str):
+    """A texture from sample_blends/textures (made relative to the .blend file by save)."""
+    return bpy.data.images.load(str(HERE / "textures" / name), check_existing=True)
+
+
+def material(
+    name,
+    diffuse=(0.7, 0.7, 0.7),
+    specular=(0.3, 0.3, 0.3),
+    shininess=25.0,
+    reflectivity=0.0,
+    transparency=0.0,
+    inner_ior=1.5,
+    texture=None,
+):
+    """A material with the Whitted panel switched on (the report's gr.material values); the
+    Principled BSDF gets the same base colour and texture, for the viewport."""
+    mat = bpy.data.materials.new(name)
+    mat.use_nodes = True
+    tree = mat.node_tree
+    principled = next(n for n in tree.nodes if n.type == "BSDF_PRINCIPLED")
+    principled.inputs["Base Color"].default_value = (*diffuse, 1.0)
+    mat.diffuse_color = (*diffuse, 1.0)
+    if texture is not None:
+        node = tree.nodes.new("ShaderNodeTexImage")
+        node.image = image(texture)
+        node.location = (-300, 300)
+        tree.links.new(node.outputs["Color"], principled.inputs["Base Color"])
+    settings = mat.whitted
+    settings.use_whitted = True
+    settings.specular = specular
+    settings.shininess = shininess
+    settings.reflectivity = reflectivity
+    settings.transparency = transparency
+    settings.outer_ior = 1.0
+    settings.inner_ior = inner_ior
+    settings.image = None if texture is None else image(texture)
+    return mat
+
+
+_PRIMITIVES = {
+    "SPHERE": lambda: bpy.ops.mesh.primitive_uv_sphere_add(segments=48, ring_count=24),
+    "CUBE": lambda: bpy.ops.mesh.primitive_cube_add(),
+    "CYLINDER": lambda: bpy.ops.mesh.primitive_cylinder_add(vertices=64),
+    "CONE": lambda: bpy.ops.mesh.primitive_cone_add(vertices=64),
+    "TORUS": lambda: bpy.ops.mesh.primitive_torus_add(major_segments=64, minor_segments=24),
+}
+
+
+def shape(kind, name, mat=None, location=(0, 0, 0), rotation=(0, 0, 0), scale=(1, 1, 1),
+          collection=None, major_radius=1.0, minor_radius=0.25):  # fmt: skip
+    """Blender's primitive of that kind, tagged as Whitted's exact shape. Rotation in
+    degrees (XYZ Euler). A torus's radii are its own (the object's scale comes on top)."""
+    if kind == "TORUS":
+        bpy.ops.mesh.primitive_torus_add(
+            major_radius=major_radius, minor_radius=minor_radius,
+            major_segments=64, minor_segments=24,
+        )  # fmt: skip
+    else:
+        _PRIMITIVES[kind]()
+    obj = bpy.context.object
+    obj.name = obj.data.name = name
+    obj.location = location
+    obj.rotation_euler = [math.radians(a) for a in rotation]
+    obj.scale = scale
+    obj.whitted.shape = kind
+    if kind == "TORUS":
+        obj.whitted.major_radius, obj.whitted.minor_radius = major_radius, minor_radius
+    if kind in {"SPHERE", "CYLINDER", "CONE", "TORUS"}:
+        bpy.ops.object.shade_smooth()
+    if mat is not None:
+        obj.data.materials.append(mat)
+    move_to(obj, collection)
+    return obj
+
+
+def mesh_object(name, vertices, triangles, corner_uvs=None, smooth=True, mat=None,
+                location=(0, 0, 0), rotation=(0, 0, 0), scale=(1, 1, 1),
+                collection=None):  # fmt: skip
+    """A mesh object from numpy vertices (v, 3) and triangles (t, 3), with optional corner UVs
+    (t, 3, 2); every face smooth or every face flat."""
+    mesh = bpy.data.meshes.new(name)
+    mesh.from_pydata([tuple(v) for v in vertices.tolist()], [], triangles.tolist())
+    if corner_uvs is not None:
+        layer = mesh.uv_layers.new(name="UVMap")
+        layer.data.foreach_set("uv", corner_uvs.reshape(-1).astype("float32"))
+    mesh.polygons.foreach_set("use_smooth", [smooth] * len(mesh.polygons))
+    mesh.validate()
+    if mat is not None:
+        mesh.materials.append(mat)
+    obj = bpy.data.objects.new(name, mesh)
+    obj.location = location
+    obj.rotation_euler = [math.radians(a) for a in rotation]
+    obj.scale = scale
+    (collection or bpy.context.scene.collection).objects.link(obj)
+    return obj
+
+
+def boolean(target, operation, operand):
+    """Add a Boolean modifier (operation UNION, INTERSECT or DIFFERENCE) and hide the operand
+    from rendering, as a Blender user does with a cutter: Whitted renders the exact CSG."""
+    modifier = target.modifiers.new(f"{operation.title()} {operand.name}", "BOOLEAN")
+    modifier.operation = operation
+    modifier.object = operand
+    operand.hide_render = True
+    operand.display_type = "WIRE"
+    return modifier
+
+
+def move_to(obj, collection):
+    if collection is None:
+        return
+    for owner in list(obj.users_collection):
+        owner.objects.unlink(obj)
+    collection.objects.link(obj)
+
+
+def point_light(name, location, intensity=1.0, attenuation=(1.0, 0.0, 0.0), collection=None):
+    data = bpy.data.lights.new(name, "POINT")
+    data.energy = intensity * WATTS_PER_INTENSITY
+    data.shadow_soft_size = 0.0
+    data.whitted.attenuation = attenuation
+    return _link(bpy.data.objects.new(name, data), location, collection)
+
+
+def area_light(name, location, size, intensity=1.0, attenuation=(1.0, 0.0, 0.0),
+               rotation=(0, 0, 0), collection=None):  # fmt: skip
+    """A square area light of edge `size`, facing down (its -Z) unless rotated."""
+    data = bpy.data.lights.new(name, "AREA")
+    data.shape = "SQUARE"
+    data.size = size
+    data.energy = intensity * WATTS_PER_INTENSITY
+    data.whitted.attenuation = attenuation
+    obj = _link(bpy.data.objects.new(name, data), location, collection)
+    obj.rotation_euler = [math.radians(a) for a in rotation]
+    return obj
+
+
+def camera(name, eye, target, fovy=50.0, up=(0, 0, 1), scene=None, collection=None):
+    """A camera at `eye` looking at `target`, with a vertical field of view of `fovy` degrees
+    (the report's gr.render camera), made the scene's camera."""
+    data = bpy.data.cameras.new(name)
+    data.sensor_fit = "VERTICAL"
+    data.angle_y = math.radians(fovy)
+    data.clip_end = 1e5
+    obj = _link(bpy.data.objects.new(name, data), eye, collection)
+    forward = (Vector(target) - Vector(eye)).normalized()
+    right = forward.cross(Vector(up)).normalized()
+    true_up = right.cross(forward)
+    obj.matrix_world = (
+        Matrix.Translation(eye)
+        @ Matrix([(*right, 0), (*true_up, 0), (*(-forward), 0), (0, 0, 0, 1)]).transposed()
+    )
+    scene = scene or bpy.context.scene
+    scene.camera = obj
+    return obj
+
+
+def _link(obj, location, collection):
+    obj.location = location
+    (collection or bpy.context.scene.collection).objects.link(obj)
+    return obj
+
+
+def world(scene, colour):
+    """The world colour: Whitted's ambient light and background."""
+    w = bpy.data.worlds.new(f"{scene.name} World")
+    w.use_nodes = True
+    background = next(n for n in w.node_tree.nodes if n.type == "BACKGROUND")
+    background.inputs[0].default_value = (*colour, 1.0)
+    background.inputs[1].default_value = 1.0
+    w.color = colour
+    scene.world = w
+    return w
+
+
+def configure(scene, width, height, pixel_samples=1, shadow_samples=16, max_depth=5):
+    scene.render.engine = "WHITTED"
+    scene.render.resolution_x, scene.render.resolution_y = width, height
+    scene.render.resolution_percentage = 100
+    scene.render.image_settings.file_format = "PNG"
+    scene.render.image_settings.color_mode = "RGBA"
+    # Standard view transform and no dither: 8-bit output is the sRGB encoding of the linear
+    # render, so tests can predict pixel values exactly
+    scene.view_settings.view_transform = "Standard"
+    scene.view_settings.look = "None"
+    scene.render.dither_intensity = 0.0
+    settings = scene.whitted
+    settings.pixel_samples = pixel_samples
+    settings.pixel_sampling = "GRID"
+    settings.shadow_samples = shadow_samples
+    settings.shadow_sampling = "STRATIFIED"
+    settings.max_depth = max_depth
+
+
+def variant(stage, name):
+    """Another scene in the same file showing `stage` (a collection) under its own camera and
+    settings: how one file holds a feature's off/on or focus variants."""
+    scene = bpy.data.scenes.new(name)
+    scene.collection.children.link(stage)
+    return scene
