@@ -1,5 +1,6 @@
 # Whitted: every command a developer or a newcomer needs. All targets are idempotent.
-#   make render [SCENE=path/to.blend]   set everything up, render headless, print the PNG path
+#   make render [SCENE=path/to.blend]   set everything up, render headless (the report's final
+#                                       scene by default), print the PNG path
 #   make test                           set everything up, lint, run the whole test suite
 #   make bench                          run the benchmarks in tests/benchmarks/
 SHELL := /bin/bash
@@ -7,7 +8,7 @@ PYTHON ?= python3
 VENV := .venv
 BUILD := .build
 SITE := $(VENV)/lib/python3.11/site-packages
-SCENE ?= sample_blends/spheres.blend
+SCENE ?= sample_blends/final_scene.blend
 RENDERS := $(CURDIR)/build/renders
 
 # One numba kernel cache shared by tests, benchmarks and Blender subprocesses.
@@ -48,7 +49,7 @@ $(BLENDER_USER_SCRIPTS)/addons/whitted:
 
 render: setup
 	@mkdir -p $(RENDERS)
-	$(BLENDER_RUN) "$(SCENE)" --addons whitted -E WHITTED \
+	$(BLENDER_RUN) --addons whitted "$(SCENE)" -E WHITTED \
 	  -o "$(RENDERS)/$(basename $(notdir $(SCENE)))_####" -F PNG -f 1
 	@echo "Rendered: $(RENDERS)/$(basename $(notdir $(SCENE)))_0001.png"
 

@@ -3,6 +3,8 @@
 It only coordinates; the work is in `export` (Blender -> core.Scene) and in `core`.
 """
 
+import time
+
 import bpy
 import numpy as np
 
@@ -18,7 +20,9 @@ class WhittedRenderEngine(bpy.types.RenderEngine):
 
     def render(self, depsgraph):
         try:
+            start = time.perf_counter()
             scene, settings, warnings = export.convert(depsgraph)
+            export_s = time.perf_counter() - start
             for warning in warnings:
                 self.report({"WARNING"}, warning)
             self.update_stats(
@@ -42,14 +46,13 @@ class WhittedRenderEngine(bpy.types.RenderEngine):
         for warning in output.warnings:
             self.report({"WARNING"}, f"Whitted: {warning}")
         stats = output.stats
-        _, _, width, height = settings.pixel_region()
-        done = stats.tiles_done / max(stats.tiles_total, 1)
-        camera_rays = width * height * settings.pixel_samples**2 * done
-        rate = camera_rays / stats.render_s / 1e6 if stats.render_s > 0 else 0.0
+        rate = stats.rays_cast / stats.render_s / 1e6 if stats.render_s > 0 else 0.0
         summary = (
-            f"Whitted | {settings.width}x{settings.height} | kernels {stats.kernel_source} "
+            f"Whitted | {settings.width}x{settings.height} | export {export_s:.2f} s | "
+            f"kernels {stats.kernel_source} "
             f"{stats.kernel_s:.2f} s | render {stats.render_s:.2f} s | "
-            f"{rate:.2f} M camera rays/s | {stats.tiles_done}/{stats.tiles_total} tiles | "
+            f"{stats.rays_cast / 1e6:.1f} M rays ({stats.shadow_rays / 1e6:.1f} M shadow), "
+            f"{rate:.2f} M rays/s | {stats.tiles_done}/{stats.tiles_total} tiles | "
             f"{stats.threads} threads" + (" | cancelled" if output.cancelled else "")
         )
         self.update_stats("", summary)

@@ -20,7 +20,7 @@ import numpy as np
 
 from core.kernels.csg import CROSSING_CAPACITY, SPAN_CAPACITY
 from core.kernels.render_tile import render_borrowed_tile
-from core.kernels.workspace import new_workspace
+from core.kernels.workspace import RAYS_TRACED, SHADOW_RAYS, new_workspace
 from core.packing import PackedScene, compile_scene
 from core.scene import RenderSettings, Scene
 
@@ -46,6 +46,12 @@ class RenderStats:
     tiles_done: int
     tiles_total: int
     threads: int
+    rays_traced: int = 0  # camera, reflected and refracted rays (each finds its closest hit)
+    shadow_rays: int = 0  # rays towards lights (each asks only what light gets through)
+
+    @property
+    def rays_cast(self) -> int:
+        return self.rays_traced + self.shadow_rays
 
 
 @dataclass
@@ -111,7 +117,7 @@ def render(
     tiles = split_into_tiles(settings.pixel_region(), settings.tile_size)
     image = np.zeros((settings.height, settings.width, 4), np.float32)
 
-    def render_one(tile: Tile) -> tuple[np.ndarray, int]:
+    def render_one(tile: Tile) -> tuple[np.ndarray, int, np.ndarray]:
         pixels = np.empty((tile.height, tile.width, 4), np.float32)
         workspace = new_workspace(settings.max_depth)
         render_borrowed_tile(
@@ -125,11 +131,13 @@ def render(
             pixels,
             workspace,
         )
-        return pixels, int(workspace.stacks.csg.overflow[0])
+        stacks = workspace.stacks
+        return pixels, int(stacks.csg.overflow[0]), stacks.ray_counts
 
     start = time.perf_counter()
     tiles_done = 0
     csg_overflows = 0
+    ray_counts = np.zeros(2, np.int64)
     cancelled = False
     with ThreadPoolExecutor(max_workers=threads, thread_name_prefix="whitted") as pool:
         queue = iter(tiles)
@@ -146,8 +154,9 @@ def render(
             finished, _ = wait(running, timeout=_CANCEL_POLL_S, return_when=FIRST_COMPLETED)
             for future in finished:
                 tile = running.pop(future)
-                pixels, overflows = future.result()
+                pixels, overflows, counts = future.result()
                 csg_overflows += overflows
+                ray_counts += counts
                 image[tile.y : tile.y + tile.height, tile.x : tile.x + tile.width] = pixels
                 tiles_done += 1
                 if on_tile is not None:
@@ -163,6 +172,8 @@ def render(
         tiles_done=tiles_done,
         tiles_total=len(tiles),
         threads=threads,
+        rays_traced=int(ray_counts[RAYS_TRACED]),
+        shadow_rays=int(ray_counts[SHADOW_RAYS]),
     )
     warnings = list(compiled.warnings)
     if csg_overflows:

@@ -139,6 +139,7 @@ def borrow_stacks(stacks):
             borrowed(c.stack),
             borrowed(c.overflow),
         ),
+        borrowed(stacks.ray_counts),
     )
 
 

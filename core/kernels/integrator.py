@@ -21,6 +21,7 @@ from core.kernels.shading import local_colour
 from core.kernels.surface import diffuse_colour, surface_at
 from core.kernels.trace import closest_hit, spawn_point
 from core.kernels.vec import add, as_tuple, dot, mul, normalize, row, scale, sub
+from core.kernels.workspace import RAYS_TRACED
 
 MIN_WEIGHT = 1e-6
 
@@ -72,6 +73,7 @@ def trace_ray(ps, o, d, key, ws):
         top -= 1
         o, d = row(rays.origin, top), row(rays.direction, top)
         w, depth = row(rays.weight, top), rays.depth[top]
+        stacks.ray_counts[RAYS_TRACED] += 1
         shape, t, part, b1, b2 = closest_hit(geo, o, d, math.inf, stacks)
         if shape < 0:
             colour = add(colour, mul(w, as_tuple(frame.background)))

@@ -16,6 +16,7 @@ from core.kernels.options import OPTION_SHADOW_SAMPLES, OPTION_SHADOW_STRATIFIED
 from core.kernels.rng import PURPOSE_LIGHT, uniform2
 from core.kernels.trace import shadow_transmittance
 from core.kernels.vec import add, as_tuple, dot, mul, row, scale, sub
+from core.kernels.workspace import SHADOW_RAYS
 
 
 @inlined_kernel
@@ -43,6 +44,7 @@ def _phong_lit(geo, stacks, light_dir, distance, radiance, origin, n, to_viewer,
     n_dot_l = dot(n, light_dir)
     if n_dot_l <= 0.0:
         return 0.0, 0.0, 0.0
+    stacks.ray_counts[SHADOW_RAYS] += 1
     visible = shadow_transmittance(geo, origin, light_dir, distance, stacks)
     if visible == 0.0:
         return 0.0, 0.0, 0.0

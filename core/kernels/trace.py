@@ -108,7 +108,7 @@ def closest_hit(geo, o, d, t_max, stacks):
     two callers (the integrator and the batch entry point): a call passes every array of
     `geo` and `stacks` field by field, which cost 60 ns a ray, 20% of a primary ray's time
     against the million-triangle mesh."""
-    stack, stack_t, mesh_stack, mesh_stack_t, scratch = stacks
+    stack, stack_t, mesh_stack, mesh_stack_t, scratch, _ = stacks
     bounds, info, order = geo.top_bounds, geo.top_info, geo.top_order
     kinds, params, meshes = geo.shape_kind, geo.shape_param, geo.shape_index
     transforms, roots = geo.shape_object_from_world, geo.mesh_root
@@ -165,7 +165,7 @@ def transmittance(geo, o, d, t_max, stacks):
     transparency tau multiplies the light by tau, without bending or Fresnel loss (a shadow
     ray cannot follow refraction to the light). Opaque surfaces (tau = 0) block it outright,
     and the search stops at the first of them, as an any-hit query."""
-    stack, stack_t, mesh_stack, mesh_stack_t, scratch = stacks
+    stack, stack_t, mesh_stack, mesh_stack_t, scratch, _ = stacks
     bounds, info, order = geo.top_bounds, geo.top_info, geo.top_order
     kinds, params, meshes = geo.shape_kind, geo.shape_param, geo.shape_index
     transforms, tau_of_shape = geo.shape_object_from_world, geo.shape_transparency

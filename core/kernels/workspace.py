@@ -13,6 +13,10 @@ from core.kernels.csg import CROSSING_CAPACITY, MAX_OPERANDS, SPAN_CAPACITY
 MESH_STACK_SIZE = (WIDTH - 1) * MAX_TREE_DEPTH + 1
 
 
+# Slots of Stacks.ray_counts
+RAYS_TRACED, SHADOW_RAYS = 0, 1
+
+
 class CsgScratch(NamedTuple):
     """Span lists of one ray's CSG evaluation (see core.kernels.csg)."""
 
@@ -26,14 +30,15 @@ class CsgScratch(NamedTuple):
 
 
 class Stacks(NamedTuple):
-    """BVH traversal stacks, one for the top level and one for the mesh level, and the
-    CSG scratch lists."""
+    """BVH traversal stacks, one for the top level and one for the mesh level, the CSG
+    scratch lists, and the count of rays cast."""
 
     top: np.ndarray  # int32 (MAX_TREE_DEPTH,): top-level nodes waiting
     top_t: np.ndarray  # float64: their entry distances
     mesh: np.ndarray  # int32 (MESH_STACK_SIZE,): mesh-level nodes or leaves waiting
     mesh_t: np.ndarray  # float64
     csg: CsgScratch
+    ray_counts: np.ndarray  # int64 (2,): rays traced to their closest hit, shadow rays
 
 
 class RayStack(NamedTuple):
@@ -69,6 +74,7 @@ def new_workspace(max_depth: int) -> Workspace:
                 np.empty(MESH_STACK_SIZE, np.int32),
                 np.zeros(1, np.int64),
             ),
+            np.zeros(2, np.int64),
         ),
         RayStack(
             np.empty((rays, 3)), np.empty((rays, 3)), np.empty((rays, 3)), np.empty(rays, np.int64)
