@@ -95,7 +95,7 @@ def build_primitives():
     _studio(scene, 480, 320, eye=(0, -9.0, 5.0), target=(0, 0.5, 0.7), fovy=38.0)
     colours = {
         "SPHERE": (0.8, 0.15, 0.1), "CUBE": (0.9, 0.6, 0.1), "CYLINDER": (0.2, 0.7, 0.2),
-        "CONE": (0.1, 0.5, 0.8), "TORUS": (0.5, 0.2, 0.8), "MESH": (0.8, 0.8, 0.8),
+        "CONE": (0.1, 0.5, 0.8), "TORUS": (0.5, 0.2, 0.8), "MESH": (0.3, 0.7, 0.7),
     }  # fmt: skip
     _six_primitives({k: kit.material(k.title(), c) for k, c in colours.items()})
     _floor("Floor", kit.material("Floor", (0.5, 0.5, 0.5), specular=(0, 0, 0)))
@@ -223,7 +223,7 @@ def build_soft_shadow():
 
 DOF_SPHERES = (("Front", (-1.6, -3.0, 1.0)), ("Middle", (0.0, 1.0, 1.0)),
                ("Back", (1.8, 5.0, 1.0)))  # fmt: skip
-DOF_APERTURE_RADIUS = 0.18
+DOF_APERTURE_RADIUS = 0.3
 
 
 def build_depth_of_field():
