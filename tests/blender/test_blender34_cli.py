@@ -74,9 +74,8 @@ def test_meshes_tagged_shapes_booleans_and_area_lights_render_in_blender_34(tmp_
 
 def test_the_in_process_blender_tests_pass_inside_blender_34_too():
     """The export, engine, CSG-silhouette and sample-scene tests, written against the bpy 5.0
-    module, run
-    by pytest inside Debian's Blender 3.4: every version difference is covered, and every
-    sample file opens in both."""
+    module, run by pytest inside Debian's Blender 3.4: every version difference is covered,
+    and every sample file opens in both."""
     files = [
         "test_export.py", "test_bpy_engine.py", "test_csg_silhouettes.py",
         "test_sample_scenes.py",
