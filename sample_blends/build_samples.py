@@ -1,6 +1,7 @@
 """Build the sample scenes from nothing. Run by `make samples`, with the Whitted add-on enabled:
 
-    blender -b --factory-startup --addons whitted --python sample_blends/build_samples.py
+    blender -b --factory-startup --addons whitted --python sample_blends/build_samples.py \
+        [-- OUTPUT_FOLDER]
 
 One .blend per feature of the report, shown the way its figures show it; a feature with
 variants (supersampling off and on, three focus distances, hard and soft shadow) keeps them as
@@ -279,6 +280,9 @@ BUILDERS = (
 )  # fmt: skip
 
 if __name__ == "__main__":
-    textures.write_all()
+    arguments = sys.argv[sys.argv.index("--") + 1 :] if "--" in sys.argv else []
+    if arguments:
+        kit.OUTPUT = Path(arguments[0]).resolve()
+    textures.write_all(kit.OUTPUT / "textures")
     for builder in BUILDERS:
         builder()

@@ -16,6 +16,9 @@ import bpy
 from mathutils import Matrix, Vector
 
 HERE = Path(__file__).resolve().parent
+# Where save() writes and image() reads the textures: this folder, or another given to
+# build_samples.py (the test that the script rebuilds the committed files)
+OUTPUT = HERE
 # The add-on's point-light intensity is colour x power / (4 pi^2), as Cycles makes it
 WATTS_PER_INTENSITY = 4.0 * math.pi**2
 
@@ -29,7 +32,7 @@ def new_file():
 
 
 def save(name: str) -> Path:
-    path = HERE / name
+    path = OUTPUT / name
     bpy.ops.wm.save_as_mainfile(filepath=str(path), compress=True)
     bpy.ops.file.make_paths_relative()  # textures as //textures/..., next to the file
     bpy.ops.wm.save_mainfile(compress=True)
@@ -37,8 +40,8 @@ def save(name: str) -> Path:
 
 
 def image(name: str):
-    """A texture from sample_blends/textures (made relative to the .blend file by save)."""
-    return bpy.data.images.load(str(HERE / "textures" / name), check_existing=True)
+    """A texture from the output's textures/ folder (made relative to the .blend by save)."""
+    return bpy.data.images.load(str(OUTPUT / "textures" / name), check_existing=True)
 
 
 def material(
