@@ -47,10 +47,15 @@ $(BLENDER_USER_SCRIPTS)/addons/whitted:
 	mkdir -p $(BLENDER_USER_SCRIPTS)/addons
 	ln -sfn ../../../blender_addon $@
 
+# Blender exits 1 when the engine reports an error, but 0 (with a blank picture written) when
+# the engine raises: the log decides too
 render: setup
 	@mkdir -p $(RENDERS)
-	$(BLENDER_RUN) --addons whitted "$(SCENE)" -E WHITTED \
-	  -o "$(RENDERS)/$(basename $(notdir $(SCENE)))_####" -F PNG -f 1
+	set -o pipefail; $(BLENDER_RUN) --addons whitted "$(SCENE)" -E WHITTED \
+	  -o "$(RENDERS)/$(basename $(notdir $(SCENE)))_####" -F PNG -f 1 \
+	  2>&1 | tee $(RENDERS)/render.log
+	@if grep -qE '^Error|Traceback' $(RENDERS)/render.log; then \
+	  echo "The render failed: see the errors above"; exit 1; fi
 	@echo "Rendered: $(RENDERS)/$(basename $(notdir $(SCENE)))_0001.png"
 
 # The zip a Blender 4.2+ user installs (Preferences > Get Extensions > Install from Disk)
