@@ -3,6 +3,7 @@
 #                                       scene by default), print the PNG path
 #   make test                           set everything up, lint, run the whole test suite
 #   make bench                          run the benchmarks in tests/benchmarks/
+#   make fuzz [FUZZ_EXAMPLES=5000]      the fuzz tests' properties with thousands of examples
 SHELL := /bin/bash
 PYTHON ?= python3
 VENV := .venv
@@ -17,7 +18,7 @@ export WHITTED_CACHE_DIR ?= $(CURDIR)/.cache/kernels
 export BLENDER_USER_SCRIPTS := $(CURDIR)/$(BUILD)/blender_scripts
 BLENDER_RUN := PYTHONPATH=$(CURDIR):$(CURDIR)/$(SITE) blender -b --python-use-system-env
 
-.PHONY: setup render test bench samples addon lint format clean
+.PHONY: setup render test bench fuzz samples addon lint format clean
 
 setup: $(VENV)/.installed $(BUILD)/blender.ok $(BLENDER_USER_SCRIPTS)/addons/whitted
 
@@ -75,6 +76,10 @@ format: $(VENV)/.installed
 
 test: setup lint
 	$(VENV)/bin/python -m pytest
+
+FUZZ_EXAMPLES ?= 5000
+fuzz: setup
+	WHITTED_FUZZ_EXAMPLES=$(FUZZ_EXAMPLES) $(VENV)/bin/python -m pytest -q tests/core/test_fuzz.py
 
 bench: setup $(VENV)/.embree
 	$(VENV)/bin/python -m tests.benchmarks

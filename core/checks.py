@@ -11,6 +11,8 @@ from core.errors import SceneError
 # A transform whose smallest singular value is below this fraction of its largest squashes
 # the shape flat: the inverse needed for object-space intersection would be meaningless.
 SINGULAR_RATIO = 1e-12
+# The shortest direction vector accepted: normalising anything shorter underflows
+MIN_LENGTH = 1e-150
 
 
 def check_number(owner: str, name: str, value, low=None, high=None, low_open=False) -> float:
@@ -50,8 +52,11 @@ def check_vec3(owner, name, value, nonnegative=False, nonzero=False) -> np.ndarr
         raise SceneError(owner, name, f"got {value!r}; all three numbers must be finite")
     if nonnegative and np.any(v < 0):
         raise SceneError(owner, name, f"got {value!r}; each number must be >= 0")
-    if nonzero and not np.any(v != 0):
-        raise SceneError(owner, name, f"got {value!r}; at least one number must be non-zero")
+    # Squares below the smallest double vanish, so a length under 1e-150 computes as zero
+    if nonzero and not np.linalg.norm(v) > MIN_LENGTH:
+        raise SceneError(
+            owner, name, f"got {value!r}; use a non-zero vector (length above {MIN_LENGTH})"
+        )
     return v
 
 

@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from core.checks import valid_affine
 from core.errors import SceneError
 from core.kernels.csg import CSG_DIFFERENCE, CSG_INTERSECTION, CSG_UNION, MAX_OPERANDS
 from core.shapes import Csg, Shape
@@ -49,6 +50,15 @@ def add_csg(tables: CsgTables, root: Csg, first_row: int) -> int:
 
 
 def _emit(tables: CsgTables, node: Shape, world: np.ndarray, first_row: int) -> None:
+    if not valid_affine(world[None])[0]:
+        # Each transform passed on its own, but their product is (numerically) singular
+        raise SceneError(
+            node.owner,
+            "world_from_object",
+            "composed with the transforms of the CSG nodes above it, is singular or not "
+            "finite (scales that cancel to nothing); give the operand and its nodes scales "
+            "whose product is not zero",
+        )
     if not isinstance(node, Csg):
         tables.program.append(first_row + len(tables.operands))
         tables.operands.append((node, world))

@@ -22,6 +22,8 @@ from core.kernels.options import (
 from core.kernels.rng import PURPOSE_LENS, PURPOSE_PIXEL, sample_key, uniform2
 from core.kernels.vec import add, normalize, row, scale, sub
 
+FLOAT32_MAX = 3.4028234663852886e38
+
 
 @kernel
 def concentric_disk(a, b):
@@ -96,7 +98,8 @@ def render_tile(ps, image_width, image_height, x0, y0, width, height, out, ws):
                 r += colour[0]
                 g += colour[1]
                 b += colour[2]
-            out[j, i, 0] = r / samples
-            out[j, i, 1] = g / samples
-            out[j, i, 2] = b / samples
+            # Linear light has no upper bound, the float32 image has: saturate, never inf
+            out[j, i, 0] = min(r / samples, FLOAT32_MAX)
+            out[j, i, 1] = min(g / samples, FLOAT32_MAX)
+            out[j, i, 2] = min(b / samples, FLOAT32_MAX)
             out[j, i, 3] = 1.0

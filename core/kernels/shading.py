@@ -18,6 +18,9 @@ from core.kernels.trace import shadow_transmittance
 from core.kernels.vec import add, as_tuple, dot, mul, row, scale, sub
 from core.kernels.workspace import SHADOW_RAYS
 
+# The largest attenuation factor 1 / (c0 + c1 d + c2 d^2) applied
+MAX_FALLOFF = 1e20
+
 
 @inlined_kernel
 def light_from(
@@ -29,7 +32,9 @@ def light_from(
     if distance == 0.0:
         return 0.0, 0.0, 0.0
     c0, c1, c2 = attenuation
-    falloff = 1.0 / (c0 + c1 * distance + c2 * distance * distance)
+    # Without c0 the falloff grows without bound at the light: cap it, so a surface touching
+    # a light is blinding but finite (found by the fuzzer: 1 / (c2 d^2) overflowed)
+    falloff = min(1.0 / max(c0 + c1 * distance + c2 * distance * distance, 1e-300), MAX_FALLOFF)
     light_dir = scale(to_light, 1.0 / distance)
     return _phong_lit(
         geo, stacks, light_dir, distance, scale(intensity, falloff), origin, n, to_viewer,
@@ -52,7 +57,8 @@ def _phong_lit(geo, stacks, light_dir, distance, radiance, origin, n, to_viewer,
     if ks[0] > 0.0 or ks[1] > 0.0 or ks[2] > 0.0:
         # Unit length already: n and light_dir are unit vectors
         reflected = sub(scale(n, 2.0 * n_dot_l), light_dir)
-        r_dot_v = dot(reflected, to_viewer)
+        # Rounding can put R.V a hair above 1, and (1 + 2e-16)^1e300 is infinite (fuzzer)
+        r_dot_v = min(dot(reflected, to_viewer), 1.0)
         if r_dot_v > 0.0:
             reflectance = add(reflectance, scale(ks, r_dot_v**shininess))
     return mul(reflectance, scale(radiance, visible))

@@ -377,6 +377,12 @@ def test_bad_csg_input_names_the_object_and_field():
     flat = Sphere("Flat", world_from_object=np.diag([1.0, 0.0, 1.0, 1.0]))
     with pytest.raises(SceneError, match=r"sphere 'Flat'.*world_from_object"):
         packed_shapes(Csg("C", operation="union", left=Box("B"), right=flat))
+    # Each fine alone, singular together (found by the fuzzer: numpy's inverse failed)
+    thin = np.diag([1.0, 1.0, 1e-7, 1.0])
+    squashed = Csg("C", operation="union", left=Sphere("Thin", world_from_object=thin),
+                   right=Box("B"), world_from_object=thin)  # fmt: skip
+    with pytest.raises(SceneError, match=r"sphere 'Thin'.*composed .* singular"):
+        packed_shapes(squashed)
     with pytest.raises(SceneError, match=r"CSG 'C'.*operation.*xor"):
         packed_shapes(Csg("C", operation="xor", left=Box("B"), right=Sphere("S")))
     with pytest.raises(SceneError, match=r"CSG 'C'.*right.*need a shape"):

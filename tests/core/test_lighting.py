@@ -233,3 +233,14 @@ def test_shadow_rays_through_glass_follow_the_documented_rule():
     assert light_through(packed, (0, 0, -3), (0, 0, 1), 3.5) == pytest.approx(0.5)  # ends inside
     assert light_through(packed, (0, 0, -3), (0, 0, 1), 10.0) == 0.0
     assert light_through(packed, (3, 0, -3), (0, 0, 1), 10.0) == 1.0
+
+
+def test_a_surface_touching_a_pure_inverse_square_light_stays_finite():
+    """c0 = 0 and a light near the surface: the falloff is capped (found by the fuzzer: a
+    colour of 1e47 overflowed the float32 image to infinity)."""
+    camera = Camera(eye=(0.0, -5.0, 0.0), view=(0.0, 1.0, 0.0), up=(0.0, 0.0, 1.0), fovy=30.0)
+    ball = Sphere("Ball", Material((0.5, 0.5, 0.5), (1.0, 1.0, 1.0), 0.0))
+    light = PointLight((0.0, -1.2, 0.0), (1.0, 1.0, 1.0), (0.0, 0.0, 1e-48))
+    image = render(Scene(camera, [ball], [light]), RenderSettings(width=8, height=8)).image
+    assert np.all(np.isfinite(image))
+    assert image[4, 4, 0] > 1e15  # blinding, as the formula says

@@ -33,6 +33,8 @@ def test_zero_resolution(field):
         (lambda s: setattr(s.camera, "fovy", 180.0), r"camera 'Camera': fovy"),
         (lambda s: setattr(s.camera, "up", (0.0, 14.0, -5.0)), r"camera 'Camera': up: .*parallel"),
         (lambda s: setattr(s.camera, "view", (0, 0, 0)), r"camera 'Camera': view: .*non-zero"),
+        # So short that normalising it underflows (found by the fuzzer)
+        (lambda s: setattr(s.camera, "up", (0, 0, 1e-200)), r"camera 'Camera': up: .*length"),
         (
             lambda s: setattr(s.camera, "eye", (0, float("nan"), 0)),
             r"camera 'Camera': eye: .*finite",
