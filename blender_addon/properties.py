@@ -157,6 +157,7 @@ class WhittedSceneSettings(bpy.types.PropertyGroup):
         items=[
             ("GRID", "Grid", "At the centres of an n x n grid (the report's supersampling)"),
             ("JITTERED", "Jittered", "At a random point in each grid cell: noise, not aliasing"),
+            ("RANDOM", "Random", "At independent random points in the pixel (for comparison)"),
         ],
         default="GRID",
     )
@@ -166,6 +167,7 @@ class WhittedSceneSettings(bpy.types.PropertyGroup):
         items=[
             ("STRATIFIED", "Stratified", "One ray in each of equal cells of the light: less noise"),
             ("UNIFORM", "Uniform", "Independent random points (the report's way)"),
+            ("HALTON", "Halton", "Low-discrepancy points, randomly shifted per shading point"),
         ],
         default="STRATIFIED",
     )

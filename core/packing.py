@@ -21,11 +21,13 @@ from core.kernels.options import (
     OPTION_COUNT,
     OPTION_LENS_STRIDE,
     OPTION_MAX_DEPTH,
-    OPTION_PIXEL_JITTER,
+    OPTION_PIXEL_PATTERN,
     OPTION_PIXEL_SAMPLES,
     OPTION_SEED,
+    OPTION_SHADOW_PATTERN,
     OPTION_SHADOW_SAMPLES,
-    OPTION_SHADOW_STRATIFIED,
+    PIXEL_PATTERNS,
+    SHADOW_PATTERNS,
 )
 from core.kernels.shapes import (
     SHAPE_BOX,
@@ -266,9 +268,9 @@ def _pack_options(settings: RenderSettings) -> np.ndarray:
     options = np.zeros(OPTION_COUNT, np.int64)
     options[OPTION_MAX_DEPTH] = settings.max_depth
     options[OPTION_PIXEL_SAMPLES] = settings.pixel_samples
-    options[OPTION_PIXEL_JITTER] = settings.pixel_sampling == "jittered"
+    options[OPTION_PIXEL_PATTERN] = PIXEL_PATTERNS[settings.pixel_sampling]
     options[OPTION_SHADOW_SAMPLES] = settings.shadow_samples
-    options[OPTION_SHADOW_STRATIFIED] = settings.shadow_sampling == "stratified"
+    options[OPTION_SHADOW_PATTERN] = SHADOW_PATTERNS[settings.shadow_sampling]
     options[OPTION_SEED] = settings.seed
     options[OPTION_LENS_STRIDE] = _lens_stride(settings.pixel_samples**2)
     return options

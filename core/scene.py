@@ -15,6 +15,7 @@ import numpy as np
 
 from core.checks import check_choice, check_count, check_vec3, valid_affine
 from core.errors import SceneError
+from core.kernels.options import PIXEL_PATTERNS, SHADOW_PATTERNS
 from core.scene_parts import (
     AreaLight,
     Camera,
@@ -93,8 +94,8 @@ class Scene:
         return {id(s.world_from_object) for s, good in zip(self.shapes, ok, strict=True) if good}
 
 
-PIXEL_SAMPLINGS = ("grid", "jittered")
-SHADOW_SAMPLINGS = ("stratified", "uniform")
+PIXEL_SAMPLINGS = tuple(PIXEL_PATTERNS)
+SHADOW_SAMPLINGS = tuple(SHADOW_PATTERNS)
 
 
 @dataclass
@@ -110,10 +111,12 @@ class RenderSettings:
     max_depth        -- reflection/refraction bounces after the camera ray, >= 0
     pixel_samples    -- n: each pixel averages n x n camera rays (the report used 3)
     pixel_sampling   -- "grid": at the centres of the n x n cells (the report's supersampling);
-                        "jittered": one random point in each cell
+                        "jittered": one random point in each cell; "random": n x n
+                        independent random points in the pixel
     shadow_samples   -- shadow rays per area light per shading point, >= 1
     shadow_sampling  -- "stratified": one sample in each of as many equal-area cells of the
-                        light; "uniform": independent random points (the report's way)
+                        light; "uniform": independent random points (the report's way);
+                        "halton": the Halton sequence, shifted at random per shading point
     seed             -- selects the random numbers; the same seed gives the same picture
     """
 

@@ -15,9 +15,11 @@ from core.kernels.borrow import borrow_scene, borrow_workspace, borrowed
 from core.kernels.integrator import trace_ray
 from core.kernels.options import (
     OPTION_LENS_STRIDE,
-    OPTION_PIXEL_JITTER,
+    OPTION_PIXEL_PATTERN,
     OPTION_PIXEL_SAMPLES,
     OPTION_SEED,
+    PIXEL_GRID,
+    PIXEL_RANDOM,
 )
 from core.kernels.rng import PURPOSE_LENS, PURPOSE_PIXEL, sample_key, uniform2
 from core.kernels.vec import add, normalize, row, scale, sub
@@ -42,12 +44,16 @@ def concentric_disk(a, b):
 def camera_ray(frame, image_width, image_height, px, py, sample, key):
     """(origin, unit direction) of camera sample `sample` of pixel (px, py), py from the top."""
     n = frame.options[OPTION_PIXEL_SAMPLES]
+    pattern = frame.options[OPTION_PIXEL_PATTERN]
     cx, cy = sample % n, sample // n
     jx, jy = 0.5, 0.5
-    if frame.options[OPTION_PIXEL_JITTER] != 0:
+    if pattern != PIXEL_GRID:
         jx, jy = uniform2(key, PURPOSE_PIXEL, 0, 0)
-    sx = 2.0 * (px + (cx + jx) / n) / image_width - 1.0
-    sy = 1.0 - 2.0 * (py + (cy + jy) / n) / image_height
+    fx, fy = (cx + jx) / n, (cy + jy) / n
+    if pattern == PIXEL_RANDOM:
+        fx, fy = jx, jy
+    sx = 2.0 * (px + fx) / image_width - 1.0
+    sy = 1.0 - 2.0 * (py + fy) / image_height
     eye = row(frame.camera, 0)
     right, up = row(frame.camera, 2), row(frame.camera, 3)
     d = add(row(frame.camera, 1), add(scale(right, sx), scale(up, sy)))

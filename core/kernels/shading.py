@@ -5,15 +5,21 @@
 
 A point light's visibility is its shadow ray's transmittance (0 behind an opaque object).
 An area light is the average of that sum over points spread on its rectangle: N shadow
-rays, one in each of N equal-area cells ("stratified"), or at N independent random points
-("uniform", the report's way). A light contributes only where N.L > 0.
+rays, one in each of N equal-area cells ("stratified"), at N independent random points
+("uniform", the report's way), or at the first N Halton points shifted by one random offset
+per shading point (Cranley-Patterson rotation: "halton"). A light contributes only where N.L > 0.
 """
 
 import math
 
 from core.jit import inlined_kernel, kernel
-from core.kernels.options import OPTION_SHADOW_SAMPLES, OPTION_SHADOW_STRATIFIED
-from core.kernels.rng import PURPOSE_LIGHT, uniform2
+from core.kernels.options import (
+    OPTION_SHADOW_PATTERN,
+    OPTION_SHADOW_SAMPLES,
+    SHADOW_HALTON,
+    SHADOW_STRATIFIED,
+)
+from core.kernels.rng import PURPOSE_LIGHT, PURPOSE_LIGHT_SHIFT, uniform2
 from core.kernels.trace import shadow_transmittance
 from core.kernels.vec import add, as_tuple, dot, mul, row, scale, sub
 from core.kernels.workspace import SHADOW_RAYS
@@ -65,6 +71,18 @@ def _phong_lit(geo, stacks, light_dir, distance, radiance, origin, n, to_viewer,
 
 
 @kernel
+def radical_inverse(i, base):
+    """The digits of i in `base` mirrored about the point: the Halton sequence's i-th
+    coordinate in that base, in [0, 1)."""
+    inverse, scale_ = 0.0, 1.0 / base
+    while i > 0:
+        inverse += (i % base) * scale_
+        i //= base
+        scale_ /= base
+    return inverse
+
+
+@kernel
 def stratified_cell(j, count):
     """Cell j of `count` equal-area cells tiling the unit square: (x0, y0, width, height).
 
@@ -112,16 +130,21 @@ def local_colour(frame, lights, geo, stacks, origin, n, d, kd, ks, shininess, ke
             ),
         )
     samples = frame.options[OPTION_SHADOW_SAMPLES]
-    stratified = frame.options[OPTION_SHADOW_STRATIFIED] != 0
+    pattern = frame.options[OPTION_SHADOW_PATTERN]
     for light in range(lights.area_centre.shape[0]):
         centre = row(lights.area_centre, light)
         edge_u, edge_v = row(lights.area_edge_u, light), row(lights.area_edge_v, light)
         intensity = row(lights.area_intensity, light)
         attenuation = row(lights.area_attenuation, light)
         total = (0.0, 0.0, 0.0)
+        shift_a, shift_b = uniform2(key, PURPOSE_LIGHT_SHIFT, event * 65536 + light, 0)
         for j in range(samples):
-            a, b = uniform2(key, PURPOSE_LIGHT, event * 65536 + light, j)
-            if stratified:
+            if pattern == SHADOW_HALTON:
+                a = (radical_inverse(j + 1, 2) + shift_a) % 1.0
+                b = (radical_inverse(j + 1, 3) + shift_b) % 1.0
+            else:
+                a, b = uniform2(key, PURPOSE_LIGHT, event * 65536 + light, j)
+            if pattern == SHADOW_STRATIFIED:
                 x0, y0, w, h = stratified_cell(j, samples)
                 a, b = x0 + a * w, y0 + b * h
             position = add(centre, add(scale(edge_u, a - 0.5), scale(edge_v, b - 0.5)))

@@ -244,3 +244,31 @@ def test_a_surface_touching_a_pure_inverse_square_light_stays_finite():
     image = render(Scene(camera, [ball], [light]), RenderSettings(width=8, height=8)).image
     assert np.all(np.isfinite(image))
     assert image[4, 4, 0] > 1e15  # blinding, as the formula says
+
+
+def test_halton_area_light_sampling_converges_and_beats_uniform(area_lit):
+    converged = area_errors(area_lit, "halton", 400)
+    assert np.sqrt(np.mean(converged**2)) < 3e-3 and np.abs(converged).max() < 1e-2
+    halton = np.sqrt(np.mean(area_errors(area_lit, "halton", 64) ** 2))
+    uniform = np.sqrt(np.mean(area_errors(area_lit, "uniform", 64) ** 2))
+    assert halton < 0.5 * uniform, (halton, uniform)
+
+
+def test_random_pixel_sampling_averages_to_the_pixel_coverage():
+    """n x n independent points per pixel: the edge of a large flat-lit square converges to
+    its covered fraction like the other patterns, only with more noise."""
+    camera = Camera(eye=(0.0, 0.0, 10.0), view=(0.0, 0.0, -1.0), up=(0.0, 1.0, 0.0), fovy=20.0)
+    white = Material((1.0, 1.0, 1.0))
+    # A square whose left edge falls 0.3 into a pixel column
+    half = 10.0 * math.tan(math.radians(10.0))
+    edge = -half + (8 + 0.3) * 2 * half / 16
+    box = Box("B", white, np.diag([5.0, 5.0, 0.1, 1.0]))
+    box.world_from_object[0, 3] = edge + 5.0
+    scene = Scene(camera, [box], [], ambient=(1.0, 1.0, 1.0))
+    columns = {}
+    for sampling in ("grid", "jittered", "random"):
+        settings = RenderSettings(16, 16, pixel_samples=16, pixel_sampling=sampling)
+        columns[sampling] = render(scene, settings).image[:, 8, 0]
+    for sampling, column in columns.items():
+        np.testing.assert_allclose(column.mean(), 0.7, atol=0.03, err_msg=sampling)
+    assert columns["random"].std() > columns["jittered"].std()
