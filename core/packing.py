@@ -19,7 +19,6 @@ from core.kernels.bvh_build import build_bvh
 from core.kernels.layout import Frame, Geometry, Lights, Materials, PackedScene, Surfaces
 from core.kernels.options import (
     OPTION_COUNT,
-    OPTION_LENS_STRIDE,
     OPTION_MAX_DEPTH,
     OPTION_PIXEL_PATTERN,
     OPTION_PIXEL_SAMPLES,
@@ -272,17 +271,7 @@ def _pack_options(settings: RenderSettings) -> np.ndarray:
     options[OPTION_SHADOW_SAMPLES] = settings.shadow_samples
     options[OPTION_SHADOW_PATTERN] = SHADOW_PATTERNS[settings.shadow_sampling]
     options[OPTION_SEED] = settings.seed
-    options[OPTION_LENS_STRIDE] = _lens_stride(settings.pixel_samples**2)
     return options
-
-
-def _lens_stride(cells: int) -> int:
-    """A stride coprime to the number of lens cells, near its golden cut: stepping through
-    the cells by it shuffles them, so lens and pixel positions are not correlated."""
-    stride = max(1, int(cells * 0.6180339887498949))
-    while math.gcd(stride, cells) != 1:
-        stride += 1
-    return stride
 
 
 def _pack_camera(scene: Scene, settings: RenderSettings) -> np.ndarray:

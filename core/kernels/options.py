@@ -6,8 +6,7 @@ OPTION_PIXEL_PATTERN = 2  # one of PIXEL_*
 OPTION_SHADOW_SAMPLES = 3
 OPTION_SHADOW_PATTERN = 4  # one of SHADOW_*
 OPTION_SEED = 5
-OPTION_LENS_STRIDE = 6  # shuffles lens cells against pixel cells (see render_tile)
-OPTION_COUNT = 7
+OPTION_COUNT = 6
 
 # Where a pixel's n x n camera rays pass: cell centres, a random point per cell, or n x n
 # independent random points anywhere in the pixel

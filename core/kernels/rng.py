@@ -49,3 +49,26 @@ def uniform2(key, purpose, a, b):
     """Two independent uniform numbers in [0, 1) for (purpose, a, b) under `key`."""
     h = chain(chain(chain(key, purpose), a), b)
     return float(h >> _S11) * _UNIT, float(mix(h + _GOLDEN) >> _S11) * _UNIT
+
+
+_ODD = np.uint64(0x2545F4914F6CDD1D)
+
+
+@kernel
+def permuted(index, count, key):
+    """Where `index` goes in a random permutation of 0..count-1 chosen by `key`: a bijection
+    of the next power of two (xor, odd multiply and xor-shift, each invertible modulo
+    2^k), walked until it lands below count (Black's cycle walking)."""
+    mask = np.uint64(1)
+    while mask < np.uint64(count):
+        mask = mask << np.uint64(1)
+    mask = mask - np.uint64(1)
+    i = np.uint64(index)
+    salt = mix(np.uint64(key))
+    while True:
+        for round_ in range(3):
+            i = (i ^ (salt >> np.uint64(7 * round_))) & mask
+            i = (i * _ODD) & mask
+            i = i ^ ((i & mask) >> np.uint64(3))
+        if i < np.uint64(count):
+            return int(i)

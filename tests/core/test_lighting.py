@@ -272,3 +272,19 @@ def test_random_pixel_sampling_averages_to_the_pixel_coverage():
     for sampling, column in columns.items():
         np.testing.assert_allclose(column.mean(), 0.7, atol=0.03, err_msg=sampling)
     assert columns["random"].std() > columns["jittered"].std()
+
+
+def test_lens_cells_are_a_different_permutation_in_each_pixel():
+    """Each pixel visits every lens cell once, in its own order (a fixed stride correlated
+    pixel and lens positions for some n and biased the depth of field)."""
+    from core.kernels.rng import permuted, sample_key
+
+    for count in (1, 4, 9, 144, 256):
+        orders = set()
+        for px in range(4):
+            key = np.uint64(sample_key(0, px, 7, count))
+            order = [permuted(i, count, key) for i in range(count)]
+            assert sorted(order) == list(range(count))
+            orders.add(tuple(order))
+        if count >= 9:
+            assert len(orders) == 4  # each pixel its own order
