@@ -52,14 +52,9 @@ def build_spheres():
     kit.save("spheres.blend")
 
 
-def _floor(name, mat, half=30.0, tile=2.0, z=0.0):
-    """A square mesh floor whose UVs repeat the texture every `tile` units."""
-    import numpy as np
-
-    corners = np.array([[-half, -half, 0], [half, -half, 0], [half, half, 0], [-half, half, 0]])
-    triangles = np.array([[0, 1, 2], [0, 2, 3]])
-    return kit.mesh_object(name, corners, triangles, corners[triangles][..., :2] / tile,
-                           smooth=False, mat=mat, location=(0, 0, z))  # fmt: skip
+def _floor(name, mat, half=30.0, tile=2.0):
+    """A square floor at z = 0 whose texture repeats every `tile` units."""
+    return kit.floor_plane(name, mat, (-half, half), (-half, half), tile)
 
 
 def _studio(scene, width, height, eye, target, fovy=40.0):

@@ -10,7 +10,6 @@ y (up) is our z, its z (towards the eye) is our -y.
 
 from __future__ import annotations
 
-import numpy as np
 import scene_kit as kit
 import teapot
 
@@ -37,13 +36,7 @@ def _room():
     wood = kit.material(
         "Floor Wood", specular=(0.15, 0.15, 0.15), shininess=15.0, texture="wood_floor.png"
     )
-    # A mesh plane, so its UVs can repeat the planks every 400 units
-    half_x, y0, y1 = 1600.0, -1200.0, 400.0
-    corners = np.array([[-half_x, y0, 0], [half_x, y0, 0], [half_x, y1, 0], [-half_x, y1, 0]])
-    triangles = np.array([[0, 1, 2], [0, 2, 3]])
-    uvs = corners[triangles][..., :2] / 400.0
-    kit.mesh_object("Floor", corners, triangles, uvs, smooth=False, mat=wood,
-                    location=(0, 0, FLOOR))  # fmt: skip
+    kit.floor_plane("Floor", wood, (-1600.0, 1600.0), (-1200.0, 400.0), tile=400.0, z=FLOOR)
     mirror = kit.material(
         "Mirror", diffuse=(0.05, 0.05, 0.06), specular=(0.8, 0.8, 0.8), shininess=200.0,
         reflectivity=0.85,

@@ -13,6 +13,7 @@ from pathlib import Path
 
 import addon_utils
 import bpy
+import numpy as np
 from mathutils import Matrix, Vector
 
 HERE = Path(__file__).resolve().parent
@@ -135,6 +136,16 @@ def mesh_object(name, vertices, triangles, corner_uvs=None, smooth=True, mat=Non
     obj.scale = scale
     (collection or bpy.context.scene.collection).objects.link(obj)
     return obj
+
+
+def floor_plane(name, mat, x_range, y_range, tile, z=0.0):
+    """A horizontal rectangle of two triangles whose UVs repeat the texture every `tile`
+    units (a tagged cube's UVs would stretch one copy across each face)."""
+    (x0, x1), (y0, y1) = x_range, y_range
+    corners = np.array([[x0, y0, 0.0], [x1, y0, 0.0], [x1, y1, 0.0], [x0, y1, 0.0]])
+    triangles = np.array([[0, 1, 2], [0, 2, 3]])
+    return mesh_object(name, corners, triangles, corners[triangles][..., :2] / tile,
+                       smooth=False, mat=mat, location=(0, 0, z))  # fmt: skip
 
 
 def boolean(target, operation, operand):

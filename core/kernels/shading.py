@@ -40,7 +40,7 @@ def light_from(
     c0, c1, c2 = attenuation
     # Without c0 the falloff grows without bound at the light: cap it, so a surface touching
     # a light is blinding but finite (found by the fuzzer: 1 / (c2 d^2) overflowed)
-    falloff = min(1.0 / max(c0 + c1 * distance + c2 * distance * distance, 1e-300), MAX_FALLOFF)
+    falloff = 1.0 / max(c0 + c1 * distance + c2 * distance * distance, 1.0 / MAX_FALLOFF)
     light_dir = scale(to_light, 1.0 / distance)
     return _phong_lit(
         geo, stacks, light_dir, distance, scale(intensity, falloff), origin, n, to_viewer,
@@ -137,7 +137,9 @@ def local_colour(frame, lights, geo, stacks, origin, n, d, kd, ks, shininess, ke
         intensity = row(lights.area_intensity, light)
         attenuation = row(lights.area_attenuation, light)
         total = (0.0, 0.0, 0.0)
-        shift_a, shift_b = uniform2(key, PURPOSE_LIGHT_SHIFT, event * 65536 + light, 0)
+        shift_a = shift_b = 0.0
+        if pattern == SHADOW_HALTON:
+            shift_a, shift_b = uniform2(key, PURPOSE_LIGHT_SHIFT, event * 65536 + light, 0)
         for j in range(samples):
             if pattern == SHADOW_HALTON:
                 a = (radical_inverse(j + 1, 2) + shift_a) % 1.0

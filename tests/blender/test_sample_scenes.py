@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
+from core.textures import srgb_to_linear
 from tests.blender.conftest import ROOT
 
 pytestmark = pytest.mark.bpy5
@@ -26,8 +27,7 @@ def render(bpy, scene, path, size=None):
     scene.render.resolution_percentage = 100
     scene.render.filepath = str(path)
     bpy.ops.render.render(write_still=True, scene=scene.name)
-    srgb = np.asarray(Image.open(path), dtype=float)[..., :3] / 255.0
-    return np.where(srgb <= 0.04045, srgb / 12.92, ((srgb + 0.055) / 1.055) ** 2.4)
+    return srgb_to_linear(np.asarray(Image.open(path), dtype=float)[..., :3] / 255.0)
 
 
 def pixel_of(scene, point):

@@ -6,6 +6,7 @@ NaN, no infinity, no exception but `SceneError`, and no hang.
 WHITTED_FUZZ_EXAMPLES (thousands) and a random seed.
 """
 
+import functools
 import os
 from concurrent.futures import ThreadPoolExecutor
 
@@ -162,15 +163,11 @@ def render_settings(draw):
     )  # fmt: skip
 
 
+@functools.cache
 def _compile_once():
     """Compile (or load) the kernels before any render is timed: a cold compile takes longer
     than HANG_S."""
-    if not _compiled:
-        core.render(core.Scene(shapes=[core.Sphere()]), core.RenderSettings(width=2, height=2))
-        _compiled.append(True)
-
-
-_compiled = []
+    core.render(core.Scene(shapes=[core.Sphere()]), core.RenderSettings(width=2, height=2))
 
 
 def render_or_refuse(scene, render_settings):
