@@ -14,6 +14,8 @@ from bpy.props import (
     PointerProperty,
 )
 
+from core.scene import DEFAULT_PIXEL_SAMPLES, DEFAULT_SHADOW_SAMPLES
+
 # Each analytic shape matches the Blender primitive added with default settings, so tagging
 # that primitive renders the exact shape where its mesh sits
 SHAPE_ITEMS = [
@@ -149,7 +151,7 @@ class WhittedSceneSettings(bpy.types.PropertyGroup):
         min=1,
         soft_max=8,
         max=32,
-        default=1,
+        default=DEFAULT_PIXEL_SAMPLES,
     )
     pixel_sampling: EnumProperty(
         name="Pattern",
@@ -185,7 +187,7 @@ class WhittedSceneSettings(bpy.types.PropertyGroup):
         ),
         min=1,
         soft_max=256,
-        default=16,
+        default=DEFAULT_SHADOW_SAMPLES,
     )
     tile_size: IntProperty(
         name="Tile Size",

@@ -1,12 +1,14 @@
-"""Many rays at once, for benchmarks, tests and tools: nearest hits and shadow queries.
+"""Many rays at once, for benchmarks, tests and tools: nearest hits, the surface normals
+there, and shadow queries.
 
 Each entry point loops over the rays inside one GIL-free kernel, so callers can split a batch
 across threads themselves; one `Stacks` (from a `Workspace`) per calling thread. They take
-the packed scene's `geometry` group.
+the packed scene's `geometry` group (and its `surfaces` group for normals).
 """
 
 from core.jit import kernel
-from core.kernels.borrow import borrow_geometry, borrow_stacks
+from core.kernels.borrow import borrow_geometry, borrow_stacks, borrow_surfaces
+from core.kernels.surface import surface_at
 from core.kernels.trace import closest_hit, transmittance
 
 
@@ -21,6 +23,25 @@ def closest_hits(geo, origins, directions, t_max, out_t, out_shape, out_part, st
         out_t[i] = t
         out_shape[i] = shape
         out_part[i] = part
+
+
+@kernel
+def closest_normals(geo, surf, origins, directions, t_max, out_t, out_shape, out_normal, stacks):
+    """`closest_hits` with the shading normal at each hit (unit, outward; zero on a miss):
+    what the renderer shades with, interpolated across smooth mesh faces."""
+    geo, surf, stacks = borrow_geometry(geo), borrow_surfaces(surf), borrow_stacks(stacks)
+    for i in range(origins.shape[0]):
+        o = (origins[i, 0], origins[i, 1], origins[i, 2])
+        d = (directions[i, 0], directions[i, 1], directions[i, 2])
+        shape, t, part, b1, b2 = closest_hit(geo, o, d, t_max, stacks)
+        out_t[i] = t
+        out_shape[i] = shape
+        n = (0.0, 0.0, 0.0)
+        if shape >= 0:
+            n = surface_at(geo, surf, shape, part, b1, b2, o, d, t, False)[2]
+        out_normal[i, 0] = n[0]
+        out_normal[i, 1] = n[1]
+        out_normal[i, 2] = n[2]
 
 
 @kernel

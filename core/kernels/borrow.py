@@ -39,7 +39,7 @@ def borrowed(typingctx, array):
 @kernel
 def borrow_scene(ps):
     f, g, s, m, li = ps
-    return PackedScene(_borrow_frame(f), borrow_geometry(g), _borrow_surfaces(s),
+    return PackedScene(_borrow_frame(f), borrow_geometry(g), borrow_surfaces(s),
                        _borrow_materials(m), _borrow_lights(li))  # fmt: skip
 
 
@@ -76,7 +76,7 @@ def borrow_geometry(g):
 
 
 @kernel
-def _borrow_surfaces(s):
+def borrow_surfaces(s):
     return Surfaces(
         borrowed(s.shape_material),
         borrowed(s.mesh_tri_offset),

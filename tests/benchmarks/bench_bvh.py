@@ -112,9 +112,9 @@ def main():
     scene = Scene(shapes=[Mesh("Bumpy", mesh=mesh)])
     # Compile the builder before timing it
     tiny = TriangleMesh(vertices[:3], np.array([[0, 1, 2]]))
-    compile_scene(Scene(shapes=[Mesh(mesh=tiny)]), RenderSettings(8, 8))
+    compile_scene(Scene(shapes=[Mesh(mesh=tiny)]), RenderSettings(8, 8, pixel_samples=1))
     start = time.perf_counter()
-    compiled = compile_scene(scene, RenderSettings(8, 8))
+    compiled = compile_scene(scene, RenderSettings(8, 8, pixel_samples=1))
     build_s = time.perf_counter() - start
     packed = compiled.packed
     print(f"triangles: {compiled.triangles}")

@@ -84,7 +84,7 @@ def camera_rays(size):
 
 
 def trace_seconds(shapes, origins, directions, repeats=5):
-    geometry = pack_scene(Scene(shapes=shapes), RenderSettings(8, 8)).geometry
+    geometry = pack_scene(Scene(shapes=shapes), RenderSettings(8, 8, pixel_samples=1)).geometry
     stacks = new_workspace(0).stacks
     n = len(origins)
     out = np.empty(n), np.empty(n, np.int64), np.empty(n, np.int64)
@@ -102,12 +102,16 @@ def main():
     solids["mug"] = mug()
     light = PointLight((4.0, -3.0, 6.0), (1.0, 1.0, 1.0))
     origins, directions = camera_rays(SIZE)
-    render(Scene(camera(), [solids["mug"], checker_floor()], [light]), RenderSettings(8, 8))
+    render(
+        Scene(camera(), [solids["mug"], checker_floor()], [light]),
+        RenderSettings(8, 8, pixel_samples=1),
+    )
     rows = []
     for name, solid in solids.items():
         scene = Scene(camera(), [solid, checker_floor()], [light], ambient=(0.1, 0.1, 0.1))
         frame = min(
-            _timed(lambda scene=scene: render(scene, RenderSettings(SIZE, SIZE))) for _ in range(3)
+            _timed(lambda scene=scene: render(scene, RenderSettings(SIZE, SIZE, pixel_samples=1)))
+            for _ in range(3)
         )
         csg_s = trace_seconds([solid], origins, directions)
         parts = [with_world(op, np.eye(4)) for op in operands(solid, [])]

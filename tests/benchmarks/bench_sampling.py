@@ -33,9 +33,11 @@ SIZE = 64
 FOVY = 20.0
 EYE_HEIGHT = 10.0
 TURN = math.radians(20.0)
-# Each chart's default: what RenderSettings and the Blender panel start with
-AA_DEFAULT = ("grid", 1)
-SHADOW_DEFAULT = ("stratified", 16)
+# Each chart's default: what RenderSettings and the Blender panel start with. Chart 2 renders
+# one camera ray per pixel, so that each pixel's error is its shadow estimate's alone (with
+# the default n x n camera rays, a pixel averages n^2 such estimates)
+AA_DEFAULT = (RenderSettings.pixel_sampling, RenderSettings.pixel_samples)
+SHADOW_DEFAULT = (RenderSettings.shadow_sampling, RenderSettings.shadow_samples)
 
 
 def look_down():
@@ -122,7 +124,9 @@ def chart_antialiasing():
     rows = []
     for pattern, sides in AA_SIDES.items():
         for n in sides:
-            settings = RenderSettings(SIZE, SIZE, pixel_samples=n, pixel_sampling=pattern)
+            settings = RenderSettings(
+                SIZE, SIZE, pixel_samples=n, pixel_sampling=pattern, shadow_samples=16
+            )
             image, seconds = timed_render(scene, settings)
             rmse = float(np.sqrt(np.mean((image[..., 0] - reference) ** 2)))
             rows.append((pattern, n * n, seconds, rmse))
@@ -256,7 +260,9 @@ def chart_shadows():
     rows = []
     for pattern in ("uniform", "stratified", "halton"):
         for count in SHADOW_COUNTS:
-            settings = RenderSettings(SIZE, SIZE, shadow_samples=count, shadow_sampling=pattern)
+            settings = RenderSettings(
+                SIZE, SIZE, shadow_samples=count, shadow_sampling=pattern, pixel_samples=1
+            )
             image, seconds = timed_render(scene, settings)
             rmse = float(np.sqrt(np.mean((image[..., 0][floor] - reference[floor]) ** 2)))
             rows.append((pattern, count, seconds, rmse))
@@ -293,7 +299,9 @@ def write_chart(name, title, rows, default, sample_label):
 
 
 def main():
-    render(edge_scene(), RenderSettings(4, 4))  # load the kernels before timing
+    render(
+        edge_scene(), RenderSettings(4, 4, pixel_samples=1, shadow_samples=16)
+    )  # load the kernels before timing
     aa = chart_antialiasing()
     chosen = write_chart("antialiasing", "Anti-aliasing: error against time (labels: rays/pixel)",
                          aa, (AA_DEFAULT[0], AA_DEFAULT[1] ** 2), "samples")  # fmt: skip

@@ -38,7 +38,7 @@ def kernel_load_seconds(cache_dir):
         "import time; t = time.perf_counter(); from core.render import render; "
         "from tests.benchmarks.bench_smoke import spheres_scene; from core import RenderSettings; "
         "first = []; tile = lambda *a: first or first.append(time.perf_counter() - t); "
-        "out = render(spheres_scene(), RenderSettings(64, 64), on_tile=tile); "
+        "out = render(spheres_scene(), RenderSettings(64, 64, pixel_samples=1), on_tile=tile); "
         "print(out.stats.kernel_s, out.stats.kernel_source, first[0])"
     )
     env = dict(os.environ, WHITTED_CACHE_DIR=str(cache_dir))
@@ -59,11 +59,11 @@ def main():
     print(f"start_to_first_tile_cached_s: {first_tile:.3f}")
 
     scene = spheres_scene()
-    render(scene, RenderSettings(8, 8))  # kernels into memory
+    render(scene, RenderSettings(8, 8, pixel_samples=1))  # kernels into memory
     rows = []
     for size in (64, 128, 256, 512):
         start = time.perf_counter()
-        out = render(scene, RenderSettings(size, size))
+        out = render(scene, RenderSettings(size, size, pixel_samples=1))
         seconds = time.perf_counter() - start
         rows.append((size, seconds, size * size / seconds / 1e6, out.stats.threads))
         print(f"render_{size}_s: {seconds:.4f}")

@@ -15,7 +15,9 @@ WORKSPACE = new_workspace(8)
 
 
 def packed_shapes(*shapes, lights=()):
-    return pack_scene(Scene(shapes=list(shapes), lights=list(lights)), RenderSettings(8, 8))
+    return pack_scene(
+        Scene(shapes=list(shapes), lights=list(lights)), RenderSettings(8, 8, pixel_samples=1)
+    )
 
 
 def hit(packed, origin, direction, t_max=math.inf):

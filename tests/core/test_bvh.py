@@ -77,7 +77,7 @@ def random_scene(rng, shapes=60):
 def test_bvh_returns_exactly_what_brute_force_returns(seed):
     rng = np.random.default_rng(seed)
     scene = random_scene(rng)
-    packed = compile_scene(scene, RenderSettings(8, 8)).packed
+    packed = compile_scene(scene, RenderSettings(8, 8, pixel_samples=1)).packed
     centres = np.array([s.world_from_object[:3, 3] for s in scene.shapes])
     origins = rng.uniform(-12, 12, size=(3000, 3))
     directions = centres[rng.integers(0, len(centres), 3000)] - origins
@@ -96,8 +96,8 @@ def test_instances_share_one_copy_of_the_triangles():
     ball = TriangleMesh(vertices, triangles)
     many = [Mesh(f"b{i}", world_from_object=np.eye(4) + np.eye(4, k=3) * i, mesh=ball)
             for i in range(50)]  # fmt: skip
-    one = compile_scene(Scene(shapes=many[:1]), RenderSettings(8, 8))
-    fifty = compile_scene(Scene(shapes=many), RenderSettings(8, 8))
+    one = compile_scene(Scene(shapes=many[:1]), RenderSettings(8, 8, pixel_samples=1))
+    fifty = compile_scene(Scene(shapes=many), RenderSettings(8, 8, pixel_samples=1))
     assert fifty.triangles == one.triangles == len(triangles)
     assert fifty.mesh_bytes == one.mesh_bytes
 
@@ -167,8 +167,8 @@ def test_smooth_faces_interpolate_normals_and_flat_faces_do_not():
     tilted = np.array([[-1, -1, 1], [1, -1, 1], [1, 1, 1], [-1, 1, 1]], float)
     for smooth in (True, False):
         mesh = flat_square(np.array([smooth, smooth]), vertex_normals=tilted)
-        found = surface(compile_scene(Scene(shapes=[Mesh(mesh=mesh)]), RenderSettings(8, 8)).packed,
-                        (0.5, -0.25, 3.0), (0.0, 0.0, -1.0))  # fmt: skip
+        packed = compile_scene(Scene(shapes=[Mesh(mesh=mesh)]), RenderSettings(8, 8)).packed
+        found = surface(packed, (0.5, -0.25, 3.0), (0.0, 0.0, -1.0))
         _, t, point, geometric, shading, _ = found
         assert t == pytest.approx(3.0)
         np.testing.assert_allclose(geometric, (0, 0, 1), atol=1e-15)
@@ -184,7 +184,9 @@ def test_smooth_faces_interpolate_normals_and_flat_faces_do_not():
 def test_corner_uvs_interpolate_and_vertex_normals_come_from_faces():
     uvs = np.array([[[0, 0], [1, 0], [1, 1]], [[0, 0], [1, 1], [0, 1]]], float)
     mesh = flat_square(True, corner_uvs=uvs)
-    packed = compile_scene(Scene(shapes=[Mesh(mesh=mesh)]), RenderSettings(8, 8)).packed
+    packed = compile_scene(
+        Scene(shapes=[Mesh(mesh=mesh)]), RenderSettings(8, 8, pixel_samples=1)
+    ).packed
     _, _, _, _, shading, (u, v) = surface(packed, (0.5, -0.25, 3.0), (0.0, 0.0, -1.0))
     assert (u, v) == (pytest.approx(0.75), pytest.approx(0.375))
     np.testing.assert_allclose(shading, (0, 0, 1), atol=1e-7)  # a flat mesh: all normals +z
@@ -195,7 +197,9 @@ def test_smooth_mesh_without_normals_gets_area_weighted_vertex_normals():
     report's way); on an icosphere that is close to the radial direction."""
     vertices, triangles = icosphere(2)
     mesh = TriangleMesh(vertices, triangles, smooth=True)
-    packed = compile_scene(Scene(shapes=[Mesh(mesh=mesh)]), RenderSettings(8, 8)).packed
+    packed = compile_scene(
+        Scene(shapes=[Mesh(mesh=mesh)]), RenderSettings(8, 8, pixel_samples=1)
+    ).packed
     v32 = vertices.astype(np.float32).astype(np.float64)
     for k in (0, 5, 40):
         faces = np.flatnonzero((triangles == k).any(axis=1))
@@ -210,10 +214,12 @@ def test_smooth_mesh_without_normals_gets_area_weighted_vertex_normals():
 def test_degenerate_triangles_are_dropped_with_a_count():
     v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [2, 0, 0]], float)
     mesh = TriangleMesh(v, np.array([[0, 1, 2], [0, 1, 3], [2, 2, 1]]), name="Sliver")
-    compiled = compile_scene(Scene(shapes=[Mesh("Sliver", mesh=mesh)]), RenderSettings(8, 8))
+    compiled = compile_scene(
+        Scene(shapes=[Mesh("Sliver", mesh=mesh)]), RenderSettings(8, 8, pixel_samples=1)
+    )
     assert compiled.triangles == 1
     assert compiled.warnings == ["mesh 'Sliver': dropped 2 degenerate (zero-area) triangles"]
-    out = render(Scene(shapes=[Mesh("Sliver", mesh=mesh)]), RenderSettings(4, 4))
+    out = render(Scene(shapes=[Mesh("Sliver", mesh=mesh)]), RenderSettings(4, 4, pixel_samples=1))
     assert out.warnings == compiled.warnings
 
 
@@ -221,7 +227,7 @@ def test_a_mesh_with_no_triangles_left_renders_background():
     v = np.zeros((3, 3))
     scene = Scene(shapes=[Mesh("Flat", mesh=TriangleMesh(v, np.array([[0, 1, 2]])))],
                   background=(0.25, 0.5, 0.75))  # fmt: skip
-    image = render(scene, RenderSettings(4, 4)).image
+    image = render(scene, RenderSettings(4, 4, pixel_samples=1)).image
     np.testing.assert_array_equal(image[..., :3], np.broadcast_to((0.25, 0.5, 0.75), (4, 4, 3)))
 
 
@@ -234,7 +240,7 @@ def test_watertight_a_million_rays_at_shared_edges_and_vertices():
     matrix = random_affine(rng, translate=3.0)
     packed = compile_scene(
         Scene(shapes=[Mesh(world_from_object=matrix, mesh=TriangleMesh(vertices, triangles))]),
-        RenderSettings(8, 8),
+        RenderSettings(8, 8, pixel_samples=1),
     ).packed
     v32 = vertices.astype(np.float32).astype(np.float64)
     world = v32 @ matrix[:3, :3].T + matrix[:3, 3]
@@ -263,7 +269,9 @@ def test_watertight_rays_through_every_vertex_untransformed(subdivisions):
     boxes of the BVH, where culling must not undo the triangle test's decision."""
     vertices, triangles = icosphere(subdivisions)
     mesh = TriangleMesh(vertices, triangles)
-    packed = compile_scene(Scene(shapes=[Mesh(mesh=mesh)]), RenderSettings(8, 8)).packed
+    packed = compile_scene(
+        Scene(shapes=[Mesh(mesh=mesh)]), RenderSettings(8, 8, pixel_samples=1)
+    ).packed
     v32 = vertices.astype(np.float32).astype(np.float64)
     inward = -v32 / np.linalg.norm(v32, axis=1, keepdims=True)
     _, shape, _ = hits(packed, v32 * 3.0, inward)

@@ -327,7 +327,7 @@ def test_mirror_and_glass_behind_a_cut_see_through_the_hole():
                       background=background)  # fmt: skip
         if behind is ball:
             scene.shapes.append(Box("Wall", black, placed((3, 3, 0.05), (0, 0, -8.0))))
-        image = render(scene, RenderSettings(33, 33, max_depth=12)).image
+        image = render(scene, RenderSettings(33, 33, max_depth=12, pixel_samples=1)).image
         centre = image[16, 16, :3]
         if behind is mirror:
             np.testing.assert_allclose(centre, background, atol=1e-9)
@@ -422,11 +422,11 @@ def test_a_ray_crossing_more_csg_surfaces_than_fit_is_reported():
     solid = Csg("Comb", operation="union", left=Mesh("Teeth", mesh=comb(600)),
                 right=Sphere("Bead", world_from_object=placed((0.1, 0.1, 0.1))))  # fmt: skip
     along = Camera((-5.0, 0, 0), (1.0, 0, 0), (0, 0, 1.0), 1)
-    out = render(Scene(along, [solid]), RenderSettings(3, 3))
+    out = render(Scene(along, [solid]), RenderSettings(3, 3, pixel_samples=1))
     assert any("rays met more CSG surfaces" in w for w in out.warnings)
     few = Csg("Comb", operation="union", left=Mesh("Teeth", mesh=comb(100)),
               right=Sphere("Bead", world_from_object=placed((0.1, 0.1, 0.1))))  # fmt: skip
-    assert render(Scene(along, [few]), RenderSettings(3, 3)).warnings == []
+    assert render(Scene(along, [few]), RenderSettings(3, 3, pixel_samples=1)).warnings == []
     # Two hundred crossings along the axis, sorted right: from the gap after tooth 50 the
     # nearest faces are tooth 51's front and tooth 50's back
     packed = packed_shapes(few)
@@ -446,7 +446,9 @@ def test_a_flush_cut_renders_the_same_pixels_for_any_tiling_and_threads():
     camera = Camera(tuple(eye), tuple(tilt[:3, 3] - eye), (0, 0, 1.0), 30)
     scene = Scene(camera, [solid], [PointLight(tuple(eye), (1, 1, 1))], ambient=(0.1,) * 3)
     images = [
-        render(scene, RenderSettings(48, 40, tile_size=tile, threads=threads)).image
+        render(
+            scene, RenderSettings(48, 40, tile_size=tile, threads=threads, pixel_samples=1)
+        ).image
         for tile, threads in ((7, 1), (64, 2), (16, 2))
     ]
     assert np.array_equal(images[0], images[1]) and np.array_equal(images[0], images[2])

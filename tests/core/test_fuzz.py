@@ -202,8 +202,8 @@ def test_random_csg_trees_in_front_of_the_camera(solid, light, seed):
     camera = core.Camera(eye=(0.0, -12.0, 0.0), view=(0.0, 1.0, 0.0), up=(0.0, 0.0, 1.0),
                          fovy=60.0)  # fmt: skip
     scene = core.Scene(camera=camera, shapes=[solid], lights=[light], ambient=(0.1,) * 3)
-    settings_ = core.RenderSettings(width=16, height=16, tile_size=16, threads=1,
-                                    max_depth=6, shadow_samples=2, seed=seed)  # fmt: skip
+    settings_ = core.RenderSettings(width=16, height=16, tile_size=16, threads=1, max_depth=6,
+                                    shadow_samples=2, seed=seed, pixel_samples=1)  # fmt: skip
     image = render_or_refuse(scene, settings_)
     if image is not None:
         assert np.all(np.isfinite(image)) and np.all(image >= 0.0)

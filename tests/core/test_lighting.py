@@ -42,7 +42,7 @@ def test_plane_under_a_point_light_matches_the_formula():
     light = PointLight((1.0, 2.0, 4.0), (30.0, 20.0, 10.0), (0.5, 0.2, 0.05))
     scene = Scene(look_down(), [ground()], [light], ambient=(0.1, 0.1, 0.1))
     width, height = 40, 30
-    image = render(scene, RenderSettings(width, height)).image
+    image = render(scene, RenderSettings(width, height, pixel_samples=1, shadow_samples=16)).image
     for px, py in np.random.default_rng(1).integers((0, 0), (width, height), size=(60, 2)):
         o, d = camera_ray(scene.camera.eye, scene.camera.view, scene.camera.up, 60.0, width,
                           height, px, py)  # fmt: skip
@@ -61,7 +61,7 @@ def test_plane_under_a_directional_light_is_lit_by_the_cosine_and_shadowed():
     post = Sphere("Post", Material((0.9, 0.9, 0.9)), translate_scale((0.0, 0.0, 1.2), 1.0))
     scene = Scene(look_down(), [ground(), post], [sun], ambient=(0.1, 0.1, 0.1))
     width, height = 40, 30
-    image = render(scene, RenderSettings(width, height)).image
+    image = render(scene, RenderSettings(width, height, pixel_samples=1, shadow_samples=16)).image
     toward = -np.array(sun.direction) / np.linalg.norm(sun.direction)
     lit = np.array(GROUND_KD) * (0.1 + np.array(sun.intensity) * toward[2])
     dark = np.array(GROUND_KD) * 0.1
@@ -116,7 +116,9 @@ def area_lit():
 
 def area_errors(area_lit, sampling, samples, seed=0):
     scene, pixels, expected = area_lit
-    settings = RenderSettings(32, 24, shadow_samples=samples, shadow_sampling=sampling, seed=seed)
+    settings = RenderSettings(
+        32, 24, shadow_samples=samples, shadow_sampling=sampling, seed=seed, pixel_samples=1
+    )
     image = render(scene, settings).image
     got = np.array([image[py, px, 0] for px, py in pixels])
     return (got - expected) / expected
@@ -184,7 +186,9 @@ def mirror_corridor(depth):
              for s in (-1, 1)]  # fmt: skip
     camera = Camera(eye=(0, 0, 0), view=(1.0, 0.05, 0.0), up=(0, 0, 1), fovy=10)
     scene = Scene(camera, walls, [], ambient=(1.0, 1.0, 1.0), background=(0, 0, 0))
-    return render(scene, RenderSettings(8, 8, max_depth=depth)).image
+    return render(
+        scene, RenderSettings(8, 8, max_depth=depth, pixel_samples=1, shadow_samples=16)
+    ).image
 
 
 def test_facing_mirrors_at_depth_fifty_terminate_each_bounce_darker():
@@ -206,14 +210,14 @@ def lens_scene(aperture, focal_distance=10.0):
 
 
 def test_zero_aperture_is_the_pinhole_image_exactly():
-    settings = RenderSettings(40, 30, pixel_samples=2, pixel_sampling="jittered")
+    settings = RenderSettings(40, 30, pixel_samples=2, pixel_sampling="jittered", shadow_samples=16)
     pinhole = render(lens_scene(0.0), settings).image
     for focal in (0.5, 10.0, 1e6):
         np.testing.assert_array_equal(render(lens_scene(0.0, focal), settings).image, pinhole)
 
 
 def test_the_plane_in_focus_stays_sharp_and_the_rest_blurs():
-    settings = RenderSettings(40, 30, pixel_samples=4, pixel_sampling="jittered")
+    settings = RenderSettings(40, 30, pixel_samples=4, pixel_sampling="jittered", shadow_samples=16)
     pinhole = render(lens_scene(0.0), settings).image
     lens = render(lens_scene(0.4), settings).image
     near = pinhole[..., 0] > 0  # the red sphere, at the focal distance
@@ -241,7 +245,10 @@ def test_a_surface_touching_a_pure_inverse_square_light_stays_finite():
     camera = Camera(eye=(0.0, -5.0, 0.0), view=(0.0, 1.0, 0.0), up=(0.0, 0.0, 1.0), fovy=30.0)
     ball = Sphere("Ball", Material((0.5, 0.5, 0.5), (1.0, 1.0, 1.0), 0.0))
     light = PointLight((0.0, -1.2, 0.0), (1.0, 1.0, 1.0), (0.0, 0.0, 1e-48))
-    image = render(Scene(camera, [ball], [light]), RenderSettings(width=8, height=8)).image
+    image = render(
+        Scene(camera, [ball], [light]),
+        RenderSettings(width=8, height=8, pixel_samples=1, shadow_samples=16),
+    ).image
     assert np.all(np.isfinite(image))
     assert image[4, 4, 0] > 1e15  # blinding, as the formula says
 
@@ -267,7 +274,9 @@ def test_random_pixel_sampling_averages_to_the_pixel_coverage():
     scene = Scene(camera, [box], [], ambient=(1.0, 1.0, 1.0))
     columns = {}
     for sampling in ("grid", "jittered", "random"):
-        settings = RenderSettings(16, 16, pixel_samples=16, pixel_sampling=sampling)
+        settings = RenderSettings(
+            16, 16, pixel_samples=16, pixel_sampling=sampling, shadow_samples=16
+        )
         columns[sampling] = render(scene, settings).image[:, 8, 0]
     for sampling, column in columns.items():
         np.testing.assert_allclose(column.mean(), 0.7, atol=0.03, err_msg=sampling)

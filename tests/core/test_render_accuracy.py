@@ -44,7 +44,7 @@ def test_silhouette_pixel_count_matches_projection(centre, radius):
         ambient=(1.0, 1.0, 1.0),
         background=BACKGROUND,
     )
-    image = render(scene, RenderSettings(width, height)).image
+    image = render(scene, RenderSettings(width, height, pixel_samples=1)).image
     covered = int(np.count_nonzero(image[..., 0] > 0.5))
 
     # Camera space looks down -z; flip to the z=1 image plane, then scale to pixels
@@ -61,7 +61,7 @@ def test_silhouette_pixel_count_matches_projection(centre, radius):
 
 def test_pixels_match_the_reference_tracer():
     scene = ball_on_ground()
-    settings = RenderSettings(96, 72, tile_size=16)
+    settings = RenderSettings(96, 72, tile_size=16, pixel_samples=1)
     image = render(scene, settings).image
     spheres, lights = reference_of(scene)
     cam = scene.camera
@@ -77,7 +77,7 @@ def test_shadow_where_geometry_says():
     only; those whose segment clears it by a margin are lit directly."""
     scene = ball_on_ground(light_position=(2.0, 1.0, 9.0))
     width, height = 120, 90
-    image = render(scene, RenderSettings(width, height)).image
+    image = render(scene, RenderSettings(width, height, pixel_samples=1)).image
     spheres, _ = reference_of(scene)
     cam = scene.camera
     light = np.asarray(scene.lights[0].position)
@@ -117,7 +117,7 @@ def test_light_behind_surface_and_attenuation():
         shapes=[ground],
         lights=[light],
     )
-    image = render(scene, RenderSettings(41, 41)).image
+    image = render(scene, RenderSettings(41, 41, pixel_samples=1)).image
     # The centre pixel looks straight down at the origin
     d = math.sqrt(3.0**2 + 4.0**2)
     expected = 0.5 * 50.0 * (4.0 / d) / (1.0 + 0.5 * d * d)

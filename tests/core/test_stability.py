@@ -110,7 +110,7 @@ def scaled_scene(scale):
 def test_scale_changes_nothing_no_acne_no_speckled_shadows():
     """At scales 1e-3 .. 1e4 the images agree with scale 1: fewer than 0.5% of pixels (the
     silhouettes, where rounding may flip a pixel) differ by more than 1e-3."""
-    settings = RenderSettings(80, 60, max_depth=3)
+    settings = RenderSettings(80, 60, max_depth=3, pixel_samples=1, shadow_samples=16)
     reference = render(scaled_scene(1.0), settings).image
     for scale in (1e-3, 1e3, 1e4):
         image = render(scaled_scene(scale), settings).image
@@ -135,7 +135,10 @@ def everything_scene(tmp_path):
 def test_same_pixels_for_any_tiling_threads_and_border_with_every_random_feature(tmp_path):
     scene = everything_scene(tmp_path)
     common = dict(pixel_samples=2, pixel_sampling="jittered", shadow_samples=4, max_depth=3)
-    reference = render(scene, RenderSettings(48, 36, tile_size=48, threads=1, **common)).image
+    reference = render(
+        scene,
+        RenderSettings(48, 36, tile_size=48, threads=1, **common),
+    ).image
     for tile, threads in ((5, 2), (16, 3)):
         settings = RenderSettings(48, 36, tile_size=tile, threads=threads, **common)
         np.testing.assert_array_equal(render(scene, settings).image, reference)
@@ -155,7 +158,8 @@ def test_renders_started_from_two_non_main_threads_at_once_do_not_abort(tmp_path
         from tests.core.test_stability import scaled_scene
         out = {}
         def run(name):
-            out[name] = render(scaled_scene(1.0), RenderSettings(40, 30, threads=2)).image
+            settings = RenderSettings(40, 30, threads=2, pixel_samples=1, shadow_samples=16)
+            out[name] = render(scaled_scene(1.0), settings).image
         threads = [threading.Thread(target=run, args=(n,)) for n in "ab"]
         [t.start() for t in threads]
         [t.join() for t in threads]
