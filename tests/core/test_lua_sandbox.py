@@ -1,0 +1,79 @@
+"""The Lua sandbox scene scripts run in: what it refuses, and how its errors read."""
+
+import pytest
+
+from core import lua_sandbox
+from core.lua_sandbox import ArgumentError, ScriptError, run_script
+
+
+def sized(name, size):
+    if size <= 0:
+        raise ArgumentError(f"'{name}': size: got {size}; use a number above 0")
+    return f"{name} of {size}"
+
+
+def run(tmp_path, source, **api):
+    script = tmp_path / "scene.lua"
+    script.write_text(source)
+    printed = []
+    run_script(script, api or {"sized": sized}, print_line=printed.append)
+    return printed
+
+
+def test_gr_calls_reach_python_and_return_to_lua(tmp_path):
+    printed = run(tmp_path, "local s = gr.sized('box', 3)\nprint(s, 2 ^ 3, nil, true)")
+    assert printed == ["box of 3\t8.0\tnil\ttrue"]
+
+
+def test_a_bad_argument_is_reported_at_the_calling_line(tmp_path):
+    with pytest.raises(ScriptError) as caught:
+        run(tmp_path, "gr.sized('a', 1)\n\ngr.sized('b', 0)\n")
+    assert str(caught.value) == "scene.lua:3: gr.sized: 'b': size: got 0; use a number above 0"
+
+
+def test_syntax_errors_name_the_line(tmp_path):
+    with pytest.raises(ScriptError, match=r"^scene\.lua:2: unexpected symbol near '='"):
+        run(tmp_path, "local x =\n= 2\n")
+
+
+@pytest.mark.parametrize(
+    "source",
+    [
+        "os.execute('touch pwned')",
+        "io.open('/etc/passwd')",
+        "require('os')",
+        "dofile('/etc/passwd')",
+        "loadfile('/etc/passwd')",
+        "load('return 1')",
+        "package.loadlib('libc.so.6', 'system')",
+        "debug.sethook()",
+        "python.eval('1')",
+    ],
+)
+def test_no_way_out_of_the_sandbox(tmp_path, source):
+    with pytest.raises(ScriptError, match=r"^scene\.lua:1: attempt to (index|call) a nil value"):
+        run(tmp_path, source)
+    assert not (tmp_path / "pwned").exists()
+
+
+def test_python_objects_show_no_attributes(tmp_path):
+    with pytest.raises(ScriptError, match=r"^scene\.lua:1: "):
+        run(tmp_path, "local f = gr.sized.__globals__", sized=sized)
+
+
+def test_endless_loops_end_even_under_pcall(tmp_path, monkeypatch):
+    monkeypatch.setattr(lua_sandbox, "MAX_INSTRUCTIONS", 100_000)
+    for source in ("while true do end", "while true do pcall(function() while 1 do end end) end"):
+        with pytest.raises(ScriptError, match=r"^scene\.lua:1: the script ran past 100000 Lua"):
+            run(tmp_path, source)
+
+
+def test_runaway_memory_is_an_error(tmp_path, monkeypatch):
+    monkeypatch.setattr(lua_sandbox, "MAX_MEMORY", 32 * 2**20)
+    with pytest.raises(ScriptError, match="more than 32 MiB"):
+        run(tmp_path, "local t = {} for i = 1, 1e8 do t[i] = string.rep('x', 64) .. i end")
+
+
+def test_a_missing_script_is_named(tmp_path):
+    with pytest.raises(ScriptError, match=r"nope\.lua: cannot read the scene script"):
+        run_script(tmp_path / "nope.lua", {})
