@@ -19,9 +19,9 @@ import lupa.lua54 as lua54
 
 MAX_MEMORY = 512 * 2**20  # bytes the Lua state may hold
 MAX_INSTRUCTIONS = 200_000_000  # a scene script builds a scene; loops past this are a bug
-SAFE_GLOBALS = ("assert", "error", "ipairs", "next", "pairs", "pcall", "rawequal", "rawget",
-                "rawlen", "select", "tonumber", "tostring", "type", "xpcall",
-                "math", "string", "table", "utf8")  # fmt: skip
+SAFE_GLOBALS = ("assert", "error", "getmetatable", "ipairs", "next", "pairs", "pcall",
+                "rawequal", "rawget", "rawlen", "rawset", "select", "setmetatable", "tonumber",
+                "tostring", "type", "xpcall", "math", "string", "table", "utf8")  # fmt: skip
 
 # Each gr function is a Lua shim around its Python implementation, which returns
 # (true, result) or (false, message): the shim raises the message at level 2, so Lua puts
@@ -66,6 +66,7 @@ def run_script(
     for name in SAFE_GLOBALS:
         env[name] = lua_globals[name]
     env["print"] = lambda *values: print_line("\t".join(_lua_str(v) for v in values))
+    env["unpack"] = lua_globals.table.unpack  # Lua 5.1's name, which older scripts use
     env["_G"] = env
     make_shim = runtime.execute(f"return function(...) {_SHIM} end")
     gr = runtime.table()

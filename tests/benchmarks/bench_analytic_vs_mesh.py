@@ -207,6 +207,11 @@ def traced(packed, d, stacks):
     return shape >= 0, normal
 
 
+def _partly_covered(hits):
+    """Pixels (SIZE, SIZE) whose samples (the last axis) are neither all hits nor all misses."""
+    return hits.any(-1) & ~hits.all(-1)
+
+
 def silhouette_error(kind, packed, stacks, coarse_exact):
     """Area between the renderer's outline and the exact one, over the exact area. Pixels
     whose coarse samples all agree in each image count whole (fully in one and out of the
@@ -214,8 +219,7 @@ def silhouette_error(kind, packed, stacks, coarse_exact):
     rows, cols = (a.ravel() for a in np.mgrid[0:SIZE, 0:SIZE])
     d = pixel_rays(rows, cols, COARSE).reshape(-1, 3)
     ours = traced(packed, d, stacks)[0].reshape(SIZE, SIZE, -1)
-    partial = lambda hit: hit.any(-1) & ~hit.all(-1)  # noqa: E731
-    padded = np.pad(partial(ours) | partial(coarse_exact), 1)
+    padded = np.pad(_partly_covered(ours) | _partly_covered(coarse_exact), 1)
     band = np.zeros((SIZE, SIZE), bool)
     for dy in (0, 1, 2):
         for dx in (0, 1, 2):
@@ -352,9 +356,7 @@ def instancing():
 
 def main():
     stacks = new_workspace(0).stacks
-    render(
-        one_shape_scene(analytic("sphere")), RenderSettings(4, 4, pixel_samples=1)
-    )  # load the kernels
+    render(one_shape_scene(analytic("sphere")), RenderSettings(4, 4))  # load the kernels
     rows = []
     for kind in KINDS:
         rows_, cols_ = (a.ravel() for a in np.mgrid[0:SIZE, 0:SIZE])

@@ -43,12 +43,8 @@ def main():
             image, seconds = timed_render(scene, settings)
             rmse = float(np.sqrt(np.mean((image - converged) ** 2)))
             rows.append((pattern, n * n, seconds, rmse))
-    chosen = write_chart("depth_of_field", "Depth of field: error against time (labels: rays)",
-                         rows, DEFAULT, "rays_per_pixel")  # fmt: skip
-    print(f"dof_default_rmse: {chosen[3]:.5f}")
-    print(f"dof_default_s: {chosen[2]:.4f}")
-    for r in rows:
-        print(f"  dof {r[0]:>9} {r[1]:>4} rays  {r[2]:.4f} s  rmse {r[3]:.5f}")
+    write_chart("depth_of_field", "Depth of field: error against time (labels: rays)", rows,
+                DEFAULT, "rays_per_pixel", "dof")  # fmt: skip
 
 
 if __name__ == "__main__":

@@ -35,9 +35,7 @@ SIZE = 64
 FOVY = 20.0
 EYE_HEIGHT = 10.0
 TURN = math.radians(20.0)
-# Each chart's default: what RenderSettings and the Blender panel start with. Chart 2 renders
-# one camera ray per pixel, so that each pixel's error is its shadow estimate's alone (with
-# the default n x n camera rays, a pixel averages n^2 such estimates)
+# Each chart's default: what RenderSettings and the Blender panel start with
 AA_DEFAULT = (RenderSettings.pixel_sampling, RenderSettings.pixel_samples)
 SHADOW_DEFAULT = (RenderSettings.shadow_sampling, RenderSettings.shadow_samples)
 
@@ -279,7 +277,8 @@ def chart_shadows():
 
 
 # --- output -------------------------------------------------------------------------------
-def write_chart(name, title, rows, default, sample_label):
+def write_chart(name, title, rows, default, sample_label, prefix):
+    """Write the chart and its CSV; print {prefix}_default_rmse and _s, and every row."""
     RESULTS.mkdir(exist_ok=True)
     with open(RESULTS / f"{name}.csv", "w", newline="") as f:
         writer = csv.writer(f)
@@ -304,27 +303,22 @@ def write_chart(name, title, rows, default, sample_label):
     fig.tight_layout()
     fig.savefig(RESULTS / f"{name}.png", dpi=120)
     plt.close(fig)
-    return chosen
+    print(f"{prefix}_default_rmse: {chosen[3]:.5f}")
+    print(f"{prefix}_default_s: {chosen[2]:.4f}")
+    for r in rows:
+        print(f"  {prefix} {r[0]:>10} {r[1]:>4} {sample_label}  {r[2]:.4f} s  rmse {r[3]:.5f}")
 
 
 def main():
     render(edge_scene(), RenderSettings(4, 4))  # load the kernels before timing
     aa = chart_antialiasing()
-    chosen = write_chart("antialiasing", "Anti-aliasing: error against time (labels: rays/pixel)",
-                         aa, (AA_DEFAULT[0], AA_DEFAULT[1] ** 2), "samples")  # fmt: skip
-    print(f"aa_default_rmse: {chosen[3]:.5f}")
-    print(f"aa_default_s: {chosen[2]:.4f}")
-    for r in aa:
-        print(f"  aa {r[0]:>9} {r[1]:>4} spp  {r[2]:.4f} s  rmse {r[3]:.5f}")
+    write_chart("antialiasing", "Anti-aliasing: error against time (labels: rays/pixel)", aa,
+                (AA_DEFAULT[0], AA_DEFAULT[1] ** 2), "samples", "aa")  # fmt: skip
     shadows = chart_shadows()
     side = RenderSettings.pixel_samples
     default = (f"{SHADOW_DEFAULT[0]}, {side}x{side} camera rays", SHADOW_DEFAULT[1])
-    chosen = write_chart("shadows", "Soft shadows: error against time (labels: shadow rays)",
-                         shadows, default, "shadow_rays")  # fmt: skip
-    print(f"shadow_default_rmse: {chosen[3]:.5f}")
-    print(f"shadow_default_s: {chosen[2]:.4f}")
-    for r in shadows:
-        print(f"  shadow {r[0]:>10} {r[1]:>4} rays  {r[2]:.4f} s  rmse {r[3]:.5f}")
+    write_chart("shadows", "Soft shadows: error against time (labels: shadow rays)", shadows,
+                default, "shadow_rays", "shadow")  # fmt: skip
 
 
 if __name__ == "__main__":

@@ -25,6 +25,10 @@ def test_gr_calls_reach_python_and_return_to_lua(tmp_path):
     assert printed == ["box of 3\t8.0\tnil\ttrue"]
 
 
+def test_lua_51_scripts_find_unpack(tmp_path):
+    assert run(tmp_path, "local a, b = unpack({1, 2})\nprint(a + b)") == ["3"]
+
+
 def test_a_bad_argument_is_reported_at_the_calling_line(tmp_path):
     with pytest.raises(ScriptError) as caught:
         run(tmp_path, "gr.sized('a', 1)\n\ngr.sized('b', 0)\n")
