@@ -2,8 +2,8 @@
 
 import pytest
 
-from core import lua_sandbox
-from core.lua_sandbox import ArgumentError, ScriptError, run_script
+from core.cs488 import sandbox
+from core.cs488.sandbox import ArgumentError, ScriptError, run_script
 
 
 def sized(name, size):
@@ -66,14 +66,14 @@ def test_python_objects_show_no_attributes(tmp_path):
 
 
 def test_endless_loops_end_even_under_pcall(tmp_path, monkeypatch):
-    monkeypatch.setattr(lua_sandbox, "MAX_INSTRUCTIONS", 100_000)
+    monkeypatch.setattr(sandbox, "MAX_INSTRUCTIONS", 100_000)
     for source in ("while true do end", "while true do pcall(function() while 1 do end end) end"):
         with pytest.raises(ScriptError, match=r"^scene\.lua:1: the script ran past 100000 Lua"):
             run(tmp_path, source)
 
 
 def test_runaway_memory_is_an_error(tmp_path, monkeypatch):
-    monkeypatch.setattr(lua_sandbox, "MAX_MEMORY", 32 * 2**20)
+    monkeypatch.setattr(sandbox, "MAX_MEMORY", 32 * 2**20)
     with pytest.raises(ScriptError, match="more than 32 MiB"):
         run(tmp_path, "local t = {} for i = 1, 1e8 do t[i] = string.rep('x', 64) .. i end")
 
@@ -81,3 +81,68 @@ def test_runaway_memory_is_an_error(tmp_path, monkeypatch):
 def test_a_missing_script_is_named(tmp_path):
     with pytest.raises(ScriptError, match=r"nope\.lua: cannot read the scene script"):
         run_script(tmp_path / "nope.lua", {})
+
+
+class Counter(sandbox.ScriptObject):
+    lua_kind = "counter"
+    lua_methods = ("add", "total")
+
+    def __init__(self, name):
+        self.name, self.count = name, 0
+
+    def __str__(self):
+        return f"Counter {self.name}"
+
+    def add(self, amount):
+        if not isinstance(amount, int):
+            raise ArgumentError(f"amount: got {amount!r}; use a whole number")
+        self.count += amount
+
+    def total(self):
+        return self.count
+
+
+def test_objects_reach_the_script_with_their_methods(tmp_path):
+    made = []
+
+    def counter(name):
+        made.append(Counter(name))
+        return made[-1]
+
+    def same(a, b):
+        return a is b
+
+    printed = run(
+        tmp_path,
+        "local c = gr.counter('c')\nc:add(2)\nc:add(3)\n"
+        "print(c:total(), tostring(c), gr.same(c, c), gr.same(c, gr.counter('d')))",
+        counter=counter,
+        same=same,
+    )
+    assert printed == ["5\tCounter c\ttrue\tfalse"]
+    assert made[0].count == 5
+
+
+def test_tables_arrive_as_lists_and_dicts(tmp_path):
+    seen = []
+    run(tmp_path, "gr.take({1, 2.5, {3}}, {a = 'x'}, {})", take=lambda *a: seen.extend(a))
+    assert seen == [[1, 2.5, [3]], {"a": "x"}, []]
+
+
+@pytest.mark.parametrize(
+    "source, message",
+    [
+        (
+            "c.add(2)",
+            "scene.lua:2: counter:add: call it on a counter with a colon, as counter:add(...)",
+        ),
+        ("c:add('x')", "scene.lua:2: counter:add: amount: got 'x'; use a whole number"),
+        ("c:fly()", "scene.lua:2: counter has no method 'fly'"),
+        ("c.count = 3", "scene.lua:2: cannot set fields of a counter"),
+        ("setmetatable(c, {})", "scene.lua:2: cannot change a protected metatable"),
+    ],
+)
+def test_object_misuse_is_reported_at_its_line(tmp_path, source, message):
+    with pytest.raises(ScriptError) as caught:
+        run(tmp_path, f"local c = gr.counter('c')\n{source}\n", counter=Counter)
+    assert str(caught.value) == message

@@ -7,6 +7,11 @@ textures are read by the Python behind `gr`, which resolves their names against 
 own folder. Memory and instruction counts are capped, so a runaway script ends with an error
 instead of taking the machine.
 
+Python objects a `gr` function returns (nodes, materials, lights) reach the script as Lua
+tables wrapping them, whose methods are the object's `lua_methods`: `node:translate(0, 1, 0)`
+calls `Node.translate(node, 0, 1, 0)`. Arguments come back to Python as plain values: numbers,
+strings, booleans, None, the wrapped objects, and lists (Lua sequences) or dicts of them.
+
 Every failure, from a syntax error to a bad argument found by the Python behind `gr`, comes
 out as one `ScriptError` whose message starts `scene.lua:LINE:`, the line of the script that
 made the failing call.
@@ -34,6 +39,20 @@ return function(...)
     return result
 end
 """
+
+
+# The key under which a wrapping table holds its Python object
+_HANDLE = "__object"
+# How deeply nested a table argument may be ({{1, 2}, {3, 4}} is 2 deep)
+_MAX_NESTING = 8
+
+
+class ScriptObject:
+    """A Python object a scene script holds. `lua_methods` names the methods the script may
+    call with a colon; `lua_kind` is how messages name it ("node", "material")."""
+
+    lua_kind = "object"
+    lua_methods: tuple[str, ...] = ()
 
 
 class ScriptError(Exception):
@@ -68,16 +87,101 @@ def run_script(
     env["print"] = lambda *values: print_line("\t".join(_lua_str(v) for v in values))
     env["unpack"] = lua_globals.table.unpack  # Lua 5.1's name, which older scripts use
     env["_G"] = env
-    make_shim = runtime.execute(f"return function(...) {_SHIM} end")
+    bridge = _Bridge(runtime)
     gr = runtime.table()
     for name, function in api.items():
-        gr[name] = make_shim(_guarded(function), f"gr.{name}")
+        gr[name] = bridge.shim(function, f"gr.{name}")
     env["gr"] = gr
     loaded = lua_globals.load(source, f"@{path.name}", "t", env)
     chunk, problem = loaded if isinstance(loaded, tuple) else (loaded, None)
     if chunk is None:
         raise ScriptError(str(problem))
     _run(runtime, chunk)
+
+
+class _Bridge:
+    """Carries values across: Lua arguments into Python values, `ScriptObject`s into Lua
+    tables with their methods (one table per object, so identity holds in the script)."""
+
+    def __init__(self, runtime):
+        self.runtime = runtime
+        self.make_shim = runtime.execute(f"return function(...) {_SHIM} end")
+        self.make_wrapper = runtime.execute(_WRAPPER)
+        self.tables: dict[int, object] = {}
+        self.wrappers: dict[type, Callable] = {}
+
+    def shim(self, function: Callable, name: str):
+        def call(*args):
+            try:
+                result = function(*(self.to_python(a) for a in args))
+            except ArgumentError as error:
+                return False, str(error)
+            return True, self.to_lua(result)
+
+        return self.make_shim(call, name)
+
+    def to_lua(self, value):
+        if not isinstance(value, ScriptObject):
+            return value
+        table = self.tables.get(id(value))
+        if table is None:
+            cls = type(value)
+            if cls not in self.wrappers:
+                methods = self.runtime.table()
+                for method in cls.lua_methods:
+                    methods[method] = self.shim(
+                        _method_call(cls, method), f"{cls.lua_kind}:{method}"
+                    )
+                self.wrappers[cls] = self.make_wrapper(methods, cls.lua_kind)
+            table = self.wrappers[cls](value, str(value))
+            self.tables[id(value)] = table
+        return table
+
+    def to_python(self, value, depth=0):
+        if lua54.lua_type(value) != "table":
+            return value
+        handle = value[_HANDLE]
+        if isinstance(handle, ScriptObject):
+            return handle
+        if depth >= _MAX_NESTING:
+            raise ArgumentError(f"a table nested more than {_MAX_NESTING} deep")
+        keys = list(value.keys())
+        if keys == list(range(1, len(keys) + 1)):
+            return [self.to_python(value[k], depth + 1) for k in keys]
+        return {k: self.to_python(value[k], depth + 1) for k in keys}
+
+
+# A wrapping table: the object under _HANDLE, methods through __index, nothing settable
+_WRAPPER = f"""
+return function(methods, kind)
+    local meta = {{
+        __index = function(self, key)
+            local method = methods[key]
+            if method == nil then
+                error(kind .. " has no method '" .. tostring(key) .. "'", 2)
+            end
+            return method
+        end,
+        __newindex = function() error("cannot set fields of a " .. kind, 2) end,
+        __tostring = function(self) return rawget(self, "__text") end,
+        __metatable = kind,
+    }}
+    return function(object, text)
+        return setmetatable({{ {_HANDLE} = object, __text = text }}, meta)
+    end
+end
+"""
+
+
+def _method_call(cls: type, method: str) -> Callable:
+    def call(owner, *args):
+        if not isinstance(owner, cls):
+            raise ArgumentError(
+                f"call it on a {cls.lua_kind} with a colon, as {cls.lua_kind}:{method}(...)"
+            )
+        return getattr(owner, method)(*args)
+
+    return call
 
 
 def _run(runtime, chunk) -> None:
@@ -104,16 +208,6 @@ def _run(runtime, chunk) -> None:
         raise ScriptError(str(error).split("\nstack traceback:")[0]) from None
     finally:
         clear_hook()
-
-
-def _guarded(function: Callable) -> Callable:
-    def call(*args):
-        try:
-            return True, function(*args)
-        except ArgumentError as error:
-            return False, str(error)
-
-    return call
 
 
 def _no_attributes(obj, name, is_setting):

@@ -1,0 +1,111 @@
+"""The command line: render a CS488 Lua scene script to the PNG it names.
+
+    python -m core render scene.lua [-o picture.png] [--threads N]
+
+The script runs first, to the end; only then is anything rendered, so a script with an error
+anywhere writes nothing. Each image is written to a temporary file beside its target and
+renamed into place when complete: an error or Ctrl-C never leaves a partial PNG. Exit status:
+0 done, 1 bad script or scene, 2 bad command line, 130 interrupted.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from core.cs488 import ScriptError, load_script
+from core.errors import SceneError
+from core.image_io import save_png
+from core.render import render
+
+BAR_WIDTH = 30
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m core", description=__doc__.split("\n")[0])
+    commands = parser.add_subparsers(dest="command", required=True)
+    render_command = commands.add_parser("render", help="render a CS488 Lua scene script")
+    render_command.add_argument("script", type=Path, help="the .lua scene script")
+    render_command.add_argument(
+        "-o", "--output", type=Path, help="write the image here instead of gr.render's file"
+    )
+    render_command.add_argument(
+        "--threads", type=int, default=0, help="worker threads (default: one per core)"
+    )
+    args = parser.parse_args(argv)
+    try:
+        return _render_script(args.script, args.output, args.threads)
+    except (ScriptError, SceneError) as error:
+        print(f"error: {error}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        print("\ninterrupted: no image written", file=sys.stderr)
+        return 130
+
+
+def _render_script(script: Path, output: Path | None, threads: int) -> int:
+    calls = load_script(script, print_line=print)
+    if not calls:
+        raise ScriptError(f"{script.name}: the script never calls gr.render: nothing to render")
+    if output is not None and len(calls) > 1:
+        raise ScriptError(
+            f"{script.name}: the script calls gr.render {len(calls)} times; -o names one file"
+        )
+    for call in calls:
+        for warning in call.warnings:
+            print(f"warning: {warning}", file=sys.stderr)
+        call.settings.threads = threads
+        target = output if output is not None else call.output
+        result = render(call.scene, call.settings, on_tile=_progress_bar())
+        _print_stats(result.stats)
+        for warning in result.warnings:
+            print(f"warning: {warning}", file=sys.stderr)
+        _write_whole(result.image, target)
+        print(f"wrote {target}")
+    return 0
+
+
+def _progress_bar():
+    start = time.perf_counter()
+    interactive = sys.stderr.isatty()
+
+    def on_tile(tile, pixels, done, total):
+        if not interactive and done not in (total, (total + 1) // 2):
+            return  # a log gets the half-way mark and the end, not a line per tile
+        filled = BAR_WIDTH * done // total
+        bar = "#" * filled + "." * (BAR_WIDTH - filled)
+        end = "\n" if done == total or not interactive else ""
+        elapsed = time.perf_counter() - start
+        print(f"\r[{bar}] {done}/{total} tiles {elapsed:.1f} s", end=end, file=sys.stderr)
+
+    return on_tile
+
+
+def _print_stats(stats) -> None:
+    rate = stats.rays_cast / stats.render_s / 1e6 if stats.render_s > 0 else 0.0
+    print(
+        f"kernels {stats.kernel_source} {stats.kernel_s:.2f} s | render {stats.render_s:.2f} s"
+        f" | {stats.rays_cast / 1e6:.1f} M rays ({stats.shadow_rays / 1e6:.1f} M shadow), "
+        f"{rate:.2f} M rays/s | {stats.threads} threads"
+    )
+
+
+def _write_whole(image, target: Path) -> None:
+    """Write beside the target, then rename: readers never see half a PNG."""
+    target.parent.mkdir(parents=True, exist_ok=True)
+    handle, temporary = tempfile.mkstemp(suffix=".png", prefix=".whitted-", dir=target.parent)
+    os.close(handle)
+    try:
+        save_png(image, temporary)
+        os.replace(temporary, target)
+    finally:
+        if os.path.exists(temporary):
+            os.unlink(temporary)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,26 @@
+"""CS488 Lua scene scripts (the A4 modelling language and the report's extensions).
+
+    from core.cs488 import load_script
+    for call in load_script("scene.lua"):      # runs the script, checking every gr call
+        core.render(call.scene, call.settings)  # then save to call.output
+
+A script's gr.render calls are collected, not rendered, while it runs: a script that fails
+anywhere renders nothing.
+"""
+
+from pathlib import Path
+
+from core.cs488.commands import Commands
+from core.cs488.render_call import RenderCall
+from core.cs488.sandbox import ScriptError, run_script
+
+__all__ = ["RenderCall", "ScriptError", "load_script"]
+
+
+def load_script(path: str | Path, print_line=print) -> list[RenderCall]:
+    """Run the script at `path`; return its gr.render calls. Raises ScriptError, whose
+    message starts `scene.lua:LINE:`."""
+    path = Path(path)
+    commands = Commands(path.resolve().parent, print_line)
+    run_script(path, commands.api(), print_line)
+    return commands.renders

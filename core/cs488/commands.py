@@ -1,0 +1,320 @@
+"""The `gr` commands of the CS488 A4 language and the report's extensions, with their
+argument checks.
+
+Every call is checked as it is made (count, types, ranges, files), so a mistake is reported
+at the script line that made it; the report's own program checked nothing. Relative file
+names (meshes, textures, the output PNG) are resolved against the script's own folder.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+from PIL import Image, UnidentifiedImageError
+
+from core.cs488.graph import (
+    CSG_OPERATIONS,
+    CsgNode,
+    GeometryNode,
+    LightSpec,
+    MaterialSpec,
+    Node,
+    check_number,
+    describe,
+    object_matrix,
+)
+from core.cs488.render_call import RenderCall
+from core.cs488.sandbox import ArgumentError
+from core.obj_file import ObjError, read_obj, summed_face_normals
+from core.scene import AreaLight, Material, PointLight, Texture, TriangleMesh
+
+MATERIAL_USAGE = "{dr, dg, db}, {sr, sg, sb}, p[, reflectivity[, outer_ior[, inner_ior]]]"
+TEXTURE_USAGE = "file, {sr, sg, sb}, p[, reflectivity[, outer_ior[, inner_ior]]]"
+RENDER_USAGE = (
+    "node, file, width, height, eye, view, up, fovy, ambient, lights[, max_recursion, "
+    "supersampling, shadow_rays[, focal_length, aperture_radius]]"
+)
+# Every gr command, as the A4 language and the report's manual name them
+GR_COMMANDS = (
+    "node", "joint", "sphere", "cube", "nh_sphere", "nh_box", "mesh", "torus", "nh_torus",
+    "cylinder", "nh_cylinder", "cone", "nh_cone", "csg", "material", "texture", "light",
+    "render",
+)  # fmt: skip
+
+
+def expect(args, counts, usage: str) -> None:
+    if len(args) not in counts:
+        allowed = " or ".join(str(c) for c in counts)
+        if counts == tuple(range(counts[0], counts[-1] + 1)) and len(counts) > 2:
+            allowed = f"{counts[0]} to {counts[-1]}"
+        noun = "argument" if counts == (1,) else "arguments"
+        raise ArgumentError(f"takes {allowed} {noun} ({usage}); got {len(args)}")
+
+
+def name_of(value, what="name") -> str:
+    if not isinstance(value, str):
+        raise ArgumentError(f"{what} must be a string; got {describe(value)}")
+    return value
+
+
+def numbers(value, what: str, count: int = 3, low: float | None = None) -> tuple:
+    if not isinstance(value, list) or len(value) != count:
+        raise ArgumentError(f"{what} must be a table of {count} numbers; got {describe(value)}")
+    result = tuple(check_number(v, what) for v in value)
+    if low is not None and min(result) < low:
+        raise ArgumentError(f"{what} must be at least {low:g} each; got {result}")
+    return result
+
+
+def number(value, what: str, low: float | None = None, above: float | None = None) -> float:
+    x = check_number(value, what)
+    if low is not None and x < low:
+        raise ArgumentError(f"{what} must be at least {low:g}; got {x:g}")
+    if above is not None and x <= above:
+        raise ArgumentError(f"{what} must be above {above:g}; got {x:g}")
+    return x
+
+
+def whole(value, what: str, low: int) -> int:
+    x = check_number(value, what)
+    if x != int(x) or x < low:
+        raise ArgumentError(f"{what} must be a whole number of at least {low}; got {x:g}")
+    return int(x)
+
+
+class Commands:
+    """The `gr` table of one script run: `api()` gives the functions; `renders` collects the
+    gr.render calls, each holding the scene as it stood when called."""
+
+    def __init__(self, folder: Path, print_line):
+        self.folder = Path(folder)
+        self.print_line = print_line
+        self.renders: list[RenderCall] = []
+        self.meshes: dict[Path, TriangleMesh] = {}
+        self.material_count = 0
+
+    def api(self) -> dict:
+        return {name: getattr(self, name) for name in GR_COMMANDS}
+
+    def file(self, value, what: str) -> Path:
+        name = name_of(value, what)
+        path = (self.folder / name).resolve()
+        if not path.is_file():
+            raise ArgumentError(f"{what} '{name}' not found (looked for {path})")
+        return path
+
+    # Nodes
+    def node(self, *args):
+        expect(args, (1,), "name")
+        return Node(name_of(args[0]))
+
+    def joint(self, *args):
+        expect(args, (3,), "name, {x_min, x_init, x_max}, {y_min, y_init, y_max}")
+        numbers(args[1], "x range {min, init, max}")
+        numbers(args[2], "y range {min, init, max}")
+        return Node(name_of(args[0]))  # joints are plain nodes here
+
+    def _shape(self, args, kind, usage, **extra):
+        expect(args, (1,), usage)
+        return GeometryNode(name_of(args[0]), kind, object_matrix(kind), **extra)
+
+    def sphere(self, *args):
+        return self._shape(args, "sphere", "name")
+
+    def cube(self, *args):
+        return self._shape(args, "cube", "name")
+
+    def cylinder(self, *args):
+        return self._shape(args, "cylinder", "name")
+
+    def cone(self, *args):
+        return self._shape(args, "cone", "name")
+
+    def torus(self, *args):
+        return self._shape(args, "torus", "name", radii=(5.0, 2.0))
+
+    def nh_sphere(self, *args):
+        expect(args, (3,), "name, {x, y, z}, radius")
+        centre, radius = numbers(args[1], "centre {x, y, z}"), number(args[2], "radius", above=0)
+        return GeometryNode(name_of(args[0]), "sphere", object_matrix("sphere", centre, radius))
+
+    def nh_box(self, *args):
+        expect(args, (3,), "name, {x, y, z}, size")
+        corner, size = numbers(args[1], "corner {x, y, z}"), number(args[2], "size", above=0)
+        return GeometryNode(name_of(args[0]), "cube", object_matrix("cube", corner, size))
+
+    def nh_torus(self, *args):
+        expect(args, (4,), "name, {x, y, z}, major_radius, minor_radius")
+        centre = numbers(args[1], "centre {x, y, z}")
+        major = number(args[2], "major radius", above=0)
+        minor = number(args[3], "minor radius", above=0)
+        matrix = object_matrix("torus", centre)
+        return GeometryNode(name_of(args[0]), "torus", matrix, radii=(major, minor))
+
+    def _nh_solid(self, args, kind):
+        expect(args, (4,), "name, {x, y, z}, radius, height")
+        centre = numbers(args[1], "centre {x, y, z}")
+        radius, height = number(args[2], "radius", above=0), number(args[3], "height", above=0)
+        matrix = object_matrix(kind, centre, radius, height)
+        return GeometryNode(name_of(args[0]), kind, matrix)
+
+    def nh_cylinder(self, *args):
+        return self._nh_solid(args, "cylinder")
+
+    def nh_cone(self, *args):
+        return self._nh_solid(args, "cone")
+
+    def mesh(self, *args):
+        expect(args, (2, 3), "name, 'file.obj'  or  name, {vertices}, {faces}")
+        name = name_of(args[0])
+        if len(args) == 2:
+            path = self.file(args[1], "mesh file")
+            if path not in self.meshes:
+                try:
+                    self.meshes[path] = read_obj(path, name)
+                except ObjError as error:
+                    raise ArgumentError(str(error)) from None
+            mesh = self.meshes[path]
+        else:
+            mesh = _listed_mesh(args[1], args[2], name)
+        return GeometryNode(name, "mesh", object_matrix("mesh"), mesh=mesh)
+
+    def csg(self, *args):
+        expect(args, (3,), "node, node, 'union' | 'intersection' | 'diff'")
+        left, right, operation = args
+        for which, operand in (("first", left), ("second", right)):
+            if not isinstance(operand, GeometryNode):
+                raise ArgumentError(
+                    f"the {which} operand must be a shape or CSG node; got {describe(operand)}"
+                )
+            if operand.parents or operand.children:
+                raise ArgumentError(
+                    f"the {which} operand, {operand}, has a parent or children: build the "
+                    "CSG from shapes without parents, then add the CSG node to the scene"
+                )
+            if operand.used_by_csg is not None:
+                raise ArgumentError(f"{operand} is already an operand of {operand.used_by_csg}")
+        if left is right:
+            raise ArgumentError(f"both operands are {left}; use two different nodes")
+        if operation not in CSG_OPERATIONS:
+            raise ArgumentError(
+                f"unknown operation {describe(operation)}; use 'union', 'intersection' or 'diff'"
+            )
+        return CsgNode(f"{left.name} {operation} {right.name}", left, right, operation)
+
+    # Materials and lights
+    def material(self, *args):
+        expect(args, (3, 4, 5, 6), MATERIAL_USAGE)
+        diffuse = numbers(args[0], "diffuse {dr, dg, db}", low=0)
+        return self._material(args, diffuse, None)
+
+    def texture(self, *args):
+        expect(args, (3, 4, 5, 6), TEXTURE_USAGE)
+        path = self.file(args[0], "texture file")
+        try:
+            with Image.open(path) as image:
+                image.verify()
+        except (UnidentifiedImageError, OSError) as error:
+            raise ArgumentError(f"texture file '{args[0]}' is not an image ({error})") from None
+        # The report used the file's values as they are, with no sRGB decoding
+        return self._material(args, (1.0, 1.0, 1.0), Texture(path=path, srgb=False))
+
+    def _material(self, args, diffuse, texture):
+        specular = numbers(args[1], "specular {sr, sg, sb}", low=0)
+        shininess = number(args[2], "shininess p", low=0)
+        reflectivity = number(args[3], "reflectivity", low=0) if len(args) > 3 else 0.0
+        if reflectivity > 1:
+            raise ArgumentError(f"reflectivity must be between 0 and 1; got {reflectivity:g}")
+        outer = number(args[4], "outer index of refraction", above=0) if len(args) > 4 else 1.0
+        inner = number(args[5], "inner index of refraction", above=0) if len(args) > 5 else 1.0
+        self.material_count += 1
+        kind = "texture" if texture else "material"
+        core = Material(
+            diffuse=diffuse,
+            specular=specular,
+            shininess=shininess,
+            name=f"{kind} {self.material_count}",
+            reflectivity=reflectivity,
+            # Differing indices make a dielectric: all its colour from Fresnel reflection
+            # and refraction, as the report's glass
+            transparency=1.0 if inner != outer else 0.0,
+            outer_ior=outer,
+            inner_ior=inner,
+            texture=texture,
+        )
+        return MaterialSpec(core, texture is not None, self.material_count)
+
+    def light(self, *args):
+        expect(args, (3, 5), "{x, y, z}, {r, g, b}, {c0, c1, c2}[, width, height]")
+        position = numbers(args[0], "position {x, y, z}")
+        colour = numbers(args[1], "colour {r, g, b}", low=0)
+        falloff = numbers(args[2], "falloff {c0, c1, c2}", low=0)
+        if max(falloff) == 0:
+            raise ArgumentError("falloff {c0, c1, c2} cannot be all 0; (1, 0, 0) is no falloff")
+        if len(args) == 3:
+            return LightSpec(PointLight(position, colour, falloff), colour, position, falloff)
+        width, height = number(args[3], "width", above=0), number(args[4], "height", above=0)
+        # A rectangle in the report's horizontal plane: width along x, height along z
+        area = AreaLight(position, (width, 0.0, 0.0), (0.0, 0.0, height), colour, falloff)
+        return LightSpec(area, colour, position, falloff, (width, height))
+
+    def render(self, *args):
+        expect(args, (10, 13, 15), RENDER_USAGE)
+        root = args[0]
+        if not isinstance(root, Node):
+            raise ArgumentError(f"the node to render must be a node; got {describe(root)}")
+        output = name_of(args[1], "file")
+        if Path(output).suffix.lower() != ".png":
+            raise ArgumentError(f"file '{output}' must name a .png image")
+        lights = args[9]
+        if not isinstance(lights, list) or not all(isinstance(x, LightSpec) for x in lights):
+            raise ArgumentError(
+                f"lights must be a table of gr.light values; got {describe(lights)}"
+            )
+        call = RenderCall(
+            root=root,
+            output=(self.folder / output).resolve(),
+            width=whole(args[2], "width", 1),
+            height=whole(args[3], "height", 1),
+            eye=numbers(args[4], "eye {x, y, z}"),
+            view=numbers(args[5], "view {x, y, z}"),
+            up=numbers(args[6], "up {x, y, z}"),
+            fovy=number(args[7], "fovy"),
+            ambient=numbers(args[8], "ambient {r, g, b}", low=0),
+            lights=list(lights),
+        )
+        if len(args) >= 13:
+            call.max_recursion = whole(args[10], "max recursion level", 0)
+            call.supersampling = number(args[11], "supersampling flag", low=0) > 0
+            call.shadow_rays = whole(args[12], "soft shadow ray number", 1)
+        if len(args) == 15:
+            call.focal_length = number(args[13], "focal length", above=0)
+            call.aperture_radius = number(args[14], "aperture radius", low=0)
+        call.build()  # checks the whole scene now, so its errors name this line
+        self.renders.append(call)
+        self.print_line(call.summary())
+
+
+def _listed_mesh(vertices, faces, name: str) -> TriangleMesh:
+    """A4's older gr.mesh(name, {{x, y, z}, ...}, {{i, j, k, ...}, ...}), 0-based indices."""
+    if not isinstance(vertices, list) or not vertices:
+        raise ArgumentError(f"vertices must be a table of {{x, y, z}}; got {describe(vertices)}")
+    points = np.array([numbers(v, "a vertex {x, y, z}") for v in vertices])
+    if not isinstance(faces, list) or not faces:
+        raise ArgumentError(f"faces must be a table of index tables; got {describe(faces)}")
+    triangles = []
+    for face in faces:
+        if not isinstance(face, list) or len(face) < 3:
+            raise ArgumentError(
+                f"a face must be a table of 3 or more indices; got {describe(face)}"
+            )
+        corners = [whole(i, "a face index", 0) for i in face]
+        if max(corners) >= len(points):
+            raise ArgumentError(
+                f"a face uses vertex {max(corners)}; there are {len(points)} (0-based)"
+            )
+        triangles += [(corners[0], corners[k], corners[k + 1]) for k in range(1, len(corners) - 1)]
+    triangles = np.array(triangles)
+    normals = summed_face_normals(points, triangles)  # smooth, as the report's meshes
+    return TriangleMesh(points, triangles, smooth=True, vertex_normals=normals, name=name)
