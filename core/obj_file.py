@@ -30,13 +30,14 @@ class ObjError(ValueError):
     """An OBJ file that cannot be read as a mesh; the message says what is wrong where."""
 
 
-def read_obj(path: str | Path, name: str | None = None) -> TriangleMesh:
+def read_obj(path: str | Path, name: str | None = None, label: str | None = None) -> TriangleMesh:
+    """The mesh in the OBJ file at `path`; errors start with `label` (default: the path)."""
     path = Path(path)
     try:
         data = path.read_bytes()
     except OSError as error:
         raise ObjError(f"cannot read '{path}': {error.strerror}") from None
-    return parse_obj(data, name or path.stem, str(path))
+    return parse_obj(data, name or path.stem, label or str(path))
 
 
 def parse_obj(data: bytes, name: str = "Mesh", source: str = "OBJ") -> TriangleMesh:

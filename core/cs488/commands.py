@@ -45,7 +45,7 @@ GR_COMMANDS = (
 
 def expect(args, counts, usage: str) -> None:
     if len(args) not in counts:
-        allowed = " or ".join(str(c) for c in counts)
+        allowed = " or ".join(str(c) for c in counts).replace(" or ", ", ", len(counts) - 2)
         if counts == tuple(range(counts[0], counts[-1] + 1)) and len(counts) > 2:
             allowed = f"{counts[0]} to {counts[-1]}"
         noun = "argument" if counts == (1,) else "arguments"
@@ -61,7 +61,7 @@ def name_of(value, what="name") -> str:
 def numbers(value, what: str, count: int = 3, low: float | None = None) -> tuple:
     if not isinstance(value, list) or len(value) != count:
         raise ArgumentError(f"{what} must be a table of {count} numbers; got {describe(value)}")
-    result = tuple(check_number(v, what) for v in value)
+    result = tuple(check_number(v, f"{what} value {i + 1}") for i, v in enumerate(value))
     if low is not None and min(result) < low:
         raise ArgumentError(f"{what} must be at least {low:g} each; got {result}")
     return result
@@ -93,9 +93,22 @@ class Commands:
         self.renders: list[RenderCall] = []
         self.meshes: dict[Path, TriangleMesh] = {}
         self.material_count = 0
+        self.node_count = 0
+
+    def numbered(self, node: Node) -> Node:
+        node.id = self.node_count
+        self.node_count += 1
+        return node
 
     def api(self) -> dict:
-        return {name: getattr(self, name) for name in GR_COMMANDS}
+        def numbering(command):
+            def call(*args):
+                made = command(*args)
+                return self.numbered(made) if isinstance(made, Node) else made
+
+            return call
+
+        return {name: numbering(getattr(self, name)) for name in GR_COMMANDS}
 
     def file(self, value, what: str) -> Path:
         name = name_of(value, what)
@@ -172,7 +185,7 @@ class Commands:
             path = self.file(args[1], "mesh file")
             if path not in self.meshes:
                 try:
-                    self.meshes[path] = read_obj(path, name)
+                    self.meshes[path] = read_obj(path, name, f"mesh file '{args[1]}'")
                 except ObjError as error:
                     raise ArgumentError(str(error)) from None
             mesh = self.meshes[path]
@@ -199,7 +212,7 @@ class Commands:
             raise ArgumentError(f"both operands are {left}; use two different nodes")
         if operation not in CSG_OPERATIONS:
             raise ArgumentError(
-                f"unknown operation {describe(operation)}; use 'union', 'intersection' or 'diff'"
+                f"unknown operation {_quoted(operation)}; use 'union', 'intersection' or 'diff'"
             )
         return CsgNode(f"{left.name} {operation} {right.name}", left, right, operation)
 
@@ -268,10 +281,15 @@ class Commands:
         if Path(output).suffix.lower() != ".png":
             raise ArgumentError(f"file '{output}' must name a .png image")
         lights = args[9]
-        if not isinstance(lights, list) or not all(isinstance(x, LightSpec) for x in lights):
+        if not isinstance(lights, list):
             raise ArgumentError(
                 f"lights must be a table of gr.light values; got {describe(lights)}"
             )
+        for i, light in enumerate(lights):
+            if not isinstance(light, LightSpec):
+                raise ArgumentError(
+                    f"lights[{i + 1}] is {describe(light)}; lights come from gr.light"
+                )
         call = RenderCall(
             root=root,
             output=(self.folder / output).resolve(),
@@ -294,6 +312,10 @@ class Commands:
         call.build()  # checks the whole scene now, so its errors name this line
         self.renders.append(call)
         self.print_line(call.summary())
+
+
+def _quoted(value) -> str:
+    return f"'{value}'" if isinstance(value, str) else describe(value)
 
 
 def _listed_mesh(vertices, faces, name: str) -> TriangleMesh:

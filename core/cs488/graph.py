@@ -16,8 +16,6 @@ exact; `GeometryNode.core_shape` gives the core shape in the node's frame.
 
 from __future__ import annotations
 
-import itertools
-
 import numpy as np
 
 from core.cs488.sandbox import ArgumentError, ScriptObject
@@ -78,18 +76,21 @@ class Node(ScriptObject):
 
     lua_kind = "node"
     lua_methods = ("add_child", "set_material", "set_texture", "translate", "rotate", "scale")
-    _ids = itertools.count()
 
     def __init__(self, name: str):
         self.name = name
-        self.id = next(Node._ids)
+        self.id = 0  # the creation count within the script, as A4 numbers nodes
         self.matrix = np.eye(4)
         self.children: list[Node] = []
         self.parents: list[Node] = []
         self.used_by_csg: Node | None = None
 
     def __str__(self) -> str:
-        return f"{self.lua_kind} '{self.name}'"
+        return f"{self.kind_name} '{self.name}'"
+
+    @property
+    def kind_name(self) -> str:
+        return self.lua_kind
 
     def add_child(self, child) -> None:
         if not isinstance(child, Node):
@@ -149,6 +150,10 @@ class GeometryNode(Node):
         self.mesh = mesh
         self.radii = radii  # torus (major, minor)
         self.material: MaterialSpec | None = None
+
+    @property
+    def kind_name(self) -> str:
+        return "CSG node" if self.kind == "csg" else self.kind
 
     def set_material(self, material) -> None:
         self.material = _checked_material(self, material, textured=False)
@@ -278,7 +283,7 @@ def describe(value) -> str:
     if isinstance(value, str):
         return f"the string '{value}'"
     if isinstance(value, list):
-        return f"a table of {len(value)} values"
+        return f"a table of {len(value)} value" + ("" if len(value) == 1 else "s")
     if isinstance(value, dict):
         return "a table with named fields"
     if isinstance(value, ScriptObject):

@@ -77,7 +77,11 @@ class RenderCall:
             self.scene.validate()
             self.settings.validate()
         except SceneError as error:
-            raise ArgumentError(str(error)) from None
+            # The camera's fields are gr.render's own arguments (eye, view, up, fovy)
+            camera = error.owner == f"camera '{camera.name}'"
+            raise ArgumentError(
+                f"{error.field}: {error.problem}" if camera else str(error)
+            ) from None
 
     def summary(self) -> str:
         """The report's print-out of the render arguments."""

@@ -1,0 +1,123 @@
+"""Bad CS488 scripts: every mistake is reported with the file, the line and what is valid.
+
+The report's program checked no arguments and failed silently; each case here is a mistake
+it would have rendered wrongly or crashed on.
+"""
+
+import re
+
+import pytest
+from PIL import Image
+
+from core.cs488 import ScriptError, load_script
+
+RENDER = "gr.render(r, 'o.png', 8, 8, {0, 0, 5}, {0, 0, -1}, {0, 1, 0}, 50, {0, 0, 0}, {}"
+M = "gr.material({1, 1, 1}, {0, 0, 0}, 1"
+
+CASES = [
+    # Argument counts
+    ("gr.sphere()", "gr.sphere: takes 1 argument (name); got 0"),
+    ("gr.nh_torus('t', {0, 0, 0}, 1)",
+     "gr.nh_torus: takes 4 arguments (name, {x, y, z}, major_radius, minor_radius); got 3"),
+    (M + ", 0, 1, 1.5, 7)", "gr.material: takes 3 to 6 arguments ({dr, dg, db}, {sr, sg, sb}, "
+     "p[, reflectivity[, outer_ior[, inner_ior]]]); got 7"),
+    ("gr.material({1, 1, 1}, {0, 0, 0})", "gr.material: takes 3 to 6 arguments"),
+    ("gr.light({0, 0, 0}, {1, 1, 1}, {1, 0, 0}, 2)", "gr.light: takes 3 or 5 arguments"),
+    ("r = gr.node('r') " + RENDER + ", 1)", "gr.render: takes 10, 13 or 15 arguments"),
+    ("r = gr.node('r') r:translate(1, 2)", "node:translate: takes 3 arguments (x, y, z); got 2"),
+    ("r = gr.node('r') r:rotate('x')", "node:rotate: takes 2 arguments (axis, degrees); got 1"),
+    # Argument types and ranges
+    ("gr.sphere(3)", "gr.sphere: name must be a string; got the number 3"),
+    ("gr.nh_sphere('s', {0, 0}, 1)",
+     "gr.nh_sphere: centre {x, y, z} must be a table of 3 numbers; got a table of 2 values"),
+    ("gr.nh_sphere('s', {0, 0, 'x'}, 1)",
+     "gr.nh_sphere: centre {x, y, z} value 3 must be a number; got the string 'x'"),
+    ("gr.nh_box('b', {0, 0, 0}, 'big')", "gr.nh_box: size must be a number; got the string 'big'"),
+    ("gr.nh_cone('c', {0, 0, 0}, 1, 0)", "gr.nh_cone: height must be above 0; got 0"),
+    (M + ", 2)", "gr.material: reflectivity must be between 0 and 1; got 2"),
+    (M + ", 0, 0, 1.5)", "gr.material: outer index of refraction must be above 0; got 0"),
+    ("gr.light({0, 0, 0}, {1, 1, 1}, {0, 0, 0})",
+     "gr.light: falloff {c0, c1, c2} cannot be all 0; (1, 0, 0) is no falloff"),
+    ("r = gr.node('r') r:rotate('w', 30)",
+     "node:rotate: node 'r': axis must be 'x', 'y' or 'z'; got the string 'w'"),
+    ("r = gr.node('r') r:scale(1, 0, 1)", "node:scale: node 'r': scale by (1.0, 0.0, 1.0): a "
+     "factor of 0 flattens the node"),
+    ("r = gr.node('r') r:set_material(" + M + "))",
+     "node:set_material: node 'r' has no shape to colour; set materials on shape nodes"),
+    ("s = gr.sphere('s') s:set_texture(" + M + "))",
+     "node:set_texture: sphere 's': material 1 goes on with set_material, not set_texture"),
+    ("s = gr.sphere('s') s:set_material(gr.texture('t.png', {0, 0, 0}, 1))",
+     "node:set_material: sphere 's': texture 1 goes on with set_texture, not set_material"),
+    ("r = gr.node('r') " + RENDER.replace("o.png", "o.jpg") + ")",
+     "gr.render: file 'o.jpg' must name a .png image"),
+    ("r = gr.node('r') " + RENDER.replace("8, 8", "8.5, 8") + ")",
+     "gr.render: width must be a whole number of at least 1; got 8.5"),
+    ("r = gr.node('r') " + RENDER.replace("50,", "180,") + ")",
+     "gr.render: fovy: got 180.0; use an angle between 0 and 180"),
+    ("r = gr.node('r') " + RENDER.replace("{}", "{gr.node('x')}") + ")",
+     "gr.render: lights[1] is node 'x'; lights come from gr.light"),
+    ("r = gr.node('r') " + RENDER + ", 5, 1, 0)",
+     "gr.render: soft shadow ray number must be a whole number of at least 1; got 0"),
+    # CSG
+    ("a = gr.sphere('a') b = gr.cube('b') gr.csg(a, b, 'xor')",
+     "gr.csg: unknown operation 'xor'; use 'union', 'intersection' or 'diff'"),
+    ("a = gr.sphere('a') gr.csg(a, gr.node('n'), 'union')",
+     "gr.csg: the second operand must be a shape or CSG node; got node 'n'"),
+    ("r = gr.node('r') a = gr.sphere('a') r:add_child(a) gr.csg(a, gr.cube('b'), 'union')",
+     "gr.csg: the first operand, sphere 'a', has a parent or children"),
+    ("a = gr.sphere('a') c = gr.csg(a, gr.cube('b'), 'union') gr.node('r'):add_child(a)",
+     "node:add_child: sphere 'a' is an operand of CSG node 'a union b'; add the CSG node"),
+    # Files
+    ("gr.mesh('m', 'nope.obj')", "gr.mesh: mesh file 'nope.obj' not found (looked for "),
+    ("gr.mesh('m', 'bad.obj')",
+     "gr.mesh: mesh file 'bad.obj': no vertices ('v' lines): not an OBJ mesh"),
+    ("gr.texture('nope.png', {0, 0, 0}, 1)", "gr.texture: texture file 'nope.png' not found"),
+    ("gr.texture('bad.obj', {0, 0, 0}, 1)", "gr.texture: texture file 'bad.obj' is not an image"),
+    # The node graph
+    ("r = gr.node('r') a = gr.sphere('a') r:add_child(a) r:add_child(a)",
+     "node:add_child: sphere 'a' is already a child of node 'r'; a node is added once"),
+    ("r = gr.node('r') a = gr.node('a') r:add_child(a) a:add_child(r)",
+     "node:add_child: adding node 'r' under node 'a' makes a cycle (node 'r' -> node 'a' -> "
+     "node 'r')"),
+    ("r = gr.node('r') r:add_child({})",
+     "node:add_child: node 'r': the child must be a node; got a table of 0 values"),
+]  # fmt: skip
+
+
+@pytest.fixture
+def folder(tmp_path):
+    (tmp_path / "bad.obj").write_text("hello world\n")
+    Image.new("RGB", (2, 2)).save(tmp_path / "t.png")
+    return tmp_path
+
+
+@pytest.mark.parametrize("source, message", CASES, ids=[c[1][:60] for c in CASES])
+def test_each_mistake_names_the_file_line_and_what_is_valid(folder, source, message):
+    script = folder / "scene.lua"
+    script.write_text("root = gr.node('root')\n\n" + source + "\n")
+    with pytest.raises(ScriptError) as caught:
+        load_script(script, print_line=lambda line: None)
+    assert re.match(r"scene\.lua:3: " + re.escape(message), str(caught.value)), caught.value
+
+
+def test_an_error_after_gr_render_still_renders_nothing(folder):
+    script = folder / "scene.lua"
+    script.write_text("r = gr.node('r')\n" + RENDER + ")\ngr.sphere()\n")
+    with pytest.raises(ScriptError, match=r"^scene\.lua:3: gr\.sphere: takes 1 argument"):
+        load_script(script, print_line=lambda line: None)
+
+
+@pytest.mark.parametrize(
+    "source",
+    ["os.execute('touch pwned')", "io.open('../outside.txt')", "dofile('../outside.lua')",
+     "loadfile('../outside.lua')", "require('outside')", "io.lines('../outside.txt')"],
+)  # fmt: skip
+def test_scripts_cannot_reach_files_outside_their_folder(tmp_path, source):
+    (tmp_path / "outside.lua").write_text("gr.sphere('leaked')\n")
+    (tmp_path / "outside.txt").write_text("secret\n")
+    folder = tmp_path / "scene"
+    folder.mkdir()
+    (folder / "scene.lua").write_text(source + "\n")
+    with pytest.raises(ScriptError, match=r"^scene\.lua:1: attempt to (index|call) a nil value"):
+        load_script(folder / "scene.lua", print_line=lambda line: None)
+    assert not (folder / "pwned").exists()
