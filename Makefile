@@ -1,6 +1,7 @@
 # Whitted: every command a developer or a newcomer needs. All targets are idempotent.
 #   make render [SCENE=path/to.blend]   set everything up, render headless (the report's final
 #                                       scene by default), print the PNG path
+#   make render SCENE=path/to.lua       render a CS488 Lua scene script to the PNG it names
 #   make test                           set everything up, lint, run the whole test suite
 #   make bench                          run the benchmarks in tests/benchmarks/
 #   make fuzz [FUZZ_EXAMPLES=5000]      the fuzz tests' properties with thousands of examples
@@ -51,6 +52,9 @@ $(BLENDER_USER_SCRIPTS)/addons/whitted:
 # Blender exits 1 when the engine reports an error, but 0 (with a blank picture written) when
 # the engine raises: the log decides too
 render: setup
+ifeq ($(suffix $(SCENE)),.lua)
+	$(VENV)/bin/python -m core render "$(SCENE)"
+else
 	@mkdir -p $(RENDERS)
 	set -o pipefail; $(BLENDER_RUN) --addons whitted "$(SCENE)" -E WHITTED \
 	  -o "$(RENDERS)/$(basename $(notdir $(SCENE)))_####" -F PNG -f 1 \
@@ -58,6 +62,7 @@ render: setup
 	@if grep -qE '^Error|Traceback' $(RENDERS)/render.log; then \
 	  echo "The render failed: see the errors above"; exit 1; fi
 	@echo "Rendered: $(RENDERS)/$(basename $(notdir $(SCENE)))_0001.png"
+endif
 
 # The zip a Blender 4.2+ user installs (Preferences > Get Extensions > Install from Disk)
 addon: $(VENV)/.installed

@@ -80,7 +80,9 @@ def _progress_bar():
         bar = "#" * filled + "." * (BAR_WIDTH - filled)
         end = "\n" if done == total or not interactive else ""
         elapsed = time.perf_counter() - start
-        print(f"\r[{bar}] {done}/{total} tiles {elapsed:.1f} s", end=end, file=sys.stderr)
+        start_of_line = "\r" if interactive else ""
+        print(f"{start_of_line}[{bar}] {done}/{total} tiles {elapsed:.1f} s", end=end,
+              file=sys.stderr)  # fmt: skip
 
     return on_tile
 

@@ -1,0 +1,107 @@
+"""`python -m core render scene.lua`: the PNG, the exit status, and nothing partial left behind."""
+
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+from PIL import Image
+
+import core
+from core.cs488 import load_script
+from tests.core.test_cs488_scenes import SCENES
+
+ROOT = SCENES.parent.parent
+
+
+def run_cli(*args, cwd):
+    return subprocess.run(
+        [sys.executable, "-m", "core", *map(str, args)],
+        cwd=cwd,
+        capture_output=True,
+        text=True,
+        env={**os.environ, "PYTHONPATH": str(ROOT)},
+        timeout=600,
+    )
+
+
+@pytest.fixture
+def scenes(tmp_path):
+    folder = tmp_path / "scenes"
+    shutil.copytree(SCENES, folder, ignore=shutil.ignore_patterns("*.png", "*.blend"))
+    shutil.copy(SCENES / "checker.png", folder)
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    return folder, elsewhere
+
+
+def test_a_script_renders_to_its_png_from_any_folder(scenes):
+    folder, elsewhere = scenes
+    result = run_cli("render", folder / "every_command.lua", cwd=elsewhere)
+    assert result.returncode == 0, result.stderr
+    assert "Calling A4_Render(" in result.stdout and "Depth of field is turned on" in result.stdout
+    assert "] 4/4 tiles" in result.stderr  # a 48 x 36 image is 2 x 2 tiles of 32
+    written = folder / "every_command.png"
+    assert f"wrote {written}" in result.stdout
+    assert list(elsewhere.iterdir()) == []
+    pixels = np.asarray(Image.open(written))
+    # The same pixels as rendering in this process (the kernels are deterministic)
+    (call,) = load_script(folder / "every_command.lua", print_line=lambda line: None)
+    here = core.render(call.scene, call.settings).image
+    expected = np.round(np.clip(here, 0, 1) * 255).astype(np.uint8)
+    np.testing.assert_array_equal(pixels, expected)
+
+
+def test_o_names_another_file_and_errors_leave_nothing(scenes):
+    folder, elsewhere = scenes
+    result = run_cli("render", folder / "every_command.lua", "-o", "out/picture.png", cwd=elsewhere)
+    assert result.returncode == 0, result.stderr
+    assert Image.open(elsewhere / "out" / "picture.png").size == (48, 36)
+    assert not (folder / "every_command.png").exists()
+
+    broken = folder / "broken.lua"
+    source = (folder / "every_command.lua").read_text() + "\ngr.sphere('extra', 2)\n"
+    broken.write_text(source)
+    line = source.count("\n")
+    result = run_cli("render", broken, cwd=elsewhere)
+    assert result.returncode == 1
+    assert result.stderr.strip() == (
+        f"error: broken.lua:{line}: gr.sphere: takes 1 argument (name); got 2"
+    )
+    assert sorted(p.name for p in folder.glob("*.png")) == ["checker.png"]
+
+    (folder / "empty.lua").write_text("x = 1\n")
+    result = run_cli("render", folder / "empty.lua", cwd=elsewhere)
+    assert result.returncode == 1 and "never calls gr.render" in result.stderr
+    assert run_cli("paint", "x.lua", cwd=elsewhere).returncode == 2
+
+
+def test_ctrl_c_stops_the_render_and_writes_nothing(scenes):
+    folder, elsewhere = scenes
+    slow = folder / "slow.lua"
+    slow.write_text(
+        (folder / "every_command.lua")
+        .read_text()
+        .replace("'every_command.png', 48, 36", "'slow.png', 640, 480")
+        .replace("4, 1, 4, 14, 0.02)", "8, 1, 64, 14, 0.02)")
+    )
+    process = subprocess.Popen(
+        [sys.executable, "-m", "core", "render", str(slow)],
+        cwd=elsewhere,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env={**os.environ, "PYTHONPATH": str(ROOT)},
+    )
+    assert process.stdout.readline().startswith("Calling A4_Render(")
+    time.sleep(2.0)
+    process.send_signal(signal.SIGINT)
+    _, stderr = process.communicate(timeout=300)
+    assert process.returncode == 130, stderr
+    assert "interrupted: no image written" in stderr
+    assert not (folder / "slow.png").exists()
+    assert not list(folder.glob(".whitted-*"))
