@@ -23,3 +23,10 @@ def node_tree_in_use(datablock):
     if tree is None or (bpy.app.version < (5, 0, 0) and not datablock.use_nodes):
         return None
     return tree
+
+
+def give_nodes(datablock) -> None:
+    """Make a new material or world render with nodes (always so from Blender 5.0, where
+    setting `use_nodes` is deprecated)."""
+    if bpy.app.version < (5, 0, 0) or datablock.node_tree is None:
+        datablock.use_nodes = True

@@ -268,8 +268,10 @@ class Commands:
         if len(args) == 3:
             return LightSpec(PointLight(position, colour, falloff), colour, position, falloff)
         width, height = number(args[3], "width", above=0), number(args[4], "height", above=0)
-        # A rectangle in the report's horizontal plane: width along x, height along z
-        area = AreaLight(position, (width, 0.0, 0.0), (0.0, 0.0, height), colour, falloff)
+        # A rectangle in the report's horizontal plane, width along x and height along z;
+        # edges x and -z make its normal (their cross product) the script's up, as Blender's
+        # area light has it, so an imported script samples the light the same way
+        area = AreaLight(position, (width, 0.0, 0.0), (0.0, 0.0, -height), colour, falloff)
         return LightSpec(area, colour, position, falloff, (width, height))
 
     def render(self, *args):

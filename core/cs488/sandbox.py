@@ -20,7 +20,13 @@ made the failing call.
 from collections.abc import Callable
 from pathlib import Path
 
+import lupa
 import lupa.lua54 as lua54
+
+# The lupa package answers any unknown attribute by importing its newest Lua the first time.
+# Have that happen now: Blender's add-on shutdown probes every module in sys.modules for an
+# attribute while iterating it, and an import then fails with "dictionary changed size".
+lupa.LuaRuntime  # noqa: B018
 
 MAX_MEMORY = 512 * 2**20  # bytes the Lua state may hold
 MAX_INSTRUCTIONS = 200_000_000  # a scene script builds a scene; loops past this are a bug

@@ -13,6 +13,7 @@ from PIL import Image
 
 import core
 from core.cs488 import load_script
+from core.image_io import to_bytes
 from tests.core.test_cs488_scenes import SCENES
 
 ROOT = SCENES.parent.parent
@@ -52,7 +53,7 @@ def test_a_script_renders_to_its_png_from_any_folder(scenes):
     # The same pixels as rendering in this process (the kernels are deterministic)
     (call,) = load_script(folder / "every_command.lua", print_line=lambda line: None)
     here = core.render(call.scene, call.settings).image
-    expected = np.round(np.clip(here, 0, 1) * 255).astype(np.uint8)
+    expected = to_bytes(here)
     np.testing.assert_array_equal(pixels, expected)
 
 

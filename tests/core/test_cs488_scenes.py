@@ -54,7 +54,7 @@ def test_every_command_builds_its_scene():
     assert (glass.transparency, glass.outer_ior, glass.inner_ior) == (1.0, 1.0, 1.53)
     point, area = call.scene.lights
     assert isinstance(point, core.PointLight) and isinstance(area, core.AreaLight)
-    assert area.edge_u == (4.0, 0.0, 0.0) and area.edge_v == (0.0, 0.0, 3.0)
+    assert area.edge_u == (4.0, 0.0, 0.0) and area.edge_v == (0.0, 0.0, -3.0)
     settings, camera = call.settings, call.scene.camera
     assert (settings.max_depth, settings.pixel_samples, settings.shadow_samples) == (4, 3, 4)
     assert (camera.focal_distance, camera.aperture_radius) == (14.0, 0.02)

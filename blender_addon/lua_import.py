@@ -1,0 +1,170 @@
+"""File > Import > CS488 Lua Scene: a report or A4 scene script as Blender data.
+
+The script runs in core's sandbox with every call checked (a mistake is reported with its
+line, and nothing is imported). Each gr.render call becomes a scene: the first call's into
+the current scene, any later one's into a new scene named after its image. A scene gets the
+objects under the call's node (`lua_build`), the camera from eye/view/up/fovy and the
+depth of field, the lights, the world colour from the ambient term, and the render settings
+from gr.render, with the Raw view transform: the render then writes the same PNG as
+`python -m core render`, which writes the renderer's values as the report's program did.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import bpy
+import numpy as np
+from bpy_extras.io_utils import ImportHelper
+from mathutils import Matrix
+
+from core.cs488 import ScriptError, load_script
+
+from .compat import give_nodes
+from .lua_build import WATTS_PER_INTENSITY, Y_UP_TO_Z_UP, Builder, place
+
+
+def import_script(context, path: str | Path) -> list:
+    """Build every gr.render call of the script; returns the scenes. Raises ScriptError."""
+    path = Path(path)
+    calls = load_script(path, print_line=print)
+    if not calls:
+        raise ScriptError(f"{path.name}: the script never calls gr.render: nothing to import")
+    scenes, shared = [], {}
+    for number, call in enumerate(calls):
+        scene = context.scene if number == 0 else bpy.data.scenes.new(call.output.stem)
+        collection = bpy.data.collections.new(f"{path.stem}: {call.output.name}")
+        scene.collection.children.link(collection)
+        root = bpy.data.objects.new(f"{path.stem} (y up)", None)
+        collection.objects.link(root)
+        root.matrix_world = Matrix(Y_UP_TO_Z_UP.tolist())
+        Builder(collection, shared).node(call.root, root, np.eye(4))
+        scene.camera = _camera(call, collection, root)
+        for number_of_light, light in enumerate(call.lights, start=1):
+            _light(light, f"Light {number_of_light}", collection, root)
+        _configure(scene, call)
+        scenes.append(scene)
+    context.view_layer.update()
+    return scenes
+
+
+def _camera(call, collection, root):
+    camera = call.scene.camera
+    data = bpy.data.cameras.new("Camera")
+    data.sensor_fit = "VERTICAL"
+    data.angle_y = math.radians(camera.fovy)
+    data.clip_start, data.clip_end = 1e-3, 1e7
+    if camera.aperture_radius > 0:
+        data.dof.use_dof = True
+        data.dof.focus_distance = camera.focal_distance
+        # The export reads the radius as focal length / (2 f-stop), in scene units
+        data.dof.aperture_fstop = data.lens * 1e-3 / (2.0 * camera.aperture_radius)
+    forward = _unit(camera.view)
+    right = _unit(np.cross(forward, camera.up))
+    up = np.cross(right, forward)
+    local = np.eye(4)
+    local[:3, 0], local[:3, 1], local[:3, 2], local[:3, 3] = right, up, -forward, camera.eye
+    obj = bpy.data.objects.new("Camera", data)
+    collection.objects.link(obj)
+    obj.parent = root
+    place(obj, local)
+    return obj
+
+
+def _light(spec, name, collection, root):
+    """A point light, or a rectangle area light facing down the script's y (its edges along
+    the script's x and -z, as the core light's)."""
+    core_light = spec.core
+    colour = np.array(spec.colour, float)
+    brightest = float(colour.max())
+    kind = "POINT" if spec.size is None else "AREA"
+    data = bpy.data.lights.new(name, kind)
+    data.color = tuple(colour / brightest) if brightest > 0 else (1.0, 1.0, 1.0)
+    data.energy = brightest * WATTS_PER_INTENSITY
+    data.whitted.attenuation = spec.falloff
+    local = np.eye(4)
+    local[:3, 3] = spec.position
+    if kind == "POINT":
+        data.shadow_soft_size = 0.0
+    else:
+        data.shape = "RECTANGLE"
+        data.size, data.size_y = spec.size
+        local[:3, 0] = _unit(core_light.edge_u)
+        local[:3, 1] = _unit(core_light.edge_v)
+        local[:3, 2] = np.cross(local[:3, 0], local[:3, 1])
+    obj = bpy.data.objects.new(name, data)
+    collection.objects.link(obj)
+    obj.parent = root
+    place(obj, local)
+    return obj
+
+
+def _configure(scene, call) -> None:
+    settings = call.settings
+    scene.render.engine = "WHITTED"
+    scene.render.resolution_x, scene.render.resolution_y = settings.width, settings.height
+    scene.render.resolution_percentage = 100
+    scene.render.pixel_aspect_x = scene.render.pixel_aspect_y = 1.0
+    scene.render.use_border = False
+    scene.render.filepath = str(call.output)
+    scene.render.image_settings.file_format = "PNG"
+    scene.render.image_settings.color_mode = "RGBA"
+    scene.render.dither_intensity = 0.0
+    scene.view_settings.view_transform = "Raw"
+    scene.view_settings.look = "None"
+    scene.view_settings.exposure, scene.view_settings.gamma = 0.0, 1.0
+    whitted = scene.whitted
+    whitted.max_depth = settings.max_depth
+    whitted.pixel_samples = settings.pixel_samples
+    whitted.pixel_sampling = settings.pixel_sampling.upper()
+    whitted.shadow_samples = settings.shadow_samples
+    whitted.shadow_sampling = settings.shadow_sampling.upper()
+    whitted.seed = settings.seed
+    world = bpy.data.worlds.new(f"{call.output.stem} ambient")
+    give_nodes(world)
+    background = next(n for n in world.node_tree.nodes if n.type == "BACKGROUND")
+    background.inputs[0].default_value = (*call.ambient, 1.0)
+    background.inputs[1].default_value = 1.0
+    world.color = call.ambient
+    scene.world = world
+
+
+def _unit(vector) -> np.ndarray:
+    vector = np.asarray(vector, float)
+    return vector / np.linalg.norm(vector)
+
+
+class WHITTED_OT_import_lua(bpy.types.Operator, ImportHelper):
+    """Import a CS488 Lua scene script (the A4 language with the report's extensions)"""
+
+    bl_idname = "import_scene.cs488_lua"
+    bl_label = "Import CS488 Lua Scene"
+    bl_options = {"REGISTER", "UNDO"}
+
+    filename_ext = ".lua"
+    filter_glob: bpy.props.StringProperty(default="*.lua", options={"HIDDEN"})
+
+    def execute(self, context):
+        try:
+            scenes = import_script(context, self.filepath)
+        except ScriptError as error:
+            self.report({"ERROR"}, f"Whitted: {error}")
+            return {"CANCELLED"}
+        names = ", ".join(f"'{scene.name}'" for scene in scenes)
+        self.report({"INFO"}, f"Whitted: imported {Path(self.filepath).name} into {names}")
+        return {"FINISHED"}
+
+
+def _menu_entry(self, context):
+    self.layout.operator(WHITTED_OT_import_lua.bl_idname, text="CS488 Lua Scene (.lua)")
+
+
+def register():
+    bpy.utils.register_class(WHITTED_OT_import_lua)
+    bpy.types.TOPBAR_MT_file_import.append(_menu_entry)
+
+
+def unregister():
+    bpy.types.TOPBAR_MT_file_import.remove(_menu_entry)
+    bpy.utils.unregister_class(WHITTED_OT_import_lua)

@@ -1,0 +1,132 @@
+"""File > Import > CS488 Lua Scene: the script as Blender data, rendering the same pixels as
+`python -m core render` (bpy 5.0 in this process, Debian's Blender 3.4 as `blender -b`)."""
+
+import math
+
+import numpy as np
+import pytest
+from PIL import Image
+
+import core
+from core.cs488 import load_script
+from core.image_io import to_bytes
+from tests.blender.conftest import clear_scene
+from tests.blender.test_blender34_cli import blender_34
+from tests.core.test_cs488_scenes import SCENES
+
+EVERY_COMMAND = SCENES / "every_command.lua"
+
+
+def command_line_pixels(script, call_number=0, size=None):
+    """What `python -m core render` writes for the script (tests/core/test_cli.py checks that
+    the command line writes exactly these bytes)."""
+    call = load_script(script, print_line=lambda line: None)[call_number]
+    if size is not None:
+        call.settings.width, call.settings.height = size
+    return to_bytes(core.render(call.scene, call.settings).image)
+
+
+def assert_same_picture(blender, expected):
+    """The same bytes, but for a rare pixel one level off: Blender holds transforms in
+    float32 and custom normals in 16 bits, which can tip a value across a rounding
+    boundary (measured: none of 1,728 pixels in bpy 5.0, one in Blender 3.4)."""
+    difference = np.abs(blender.astype(int) - expected.astype(int))
+    assert difference.max() <= 1, difference.max()
+    differing = np.count_nonzero(difference.max(axis=2))
+    assert differing <= max(2, 0.001 * difference.shape[0] * difference.shape[1]), differing
+
+
+@pytest.fixture
+def imported(bpy_with_whitted):
+    bpy = bpy_with_whitted
+    clear_scene(bpy)
+
+    def run(script):
+        assert bpy.ops.import_scene.cs488_lua(filepath=str(script)) == {"FINISHED"}
+        return bpy.context.scene
+
+    return run
+
+
+def render_png(bpy, scene, path):
+    scene.render.filepath = str(path)
+    bpy.ops.render.render(write_still=True, scene=scene.name)
+    return np.asarray(Image.open(path))
+
+
+def test_the_import_builds_blender_data_a_user_recognises(imported, bpy_with_whitted):
+    bpy = bpy_with_whitted
+    scene = imported(EVERY_COMMAND)
+    objects = {obj.name: obj for obj in scene.objects}
+    tags = {obj.whitted.shape for obj in objects.values() if obj.type == "MESH"}
+    assert tags == {"SPHERE", "CUBE", "CYLINDER", "CONE", "TORUS", "MESH"}
+    booleans = [m for obj in objects.values() for m in obj.modifiers if m.type == "BOOLEAN"]
+    assert sorted(m.operation for m in booleans) == ["DIFFERENCE", "INTERSECT", "UNION"]
+    assert all(m.object.hide_render and m.object.parent is obj for obj in objects.values()
+               for m in obj.modifiers)  # fmt: skip
+    assert objects["arm"].type == "EMPTY" and objects["sphere"].parent == objects["arm"]
+    glass = objects["glass ball"].active_material.whitted
+    assert glass.use_whitted and glass.transparency == 1.0
+    assert math.isclose(glass.inner_ior, 1.53, rel_tol=1e-6)
+    sphere_material = objects["sphere"].active_material
+    assert sphere_material.whitted.image.colorspace_settings.name == "Non-Color"
+    point, area = objects["Light 1"].data, objects["Light 2"].data
+    assert (point.type, area.type, area.shape) == ("POINT", "AREA", "RECTANGLE")
+    assert (area.size, area.size_y) == (4.0, 3.0)
+    assert tuple(area.whitted.attenuation) == (1.0, 0.0, 0.0)
+    camera = scene.camera.data
+    assert math.isclose(math.degrees(camera.angle_y), 40.0, rel_tol=1e-6) and camera.dof.use_dof
+    assert scene.camera.matrix_world.col[1][2] > 0.99  # the script's y is Blender's z, up
+    assert tuple(scene.world.color) == pytest.approx((0.25, 0.25, 0.25))
+    settings = scene.whitted
+    assert (scene.render.resolution_x, scene.render.resolution_y) == (48, 36)
+    assert (settings.max_depth, settings.pixel_samples, settings.shadow_samples) == (4, 3, 4)
+    assert scene.view_settings.view_transform == "Raw"
+    assert bpy.context.scene is scene
+
+
+def test_blender_renders_the_same_pixels_as_the_command_line(imported, bpy_with_whitted, tmp_path):
+    scene = imported(EVERY_COMMAND)
+    blender = render_png(bpy_with_whitted, scene, tmp_path / "blender.png")
+    assert_same_picture(blender, command_line_pixels(EVERY_COMMAND))
+
+
+def test_each_render_call_is_a_scene_of_its_own(imported, bpy_with_whitted, tmp_path):
+    """The report manual's script renders twice, the second time with depth of field."""
+    imported(SCENES / "report_manual.lua")
+    bpy = bpy_with_whitted
+    focused = bpy.data.scenes["report_manual_dof"]
+    assert focused.camera.data.dof.use_dof
+    assert math.isclose(focused.camera.data.dof.focus_distance, 300.0)
+    focused.render.resolution_x = focused.render.resolution_y = 64
+    focused.whitted.shadow_samples = 4
+    blender = render_png(bpy, focused, tmp_path / "dof.png")
+    call = load_script(SCENES / "report_manual.lua", print_line=lambda line: None)[1]
+    call.settings.width = call.settings.height = 64
+    call.settings.shadow_samples = 4
+    assert_same_picture(blender, to_bytes(core.render(call.scene, call.settings).image))
+
+
+def test_a_bad_script_imports_nothing_and_names_its_line(imported, bpy_with_whitted, tmp_path):
+    bpy = bpy_with_whitted
+    script = tmp_path / "scene.lua"
+    script.write_text("root = gr.node('root')\nroot:add_child(gr.sphere('a'))\ngr.cone('c', 2)\n")
+    before = len(bpy.data.objects)
+    with pytest.raises(RuntimeError, match=r"scene\.lua:3: gr\.cone: takes 1 argument"):
+        bpy.ops.import_scene.cs488_lua(filepath=str(script))
+    assert len(bpy.data.objects) == before
+
+
+@pytest.mark.blender34
+def test_blender_34_imports_and_renders_the_same_pixels(tmp_path):
+    run = blender_34(
+        "--factory-startup", "--addons", "whitted", "--python-expr",
+        "import bpy\n"
+        "for o in list(bpy.data.objects): bpy.data.objects.remove(o)\n"
+        f"bpy.ops.import_scene.cs488_lua(filepath={str(EVERY_COMMAND)!r})\n",
+        "-o", f"{tmp_path}/out_####", "-F", "PNG", "-f", "1",
+    )  # fmt: skip
+    assert run.returncode == 0, run.stdout + run.stderr
+    assert "Traceback" not in run.stdout + run.stderr
+    blender = np.asarray(Image.open(tmp_path / "out_0001.png"))
+    assert_same_picture(blender, command_line_pixels(EVERY_COMMAND))
