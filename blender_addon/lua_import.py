@@ -110,6 +110,7 @@ def _configure(scene, call) -> None:
     scene.render.filepath = str(call.output)
     scene.render.image_settings.file_format = "PNG"
     scene.render.image_settings.color_mode = "RGBA"
+    scene.render.image_settings.color_depth = "8"  # the bytes the command line writes
     scene.render.dither_intensity = 0.0
     scene.view_settings.view_transform = "Raw"
     scene.view_settings.look = "None"

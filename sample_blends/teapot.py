@@ -73,3 +73,20 @@ def tessellate(segments: int = 10, path: Path = DATA) -> TeapotMesh:
         & (triangles[:, 0] != triangles[:, 2])
     )
     return TeapotMesh(flat[first], triangles[distinct], uvs[distinct])
+
+
+def write_obj(path: Path, segments: int = 10) -> Path:
+    """The teapot as an OBJ file for CS488 scripts (final_scene.lua): y up, as those scenes
+    are, the body's base at y = 0; positions only, so the loader smooths it the report's
+    way."""
+    mesh = tessellate(segments)
+    x, y, z = mesh.vertices.T
+    lines = ["# Newell's teapot, tessellated by sample_blends/teapot.py (y up)"]
+    lines += [f"v {a:.6f} {b:.6f} {c:.6f}" for a, b, c in zip(x, z, -y, strict=True)]
+    lines += [f"f {a} {b} {c}" for a, b, c in (mesh.triangles + 1).tolist()]
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+if __name__ == "__main__":
+    print(write_obj(Path(__file__).resolve().parent / "teapot.obj"))
