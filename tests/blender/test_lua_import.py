@@ -10,7 +10,7 @@ from PIL import Image
 import core
 from core.cs488 import load_script
 from core.image_io import to_bytes
-from tests.blender.conftest import clear_scene
+from tests.blender.conftest import ROOT, clear_scene
 from tests.blender.test_blender34_cli import blender_34
 from tests.core.test_cs488_scenes import SCENES
 
@@ -130,3 +130,17 @@ def test_blender_34_imports_and_renders_the_same_pixels(tmp_path):
     assert "Traceback" not in run.stdout + run.stderr
     blender = np.asarray(Image.open(tmp_path / "out_0001.png"))
     assert_same_picture(blender, command_line_pixels(EVERY_COMMAND))
+
+
+def test_the_final_scene_script_imports_to_the_same_picture(imported, bpy_with_whitted, tmp_path):
+    """Textures, a textured mesh floor, Newell's teapot with the report's vertex normals (in
+    Blender as custom normals), CSG of a textured box, tori turned upright, a mirror."""
+    script = ROOT / "sample_blends" / "final_scene.lua"
+    scene = imported(script)
+    scene.render.resolution_x = scene.render.resolution_y = 96
+    scene.whitted.shadow_samples = 4
+    blender = render_png(bpy_with_whitted, scene, tmp_path / "final.png")
+    (call,) = load_script(script, print_line=lambda line: None)
+    call.settings.width = call.settings.height = 96
+    call.settings.shadow_samples = 4
+    assert_same_picture(blender, to_bytes(core.render(call.scene, call.settings).image))

@@ -280,3 +280,18 @@ def test_a_csg_material_colours_operands_without_their_own(tmp_path):
     assert csg.left.material.diffuse == (1.0, 0.0, 0.0)
     assert csg.right.material.diffuse == (0.0, 0.0, 1.0)
     assert call.warnings == []
+
+
+def test_the_final_scene_script_has_the_reports_settings():
+    script = SCENES.parent.parent / "sample_blends" / "final_scene.lua"
+    (call,) = load_script(script, print_line=lambda line: None)
+    settings = call.settings
+    assert (settings.width, settings.height, settings.max_depth) == (500, 500, 50)
+    assert (settings.pixel_samples, settings.shadow_samples) == (3, 40)
+    (light,) = call.scene.lights
+    assert isinstance(light, core.AreaLight) and light.edge_u == (50.0, 0.0, 0.0)
+    kinds = sorted(type(shape).__name__ for shape in call.scene.shapes)
+    assert kinds == ["Box", "Cone", "Csg", "Csg", "Csg", "Mesh", "Mesh", "Sphere", "Torus",
+                     "Torus"]  # fmt: skip
+    assert call.output == script.with_name("final_scene_lua.png")
+    assert call.warnings == []
