@@ -1,5 +1,5 @@
 """Build the zip a Blender user installs: a Blender 4.2+ extension (blender_manifest.toml,
-with numba, llvmlite and Pillow bundled as wheels; Blender brings numpy). Blender 3.4 to 4.1
+with numba, llvmlite, Pillow and lupa bundled as wheels; Blender brings numpy). Blender 3.4 to 4.1
 load the same modules as a legacy add-on (bl_info) from a checkout's link instead.
 
     python blender_addon/packaging/build_extension.py OUT_DIR
@@ -20,7 +20,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 ADDON = ROOT / "blender_addon"
 # The versions the project pins (pyproject.toml), for Blender's Python 3.11 on Linux
-WHEELS = ("numba==0.68.1", "llvmlite==0.50.0", "Pillow==13.0.0")
+WHEELS = ("numba==0.68.1", "llvmlite==0.50.0", "Pillow==13.0.0", "lupa==2.8")
 PLATFORM = ("manylinux2014_x86_64", "manylinux_2_17_x86_64", "manylinux_2_28_x86_64")
 
 

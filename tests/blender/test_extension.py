@@ -31,6 +31,8 @@ bpy.context.active_object.data.energy = 2000
 scene.render.filepath = out
 bpy.ops.render.render(write_still=True)
 print("ENGINE", [c.__module__ for c in bpy.types.RenderEngine.__subclasses__()])
+result = bpy.ops.import_scene.cs488_lua(filepath=sys.argv[3])
+print("IMPORTED", result, sorted(o.name for o in bpy.context.scene.objects))
 """
 
 
@@ -39,16 +41,23 @@ def test_the_zip_installs_as_an_extension_and_renders(tmp_path):
     with zipfile.ZipFile(target) as archive:
         names = archive.namelist()
         manifest = archive.read("blender_manifest.toml").decode()
-    assert {"__init__.py", "engine.py", "core/__init__.py", "core/kernels/trace.py"} <= set(names)
+    assert {"__init__.py", "engine.py", "lua_import.py", "core/__init__.py",
+            "core/kernels/trace.py", "core/cs488/sandbox.py"} <= set(names)  # fmt: skip
     assert 'id = "whitted"' in manifest and 'type = "add-on"' in manifest
     env = dict(os.environ, BLENDER_USER_RESOURCES=str(tmp_path / "blender_home"))
     out = tmp_path / "sphere.png"
+    script = tmp_path / "ball.lua"
+    script.write_text(
+        "root = gr.node('root')\nroot:add_child(gr.sphere('ball'))\n"
+        "gr.render(root, 'ball.png', 8, 8, {0, 0, 5}, {0, 0, -1}, {0, 1, 0}, 50, {1, 1, 1}, {})\n"
+    )
     run = subprocess.run(
-        [sys.executable, "-c", INSTALL_AND_RENDER, str(target), str(out)],
+        [sys.executable, "-c", INSTALL_AND_RENDER, str(target), str(out), str(script)],
         env=env, cwd=ROOT, capture_output=True, text=True, timeout=600,
     )  # fmt: skip
     assert run.returncode == 0, run.stdout + run.stderr
     assert "bl_ext.user_default.whitted.engine" in run.stdout
+    assert "IMPORTED {'FINISHED'}" in run.stdout and "'ball'" in run.stdout
     from PIL import Image
 
     image = Image.open(out).convert("RGB")

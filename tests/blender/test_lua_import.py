@@ -56,6 +56,8 @@ def render_png(bpy, scene, path):
 
 def test_the_import_builds_blender_data_a_user_recognises(imported, bpy_with_whitted):
     bpy = bpy_with_whitted
+    menu = bpy.types.TOPBAR_MT_file_import._dyn_ui_initialize()
+    assert any(draw.__module__.endswith("lua_import") for draw in menu)  # File > Import
     scene = imported(EVERY_COMMAND)
     objects = {obj.name: obj for obj in scene.objects}
     tags = {obj.whitted.shape for obj in objects.values() if obj.type == "MESH"}
