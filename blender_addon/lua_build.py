@@ -144,34 +144,51 @@ def _size(matrix: np.ndarray) -> float:
 
 def stand_in(kind: str, radii):
     """The viewport mesh of a tagged shape: Blender's own primitive of that kind."""
-    mesh = bpy.data.meshes.new(f"Whitted {kind}")
-    bm = bmesh.new()
-    if kind == "sphere":
-        bmesh.ops.create_uvsphere(bm, u_segments=32, v_segments=16, radius=1.0)
-    elif kind == "cube":
-        bmesh.ops.create_cube(bm, size=2.0)
-    elif kind in ("cylinder", "cone"):
-        top = 1.0 if kind == "cylinder" else 0.0
-        bmesh.ops.create_cone(bm, cap_ends=True, segments=32, radius1=1.0, radius2=top, depth=2.0)
+    if kind == "torus":
+        mesh = _polygon_mesh(f"Whitted {kind}", *_torus(*radii))
     else:
-        _torus(bm, *radii)
-    bm.to_mesh(mesh)
-    bm.free()
+        mesh = bpy.data.meshes.new(f"Whitted {kind}")
+        bm = bmesh.new()
+        if kind == "sphere":
+            bmesh.ops.create_uvsphere(bm, u_segments=32, v_segments=16, radius=1.0)
+        elif kind == "cube":
+            bmesh.ops.create_cube(bm, size=2.0)
+        else:
+            top = 1.0 if kind == "cylinder" else 0.0
+            bmesh.ops.create_cone(bm, cap_ends=True, segments=32, radius1=1.0, radius2=top,
+                                  depth=2.0)  # fmt: skip
+        bm.to_mesh(mesh)
+        bm.free()
     _smooth(mesh, kind != "cube")
     return mesh
 
 
-def _torus(bm, major: float, minor: float, rings: int = 48, sides: int = 16) -> None:
+def _torus(major: float, minor: float, rings: int = 48, sides: int = 16):
+    """(vertices, quads) of a torus about z, as Blender's Add > Torus makes it."""
     u, v = np.meshgrid(np.linspace(0, 2 * np.pi, rings, endpoint=False),
                        np.linspace(0, 2 * np.pi, sides, endpoint=False), indexing="ij")  # fmt: skip
     radius = major + minor * np.cos(v)
     points = np.stack([radius * np.cos(u), radius * np.sin(u), minor * np.sin(v)], -1)
-    verts = [bm.verts.new(p) for p in points.reshape(-1, 3).tolist()]
-    for i in range(rings):  # a viewport stand-in of 768 faces, not render geometry
-        for j in range(sides):
-            a, b = i * sides + j, ((i + 1) % rings) * sides + j
-            c, d = ((i + 1) % rings) * sides + (j + 1) % sides, i * sides + (j + 1) % sides
-            bm.faces.new((verts[a], verts[b], verts[c], verts[d]))
+    i, j = (a.ravel() for a in np.meshgrid(np.arange(rings), np.arange(sides), indexing="ij"))
+    ring, side = (i + 1) % rings, (j + 1) % sides
+    quads = np.stack([i * sides + j, ring * sides + j, ring * sides + side, i * sides + side], 1)
+    return points.reshape(-1, 3), quads
+
+
+def _polygon_mesh(name: str, vertices: np.ndarray, faces: np.ndarray):
+    """A mesh of equal-sized faces (f, k) over vertices (v, 3), through `foreach_set`."""
+    mesh = bpy.data.meshes.new(name)
+    mesh.vertices.add(len(vertices))
+    mesh.vertices.foreach_set("co", np.asarray(vertices, np.float32).ravel())
+    mesh.loops.add(faces.size)
+    mesh.loops.foreach_set("vertex_index", np.asarray(faces, np.int32).ravel())
+    mesh.polygons.add(len(faces))
+    corners = faces.shape[1]
+    mesh.polygons.foreach_set("loop_start", np.arange(0, faces.size, corners, dtype=np.int32))
+    if bpy.app.version < (4, 0, 0):  # read-only from 4.0, where loop_start decides it
+        mesh.polygons.foreach_set("loop_total", np.full(len(faces), corners, np.int32))
+    mesh.update(calc_edges=True)
+    return mesh
 
 
 def _smooth(mesh, smooth: bool) -> None:
@@ -180,20 +197,10 @@ def _smooth(mesh, smooth: bool) -> None:
 
 
 def mesh_from_triangles(triangle_mesh, name: str):
-    """A Blender mesh holding a core `TriangleMesh` through `foreach_set`: its triangles,
-    smooth with its normals as custom normals, and its texture coordinates."""
-    vertices = np.asarray(triangle_mesh.vertices, np.float32)
+    """A Blender mesh holding a core `TriangleMesh`: its triangles, smooth with its normals
+    as custom normals, and its texture coordinates."""
     triangles = np.asarray(triangle_mesh.triangles, np.int32)
-    mesh = bpy.data.meshes.new(name)
-    mesh.vertices.add(len(vertices))
-    mesh.vertices.foreach_set("co", vertices.ravel())
-    mesh.loops.add(triangles.size)
-    mesh.loops.foreach_set("vertex_index", triangles.ravel())
-    mesh.polygons.add(len(triangles))
-    mesh.polygons.foreach_set("loop_start", np.arange(0, triangles.size, 3, dtype=np.int32))
-    if bpy.app.version < (4, 0, 0):
-        mesh.polygons.foreach_set("loop_total", np.full(len(triangles), 3, np.int32))
-    mesh.update(calc_edges=True)
+    mesh = _polygon_mesh(name, triangle_mesh.vertices, triangles)
     if triangle_mesh.corner_uvs is not None:
         layer = mesh.uv_layers.new(name="UVMap")
         layer.data.foreach_set("uv", np.asarray(triangle_mesh.corner_uvs, np.float32).ravel())

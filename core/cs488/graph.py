@@ -121,10 +121,10 @@ class Node(ScriptObject):
         raise ArgumentError(f"{self} has no shape to texture; set textures on shape nodes")
 
     def translate(self, *args) -> None:
-        self.matrix = translation(_three_numbers("translate", args)) @ self.matrix
+        self.matrix = translation(_three_numbers(args)) @ self.matrix
 
     def scale(self, *args) -> None:
-        factors = _three_numbers("scale", args)
+        factors = _three_numbers(args)
         if 0.0 in factors:
             raise ArgumentError(f"{self}: scale by {factors}: a factor of 0 flattens the node")
         self.matrix = scaling(factors) @ self.matrix
@@ -258,7 +258,7 @@ def _path_up(node: Node, target: Node) -> list[Node] | None:
     return None
 
 
-def _three_numbers(method: str, args) -> tuple[float, float, float]:
+def _three_numbers(args) -> tuple[float, float, float]:
     if len(args) != 3:
         raise ArgumentError(f"takes 3 arguments (x, y, z); got {len(args)}")
     return tuple(check_number(v, "xyz"[i]) for i, v in enumerate(args))
