@@ -43,13 +43,17 @@ GR_COMMANDS = (
 )  # fmt: skip
 
 
-def expect(args, counts, usage: str) -> None:
-    if len(args) not in counts:
-        allowed = " or ".join(str(c) for c in counts).replace(" or ", ", ", len(counts) - 2)
-        if counts == tuple(range(counts[0], counts[-1] + 1)) and len(counts) > 2:
-            allowed = f"{counts[0]} to {counts[-1]}"
-        noun = "argument" if counts == (1,) else "arguments"
-        raise ArgumentError(f"takes {allowed} {noun} ({usage}); got {len(args)}")
+def expect(args, counts: tuple[int, ...], usage: str) -> None:
+    """Check the number of arguments: "takes 3 to 6 arguments (usage); got 7"."""
+    if len(args) in counts:
+        return
+    if len(counts) > 2 and counts == tuple(range(counts[0], counts[-1] + 1)):
+        allowed = f"{counts[0]} to {counts[-1]}"
+    else:
+        *rest, last = map(str, counts)
+        allowed = f"{', '.join(rest)} or {last}" if rest else last
+    noun = "argument" if counts == (1,) else "arguments"
+    raise ArgumentError(f"takes {allowed} {noun} ({usage}); got {len(args)}")
 
 
 def name_of(value, what="name") -> str:
