@@ -23,7 +23,7 @@ from .csg_export import boolean_modifiers, solid
 from .material_export import convert_material, find_node
 from .mesh_export import MeshCache
 
-_WATTS_TO_INTENSITY = 1.0 / (4.0 * math.pi**2)
+WATTS_TO_INTENSITY = 1.0 / (4.0 * math.pi**2)
 
 
 # Curves, text, surfaces and metaballs are listed too as the mesh instances they evaluate to
@@ -275,7 +275,7 @@ def world_colour(world) -> tuple[float, float, float]:
 
 def _point_light(obj, matrix_world) -> core.PointLight:
     light = obj.data
-    intensity = tuple(float(c) * light.energy * _WATTS_TO_INTENSITY for c in light.color)
+    intensity = tuple(float(c) * light.energy * WATTS_TO_INTENSITY for c in light.color)
     return core.PointLight(
         position=tuple(matrix_world.translation),
         intensity=intensity,
@@ -305,7 +305,7 @@ def _area_light(obj, matrix_world) -> core.AreaLight | None:
     width = light.size
     height = light.size if light.shape == "SQUARE" else light.size_y
     axes = np.array(matrix_world.to_3x3(), float)
-    intensity = tuple(float(c) * light.energy * _WATTS_TO_INTENSITY for c in light.color)
+    intensity = tuple(float(c) * light.energy * WATTS_TO_INTENSITY for c in light.color)
     return core.AreaLight(
         centre=tuple(matrix_world.translation),
         edge_u=tuple(axes[:, 0] * width),

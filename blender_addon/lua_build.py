@@ -18,17 +18,13 @@ import bpy
 import numpy as np
 from mathutils import Matrix
 
-from core.cs488.graph import CsgNode, GeometryNode
+from core.cs488.graph import Z_TO_MINUS_Y, CsgNode, GeometryNode
 from core.cs488.render_call import UNSET_MATERIAL
 
 from .compat import give_nodes
 
 # The script's y up onto Blender's z up (and its z, towards the viewer, onto -y)
-Y_UP_TO_Z_UP = np.array([[1.0, 0, 0, 0], [0, 0, -1, 0], [0, 1, 0, 0], [0, 0, 0, 1]])
-# The export's point and area light intensity is colour x power / (4 pi^2)
-WATTS_PER_INTENSITY = 4.0 * math.pi**2
-BLENDER_KINDS = {"sphere": "SPHERE", "cube": "CUBE", "cylinder": "CYLINDER", "cone": "CONE",
-                 "torus": "TORUS", "mesh": "MESH"}  # fmt: skip
+Y_UP_TO_Z_UP = Z_TO_MINUS_Y
 OPERATIONS = {"union": "UNION", "intersection": "INTERSECT", "diff": "DIFFERENCE"}  # gr.csg words
 
 
@@ -60,6 +56,7 @@ class Builder:
             owner.empty_display_size = 0.5
             if isinstance(node, GeometryNode):
                 self.shape(node, owner, node.shape_matrix, None)
+        # Children hang under the node's Empty, or, where it has none, beside its object
         for child in node.children:
             self.node(child, owner, np.eye(4) if owner is not parent else here)
 
@@ -67,7 +64,7 @@ class Builder:
         spec = node.material
         material = spec.core if spec is not None else inherited or UNSET_MATERIAL
         obj = bpy.data.objects.new(node.name, self.mesh_data(node))
-        obj.whitted.shape = BLENDER_KINDS[node.kind]
+        obj.whitted.shape = node.kind.upper()  # the Whitted Shape items: SPHERE, ..., MESH
         if node.kind == "torus":
             obj.whitted.major_radius, obj.whitted.minor_radius = node.radii
         self.link(obj, parent, local)

@@ -22,7 +22,8 @@ from mathutils import Matrix
 from core.cs488 import ScriptError, load_script
 
 from .compat import give_nodes
-from .lua_build import WATTS_PER_INTENSITY, Y_UP_TO_Z_UP, Builder, place
+from .export import WATTS_TO_INTENSITY
+from .lua_build import Y_UP_TO_Z_UP, Builder, place
 
 
 def import_script(context, path: str | Path) -> list:
@@ -81,7 +82,7 @@ def _light(spec, name, collection, root):
     kind = "POINT" if spec.size is None else "AREA"
     data = bpy.data.lights.new(name, kind)
     data.color = tuple(colour / brightest) if brightest > 0 else (1.0, 1.0, 1.0)
-    data.energy = brightest * WATTS_PER_INTENSITY
+    data.energy = brightest / WATTS_TO_INTENSITY  # the export's conversion, inverted
     data.whitted.attenuation = spec.falloff
     local = np.eye(4)
     local[:3, 3] = spec.position

@@ -21,10 +21,6 @@ import numpy as np
 from core.cs488.sandbox import ArgumentError, ScriptObject
 from core.scene import Box, Cone, Csg, Cylinder, Material, Mesh, Sphere, Torus, TriangleMesh
 
-# Object z onto y (a turn of -90 degrees about x), for shapes whose axis is the report's y
-Z_TO_Y = np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0], [0, 0, 0, 1]])
-# Object z onto -y (+90 degrees about x): the core cone's apex (z = 1) to the bottom
-Z_TO_MINUS_Y = np.array([[1.0, 0, 0, 0], [0, 0, -1, 0], [0, 1, 0, 0], [0, 0, 0, 1]])
 AXES = {"x": 0, "y": 1, "z": 2}
 CSG_OPERATIONS = {"union": "union", "intersection": "intersection", "diff": "difference"}
 
@@ -52,6 +48,13 @@ def rotation(axis: str, degrees: float) -> np.ndarray:
     m = np.eye(4)
     m[j, j], m[j, k], m[k, j], m[k, k] = c, -s, s, c
     return m
+
+
+# Object z onto y (a turn of -90 degrees about x), for shapes whose axis is the report's y
+Z_TO_Y = rotation("x", -90)
+# Object z onto -y (+90 degrees about x): the core cone's apex (z = 1) to the bottom; also
+# what stands a y-up scene upright in Blender's z-up world
+Z_TO_MINUS_Y = rotation("x", 90)
 
 
 def object_matrix(kind: str, centre=(0.0, 0.0, 0.0), size: float = 1.0, height: float = 2.0):

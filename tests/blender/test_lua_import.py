@@ -1,5 +1,8 @@
 """File > Import > CS488 Lua Scene: the script as Blender data, rendering the same pixels as
-`python -m core render` (bpy 5.0 in this process, Debian's Blender 3.4 as `blender -b`)."""
+`python -m core render` (bpy 5.0 in this process, Debian's Blender 3.4 as `blender -b`).
+
+The pixel comparisons check that the two front ends build the same scene; the accuracy of
+what they render is checked against closed forms in tests/core/test_cs488_scenes.py."""
 
 import math
 
@@ -115,6 +118,9 @@ def test_a_bad_script_imports_nothing_and_names_its_line(imported, bpy_with_whit
     script.write_text("root = gr.node('root')\nroot:add_child(gr.sphere('a'))\ngr.cone('c', 2)\n")
     before = len(bpy.data.objects)
     with pytest.raises(RuntimeError, match=r"scene\.lua:3: gr\.cone: takes 1 argument"):
+        bpy.ops.import_scene.cs488_lua(filepath=str(script))
+    script.write_text("root = gr.node('root')\n")
+    with pytest.raises(RuntimeError, match=r"scene\.lua: the script never calls gr\.render"):
         bpy.ops.import_scene.cs488_lua(filepath=str(script))
     assert len(bpy.data.objects) == before
 

@@ -12,6 +12,7 @@ import pytest
 from PIL import Image
 
 import core
+from core.cli import main
 from core.cs488 import load_script
 from core.image_io import to_bytes
 from tests.core.test_cs488_scenes import SCENES
@@ -50,7 +51,8 @@ def test_a_script_renders_to_its_png_from_any_folder(scenes):
     assert f"wrote {written}" in result.stdout
     assert list(elsewhere.iterdir()) == []
     pixels = np.asarray(Image.open(written))
-    # The same pixels as rendering in this process (the kernels are deterministic)
+    # The same bytes as rendering in this process: a check of the command line's writing,
+    # not of accuracy (test_cs488_scenes checks that against closed forms)
     (call,) = load_script(folder / "every_command.lua", print_line=lambda line: None)
     here = core.render(call.scene, call.settings).image
     expected = to_bytes(here)
@@ -106,3 +108,13 @@ def test_ctrl_c_stops_the_render_and_writes_nothing(scenes):
     assert "interrupted: no image written" in stderr
     assert not (folder / "slow.png").exists()
     assert not list(folder.glob(".whitted-*"))
+
+
+def test_o_with_several_render_calls_is_refused_before_rendering(capsys):
+    """The report manual's script renders twice; one -o cannot name both images."""
+    status = main(["render", str(SCENES / "report_manual.lua"), "-o", "one.png"])
+    assert status == 1
+    error = capsys.readouterr().err
+    assert error.strip() == (
+        "error: report_manual.lua: the script calls gr.render 2 times; -o names one file"
+    )
