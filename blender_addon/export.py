@@ -56,6 +56,8 @@ class Exporter:
     def add_instance(self, obj, matrix: np.ndarray) -> None:
         """One object instance (evaluated) placed by `matrix`."""
         original = obj.original
+        # Object > Visibility > Ray Visibility > Shadow (Blender 3.0+; older files lack it)
+        casts_shadows = bool(getattr(original, "visible_shadow", True))
         if obj.type == "MESH" and boolean_modifiers(original):
             shape = solid(original, self, self.depsgraph)
         elif obj.type == "MESH" and obj.whitted.shape != "MESH":
@@ -64,9 +66,13 @@ class Exporter:
             for slot, part in self._instance_mesh(obj).items():
                 if len(part.triangles):
                     material = self.material(obj, slot)
-                    self.shapes.append(core.Mesh(obj.name, material, matrix, mesh=part))
+                    self.shapes.append(
+                        core.Mesh(obj.name, material, matrix, mesh=part,
+                                  casts_shadows=casts_shadows)
+                    )  # fmt: skip
             return
         shape.world_from_object = matrix
+        shape.casts_shadows = casts_shadows
         self.shapes.append(shape)
 
     def base_shape(self, obj) -> core.Shape:

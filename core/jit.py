@@ -14,6 +14,7 @@ import sys
 from pathlib import Path
 
 import numba
+from numba.core import types
 
 from core.version import VERSION
 
@@ -42,9 +43,32 @@ numba.config.CACHE_DIR = str(kernel_cache_dir())
 # Read when numba first compiles, so this must run before any kernel is compiled.
 numba.config.SLP_VECTORIZE = 1
 
+
+def _one_signature_for_constants(dispatcher):
+    """Type calls from other kernels with constants as plain values. numba types a constant
+    argument (`row(a, 0)`, `f(x, -1)`, a counter that starts at 0) as a Literal of its own and
+    compiles the callee once more for it; measured on the render kernel, such copies of
+    the shadow-ray kernel alone added 34 s to a cold compile. None of our kernels needs a
+    constant to be known at compile time, so one compiled copy serves all callers."""
+    get_call_template = dispatcher.get_call_template
+
+    def unliteral_call_template(args, kws):
+        args = tuple(types.unliteral(a) for a in args)
+        kws = {name: types.unliteral(a) for name, a in kws.items()}
+        return get_call_template(args, kws)
+
+    dispatcher.get_call_template = unliteral_call_template
+    return dispatcher
+
+
 # error_model="numpy": division by zero gives inf/nan like numpy instead of a Python exception
 # check on every division; the kernels guard their own divisions.
-kernel = numba.njit(cache=True, nogil=True, error_model="numpy")
+_compile = numba.njit(cache=True, nogil=True, error_model="numpy")
+
+
+def kernel(function):
+    return _one_signature_for_constants(_compile(function))
+
 
 # Inlined by numba itself into every caller. For the few functions called once per ray with
 # several groups of the packed scene: numba passes a tuple of arrays field by field on the

@@ -23,6 +23,7 @@ from core.kernels.options import (
     OPTION_PIXEL_PATTERN,
     OPTION_PIXEL_SAMPLES,
     OPTION_SEED,
+    OPTION_SHADOW_CULLING,
     OPTION_SHADOW_PATTERN,
     OPTION_SHADOW_SAMPLES,
     PIXEL_PATTERNS,
@@ -172,7 +173,7 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
         shape_object_from_world=object_from_world,
         shape_param=param,
         shape_index=shape_index,
-        shape_transparency=np.array([s.material.transparency for s in shapes], float),
+        shape_transparency=_shadow_transparency(shapes, len(scene.shapes)),
         shape_bounds=np.ascontiguousarray(np.hstack([lo, hi]).reshape(n, 6)),
         mesh_root=np.array(tables.root, np.int32),
         node_boxes=concatenated(tables.node_boxes, (0, 6, 4), np.float32),
@@ -245,6 +246,19 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
     return CompiledScene(packed, warnings, tables.counts["tris"], mesh_bytes)
 
 
+def _shadow_transparency(shapes: list, scene_shapes: int) -> np.ndarray:
+    """What each row lets through per surface crossed by a shadow ray: its material's
+    transparency; 1 for a scene shape that casts no shadow (kernels skip such rows, which
+    is exact: 1^crossings = 1); for a CSG row 0, as its operands' rows decide."""
+    tau = np.empty(len(shapes))
+    for i, shape in enumerate(shapes):
+        if i < scene_shapes and not shape.casts_shadows:
+            tau[i] = 1.0
+        else:
+            tau[i] = 0.0 if isinstance(shape, Csg) else shape.material.transparency
+    return tau
+
+
 def _mesh_has_triangles(tables: MeshTables, shape: Mesh, mesh_index: dict) -> bool:
     m = mesh_index[id(shape.mesh)]
     end = tables.tri_offset[m + 1] if m + 1 < len(tables.tri_offset) else tables.counts["tris"]
@@ -271,6 +285,7 @@ def _pack_options(settings: RenderSettings) -> np.ndarray:
     options[OPTION_SHADOW_SAMPLES] = settings.shadow_samples
     options[OPTION_SHADOW_PATTERN] = SHADOW_PATTERNS[settings.shadow_sampling]
     options[OPTION_SEED] = settings.seed
+    options[OPTION_SHADOW_CULLING] = settings.shadow_culling
     return options
 
 

@@ -20,7 +20,13 @@ import numpy as np
 
 from core.kernels.csg import CROSSING_CAPACITY, SPAN_CAPACITY
 from core.kernels.render_tile import render_borrowed_tile
-from core.kernels.workspace import RAYS_TRACED, SHADOW_RAYS, new_workspace
+from core.kernels.workspace import (
+    RAY_COUNT_SLOTS,
+    RAYS_TRACED,
+    SHADOW_RAYS,
+    SHADOW_RAYS_UNOBSTRUCTED,
+    new_workspace,
+)
 from core.packing import PackedScene, compile_scene
 from core.scene import RenderSettings, Scene
 
@@ -48,6 +54,8 @@ class RenderStats:
     threads: int
     rays_traced: int = 0  # camera, reflected and refracted rays (each finds its closest hit)
     shadow_rays: int = 0  # rays towards lights (each asks only what light gets through)
+    # of shadow_rays, those answered with no test: no shape met the area light's pyramid
+    shadow_rays_unobstructed: int = 0
 
     @property
     def rays_cast(self) -> int:
@@ -119,7 +127,7 @@ def render(
 
     def render_one(tile: Tile) -> tuple[np.ndarray, int, np.ndarray]:
         pixels = np.empty((tile.height, tile.width, 4), np.float32)
-        workspace = new_workspace(settings.max_depth)
+        workspace = new_workspace(settings.max_depth, settings.shadow_samples)
         render_borrowed_tile(
             packed,
             settings.width,
@@ -137,7 +145,7 @@ def render(
     start = time.perf_counter()
     tiles_done = 0
     csg_overflows = 0
-    ray_counts = np.zeros(2, np.int64)
+    ray_counts = np.zeros(RAY_COUNT_SLOTS, np.int64)
     cancelled = False
     with ThreadPoolExecutor(max_workers=threads, thread_name_prefix="whitted") as pool:
         queue = iter(tiles)
@@ -174,6 +182,7 @@ def render(
         threads=threads,
         rays_traced=int(ray_counts[RAYS_TRACED]),
         shadow_rays=int(ray_counts[SHADOW_RAYS]),
+        shadow_rays_unobstructed=int(ray_counts[SHADOW_RAYS_UNOBSTRUCTED]),
     )
     warnings = list(compiled.warnings)
     if csg_overflows:

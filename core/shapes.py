@@ -32,9 +32,13 @@ def _identity() -> np.ndarray:
 
 @dataclass(eq=False)
 class Shape:
+    """casts_shadows -- False: light passes the shape as if it were not there (Blender's
+    Object > Visibility > Ray Visibility > Shadow). Of a CSG tree only the top node's counts."""
+
     name: str = "Shape"
     material: Material = field(default_factory=Material)
     world_from_object: np.ndarray = field(default_factory=_identity)
+    casts_shadows: bool = field(default=True, kw_only=True)
 
     kind_name = "shape"
 
@@ -49,6 +53,10 @@ class Shape:
         checked = checked if checked is not None else set()
         if id(self.world_from_object) not in checked:
             check_affine(self.owner, "world_from_object", self.world_from_object)
+        if not isinstance(self.casts_shadows, bool | np.bool_):
+            raise SceneError(
+                self.owner, "casts_shadows", f"got {self.casts_shadows!r}; need True or False"
+            )
         if not isinstance(self.material, Material):
             raise SceneError(
                 self.owner, "material", f"got {type(self.material).__name__}; need a Material"

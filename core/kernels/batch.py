@@ -8,6 +8,7 @@ the packed scene's `geometry` group (and its `surfaces` group for normals).
 
 from core.jit import kernel
 from core.kernels.borrow import borrow_geometry, borrow_stacks, borrow_surfaces
+from core.kernels.light_pyramid import TRAVERSE_ALL
 from core.kernels.surface import surface_at
 from core.kernels.trace import closest_hit, transmittance
 
@@ -51,4 +52,4 @@ def shadow_rays(geo, origins, directions, t_max, out_light, stacks):
     for i in range(origins.shape[0]):
         o = (origins[i, 0], origins[i, 1], origins[i, 2])
         d = (directions[i, 0], directions[i, 1], directions[i, 2])
-        out_light[i] = transmittance(geo, o, d, t_max[i], stacks)
+        out_light[i] = transmittance(geo, o, d, t_max[i], stacks, TRAVERSE_ALL)

@@ -140,6 +140,11 @@ def borrow_stacks(stacks):
             borrowed(c.overflow),
         ),
         borrowed(stacks.ray_counts),
+        borrowed(stacks.pyramid),
+        borrowed(stacks.candidates),
+        borrowed(stacks.occluder),
+        borrowed(stacks.light_targets),
+        borrowed(stacks.visibility),
     )
 
 

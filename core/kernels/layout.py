@@ -33,7 +33,9 @@ class Geometry(NamedTuple):
     shape_object_from_world: np.ndarray  # float64 (n, 3, 4): affine rows, inverse transform
     shape_param: np.ndarray  # float64 (n, 2): torus major and minor radius
     shape_index: np.ndarray  # int32 (n,): row in mesh_root (meshes), csg_range (CSG), or -1
-    shape_transparency: np.ndarray  # float64 (n,): its material's, for shadow rays
+    # float64 (n,): what one crossing of its surface lets a shadow ray through: its material's
+    # transparency, or 1 (the row is skipped) when it casts no shadow; a CSG row's is 0
+    shape_transparency: np.ndarray
     shape_bounds: np.ndarray  # float64 (n, 6): world box (lo xyz, hi xyz), for CSG operands
     # meshes
     mesh_root: np.ndarray  # int32 (m,): its BVH's root in node_*

@@ -6,7 +6,8 @@ OPTION_PIXEL_PATTERN = 2  # one of PIXEL_*
 OPTION_SHADOW_SAMPLES = 3
 OPTION_SHADOW_PATTERN = 4  # one of SHADOW_*
 OPTION_SEED = 5
-OPTION_COUNT = 6
+OPTION_SHADOW_CULLING = 6  # 1: area lights' shadow rays test only the shapes in their pyramid
+OPTION_COUNT = 7
 
 # Where a pixel's n x n camera rays pass: cell centres, a random point per cell, or n x n
 # independent random points anywhere in the pixel

@@ -8,56 +8,95 @@ An area light is the average of that sum over points spread on its rectangle: N 
 rays, one in each of N equal-area cells ("stratified"), at N independent random points
 ("uniform", the report's way), or at the first N Halton points shifted by one random offset
 per shading point (Cranley-Patterson rotation: "halton"). A light contributes only where N.L > 0.
+
+An area light's shadow rays test only the shapes whose boxes meet the pyramid from the point
+to the light, listed once per point (`core.kernels.light_pyramid`); with none listed the
+light is unobstructed and no ray is tested. The pixels are the same as with every shape
+tested (OPTION_SHADOW_CULLING off, kept to show that).
 """
 
 import math
 
 from core.jit import inlined_kernel, kernel
+from core.kernels.light_pyramid import TRAVERSE_ALL, build_pyramid, pyramid_candidates
 from core.kernels.options import (
+    OPTION_SHADOW_CULLING,
     OPTION_SHADOW_PATTERN,
     OPTION_SHADOW_SAMPLES,
     SHADOW_HALTON,
     SHADOW_STRATIFIED,
 )
 from core.kernels.rng import PURPOSE_LIGHT, PURPOSE_LIGHT_SHIFT, uniform2
-from core.kernels.trace import shadow_transmittance
+from core.kernels.trace import transmittance
 from core.kernels.vec import add, as_tuple, dot, mul, row, scale, sub
-from core.kernels.workspace import SHADOW_RAYS
+from core.kernels.workspace import (
+    OCCLUDER_POSITION,
+    OCCLUDER_SHAPE,
+    SHADOW_RAYS,
+    SHADOW_RAYS_UNOBSTRUCTED,
+)
 
 # The largest attenuation factor 1 / (c0 + c1 d + c2 d^2) applied
 MAX_FALLOFF = 1e20
 
 
 @inlined_kernel
-def light_from(
-    geo, stacks, position, intensity, attenuation, origin, n, to_viewer, kd, ks, shininess
-):
-    """What one point emitter at `position` adds at a point (spawned at `origin`)."""
+def _aim(targets, j, position, origin):
+    """Store in targets[j] the unit direction from origin to a light point and the distance."""
     to_light = sub(position, origin)
     distance = math.sqrt(dot(to_light, to_light))
+    targets[j, 3] = distance
+    if distance > 0.0:
+        light_dir = scale(to_light, 1.0 / distance)
+        targets[j, 0], targets[j, 1], targets[j, 2] = light_dir
+
+
+@kernel
+def shadow_visibility(geo, stacks, listed, origin, n, count):
+    """Transmittance along the first `count` rows of stacks.light_targets (unit direction,
+    distance) from `origin` into stacks.visibility: the shadow rays of one light at one
+    point. Rays towards lights behind the surface (N.L <= 0) or at distance 0 are not cast;
+    `listed` as in `trace.transmittance` (0: nothing can block them).
+
+    A call of its own, apart from the shading that uses its results: with a shadow ray's
+    call inside the loop over samples, the loop kept its values in memory across the call,
+    and shading an unobstructed sample cost 2.3 times as much (210 ns against 91)."""
+    targets, visibility = stacks.light_targets, stacks.visibility
+    for j in range(count):
+        distance = targets[j, 3]
+        light_dir = row(targets, j)
+        if distance == 0.0 or dot(n, light_dir) <= 0.0:
+            continue
+        stacks.ray_counts[SHADOW_RAYS] += 1
+        if listed == 0:
+            stacks.ray_counts[SHADOW_RAYS_UNOBSTRUCTED] += 1
+            visibility[j] = 1.0
+        else:
+            visibility[j] = transmittance(geo, origin, light_dir, distance, stacks, listed)
+
+
+@inlined_kernel
+def _lit_by(targets, visibility, j, intensity, attenuation, n, to_viewer, kd, ks, shininess):
+    """What light point j of `targets` (aimed at by `_aim`, seen through visibility[j])
+    adds at a point."""
+    distance = targets[j, 3]
     if distance == 0.0:
         return 0.0, 0.0, 0.0
     c0, c1, c2 = attenuation
     # Without c0 the falloff grows without bound at the light: cap it, so a surface touching
     # a light is blinding but finite (found by the fuzzer: 1 / (c2 d^2) overflowed)
     falloff = 1.0 / max(c0 + c1 * distance + c2 * distance * distance, 1.0 / MAX_FALLOFF)
-    light_dir = scale(to_light, 1.0 / distance)
     return _phong_lit(
-        geo, stacks, light_dir, distance, scale(intensity, falloff), origin, n, to_viewer,
-        kd, ks, shininess,
-    )  # fmt: skip
+        row(targets, j), scale(intensity, falloff), visibility[j], n, to_viewer, kd, ks, shininess
+    )
 
 
 @inlined_kernel
-def _phong_lit(geo, stacks, light_dir, distance, radiance, origin, n, to_viewer, kd, ks, shininess):
+def _phong_lit(light_dir, radiance, visible, n, to_viewer, kd, ks, shininess):
     """The report's Phong terms for light arriving along unit light_dir with `radiance`,
-    through whatever lies within `distance` (shadow ray)."""
+    of which `visible` gets through (the shadow ray's transmittance)."""
     n_dot_l = dot(n, light_dir)
-    if n_dot_l <= 0.0:
-        return 0.0, 0.0, 0.0
-    stacks.ray_counts[SHADOW_RAYS] += 1
-    visible = shadow_transmittance(geo, origin, light_dir, distance, stacks)
-    if visible == 0.0:
+    if n_dot_l <= 0.0 or visible == 0.0:
         return 0.0, 0.0, 0.0
     reflectance = scale(kd, n_dot_l)
     if ks[0] > 0.0 or ks[1] > 0.0 or ks[2] > 0.0:
@@ -68,6 +107,20 @@ def _phong_lit(geo, stacks, light_dir, distance, radiance, origin, n, to_viewer,
         if r_dot_v > 0.0:
             reflectance = add(reflectance, scale(ks, r_dot_v**shininess))
     return mul(reflectance, scale(radiance, visible))
+
+
+@kernel
+def light_candidates(geo, stacks, origin, centre, edge_u, edge_v):
+    """List in stacks.candidates the shapes that may stand between `origin` and the area
+    light; returns their count or TRAVERSE_ALL. Finds the cached occluder in the list."""
+    build_pyramid(stacks.pyramid, origin, centre, edge_u, edge_v)
+    count = pyramid_candidates(geo, stacks.pyramid, stacks.candidates, stacks.top)
+    occluder = stacks.occluder
+    occluder[OCCLUDER_POSITION] = -1
+    for c in range(count):
+        if stacks.candidates[c] == occluder[OCCLUDER_SHAPE]:
+            occluder[OCCLUDER_POSITION] = c
+    return count
 
 
 @kernel
@@ -97,74 +150,75 @@ def stratified_cell(j, count):
     return (j - r * columns) / in_row, y0, 1.0 / in_row, height
 
 
+@inlined_kernel
+def _light_point(centre, edge_u, edge_v, pattern, samples, j, key, stream, shift_a, shift_b):
+    """Point j of an area light's `samples` (see the module's docstring)."""
+    if pattern == SHADOW_HALTON:
+        a = (radical_inverse(j + 1, 2) + shift_a) % 1.0
+        b = (radical_inverse(j + 1, 3) + shift_b) % 1.0
+    else:
+        a, b = uniform2(key, PURPOSE_LIGHT, stream, j)
+    if pattern == SHADOW_STRATIFIED:
+        x0, y0, w, h = stratified_cell(j, samples)
+        a, b = x0 + a * w, y0 + b * h
+    return add(centre, add(scale(edge_u, a - 0.5), scale(edge_v, b - 0.5)))
+
+
 @kernel
 def local_colour(frame, lights, geo, stacks, origin, n, d, kd, ks, shininess, key, event):
     """Colour at a point seen along unit d, with unit shading normal n facing the viewer;
     shadow rays start at `origin` (the point lifted off the surface). `key` and `event`
-    select the area lights' random numbers."""
+    select the area lights' random numbers.
+
+    Each light aims its points into stacks.light_targets, `shadow_visibility` casts their
+    shadow rays, and only then are the Phong terms summed, in a loop with no call in it."""
+    targets, visibility = stacks.light_targets, stacks.visibility
     to_viewer = scale(d, -1.0)
     colour = mul(kd, as_tuple(frame.ambient))
     for light in range(lights.sun_toward.shape[0]):
+        toward = row(lights.sun_toward, light)
+        targets[0, 0], targets[0, 1], targets[0, 2] = toward
+        targets[0, 3] = math.inf
+        shadow_visibility(geo, stacks, TRAVERSE_ALL, origin, n, 1)
         colour = add(
             colour,
-            _phong_lit(
-                geo, stacks, row(lights.sun_toward, light), math.inf,
-                row(lights.sun_intensity, light), origin, n, to_viewer, kd, ks, shininess,
-            ),
+            _phong_lit(toward, row(lights.sun_intensity, light), visibility[0], n, to_viewer,
+                       kd, ks, shininess),
         )  # fmt: skip
     for light in range(lights.point_position.shape[0]):
+        _aim(targets, 0, row(lights.point_position, light), origin)
+        shadow_visibility(geo, stacks, TRAVERSE_ALL, origin, n, 1)
         colour = add(
             colour,
-            light_from(
-                geo,
-                stacks,
-                row(lights.point_position, light),
-                row(lights.point_intensity, light),
-                row(lights.point_attenuation, light),
-                origin,
-                n,
-                to_viewer,
-                kd,
-                ks,
-                shininess,
-            ),
-        )
+            _lit_by(targets, visibility, 0, row(lights.point_intensity, light),
+                    row(lights.point_attenuation, light), n, to_viewer, kd, ks, shininess),
+        )  # fmt: skip
     samples = frame.options[OPTION_SHADOW_SAMPLES]
     pattern = frame.options[OPTION_SHADOW_PATTERN]
     for light in range(lights.area_centre.shape[0]):
         centre = row(lights.area_centre, light)
         edge_u, edge_v = row(lights.area_edge_u, light), row(lights.area_edge_v, light)
+        stream = event * 65536 + light
+        shift_a = shift_b = 0.0
+        if pattern == SHADOW_HALTON:
+            shift_a, shift_b = uniform2(key, PURPOSE_LIGHT_SHIFT, stream, 0)
+        for j in range(samples):
+            position = _light_point(
+                centre, edge_u, edge_v, pattern, samples, j, key, stream, shift_a, shift_b
+            )
+            _aim(targets, j, position, origin)
+        listed = TRAVERSE_ALL
+        if frame.options[OPTION_SHADOW_CULLING]:
+            listed = light_candidates(geo, stacks, origin, centre, edge_u, edge_v)
+        shadow_visibility(geo, stacks, listed, origin, n, samples)
         intensity = row(lights.area_intensity, light)
         attenuation = row(lights.area_attenuation, light)
         total = (0.0, 0.0, 0.0)
-        shift_a = shift_b = 0.0
-        if pattern == SHADOW_HALTON:
-            shift_a, shift_b = uniform2(key, PURPOSE_LIGHT_SHIFT, event * 65536 + light, 0)
         for j in range(samples):
-            if pattern == SHADOW_HALTON:
-                a = (radical_inverse(j + 1, 2) + shift_a) % 1.0
-                b = (radical_inverse(j + 1, 3) + shift_b) % 1.0
-            else:
-                a, b = uniform2(key, PURPOSE_LIGHT, event * 65536 + light, j)
-            if pattern == SHADOW_STRATIFIED:
-                x0, y0, w, h = stratified_cell(j, samples)
-                a, b = x0 + a * w, y0 + b * h
-            position = add(centre, add(scale(edge_u, a - 0.5), scale(edge_v, b - 0.5)))
             total = add(
                 total,
-                light_from(
-                    geo,
-                    stacks,
-                    position,
-                    intensity,
-                    attenuation,
-                    origin,
-                    n,
-                    to_viewer,
-                    kd,
-                    ks,
-                    shininess,
-                ),
-            )
+                _lit_by(targets, visibility, j, intensity, attenuation, n, to_viewer, kd, ks,
+                        shininess),
+            )  # fmt: skip
         colour = add(colour, scale(total, 1.0 / samples))
     return colour

@@ -23,6 +23,7 @@ from core.kernels.shapes import (
     intersect_analytic,
 )
 from core.kernels.vec import add, affine_point, affine_vector, max_abs, scale
+from core.kernels.workspace import OCCLUDER_POSITION, OCCLUDER_SHAPE
 
 # Secondary rays start this far off the surface, relative to the magnitude of the
 # coordinates involved: float64 hit points are accurate to a few ulps of that magnitude, so a
@@ -108,7 +109,8 @@ def closest_hit(geo, o, d, t_max, stacks):
     two callers (the integrator and the batch entry point): a call passes every array of
     `geo` and `stacks` field by field, which cost 60 ns a ray, 20% of a primary ray's time
     against the million-triangle mesh."""
-    stack, stack_t, mesh_stack, mesh_stack_t, scratch, _ = stacks
+    stack, stack_t, mesh_stack, mesh_stack_t = stacks.top, stacks.top_t, stacks.mesh, stacks.mesh_t
+    scratch = stacks.csg
     bounds, info, order = geo.top_bounds, geo.top_info, geo.top_order
     kinds, params, meshes = geo.shape_kind, geo.shape_param, geo.shape_index
     transforms, roots = geo.shape_object_from_world, geo.mesh_root
@@ -158,68 +160,126 @@ def closest_hit(geo, o, d, t_max, stacks):
 
 
 @inlined_kernel
-def transmittance(geo, o, d, t_max, stacks):
+def descend_in_order(bounds, child, ox, oy, oz, ix, iy, iz, t_max, stack, top):
+    """`descend` for queries that want every hit, not the nearest: the left child first,
+    whatever the distances, so leaves come in leaf order. Returns (next node or -1, top)."""
+    left = box_entry(bounds, child, ox, oy, oz, ix, iy, iz, t_max) != NO_HIT
+    right = box_entry(bounds, child + 1, ox, oy, oz, ix, iy, iz, t_max) != NO_HIT
+    if left and right:
+        stack[top] = child + 1
+        return child, top + 1
+    if left:
+        return child, top
+    return (child + 1 if right else -1), top
+
+
+@inlined_kernel
+def shape_transmittance(geo, shape, o, d, t_max, stacks):
+    """The fraction of light that passes shape `shape` along o + t d, 0 < t < t_max: 1 when
+    the segment misses it, 0 when it crosses an opaque surface of it, else the product of
+    the crossed surfaces' transparencies (the rule of `transmittance`)."""
+    tau = geo.shape_transparency[shape]
+    if tau == 1.0:
+        return 1.0
+    kind = geo.shape_kind[shape]
+    if kind == SHAPE_CSG:
+        return csg_transmittance(geo, geo.shape_index[shape], o, d, t_max, stacks.csg)
+    o_obj = affine_point(geo.shape_object_from_world, shape, o)
+    d_obj = affine_vector(geo.shape_object_from_world, shape, d)
+    if kind == SHAPE_MESH:
+        crossings = mesh_crossings(
+            geo.node_boxes, geo.node_links, geo.tri_corners, geo.mesh_root[geo.shape_index[shape]],
+            o_obj, d_obj, t_max, tau == 0.0, stacks.mesh, stacks.mesh_t,
+        )  # fmt: skip
+    else:
+        major, minor = geo.shape_param[shape, 0], geo.shape_param[shape, 1]
+        crossings = count_crossings(kind, major, minor, o_obj, d_obj, 0.0, t_max)
+    if crossings == 0:
+        return 1.0
+    if tau == 0.0:
+        return 0.0
+    return tau**crossings
+
+
+@inlined_kernel
+def transmittance(geo, o, d, t_max, stacks, listed):
     """The fraction of light that passes along o + t d, 0 < t < t_max (shadow rays).
 
     The rule for transparent objects: each crossing of a surface whose material has
     transparency tau multiplies the light by tau, without bending or Fresnel loss (a shadow
     ray cannot follow refraction to the light). Opaque surfaces (tau = 0) block it outright,
-    and the search stops at the first of them, as an any-hit query."""
-    stack, stack_t, mesh_stack, mesh_stack_t, scratch, _ = stacks
+    and the search stops at the first of them, as an any-hit query.
+
+    Which shapes are tried: with listed < 0 (TRAVERSE_ALL), those whose boxes the top-level
+    BVH finds along the ray; with listed >= 0, only the first `listed` shapes of
+    stacks.candidates (an area light's pyramid, `core.kernels.light_pyramid`), and first of
+    them the one that stopped this thread's previous shadow ray, if listed (an occluder
+    cache: a point in full shadow costs one shape test per ray). Either way the factors are
+    multiplied in leaf order, so the two give the same bits.
+
+    One loop serves both sources, so that the shape tests are compiled once."""
     bounds, info, order = geo.top_bounds, geo.top_info, geo.top_order
-    kinds, params, meshes = geo.shape_kind, geo.shape_param, geo.shape_index
-    transforms, tau_of_shape = geo.shape_object_from_world, geo.shape_transparency
-    boxes, links, corners, roots = geo.node_boxes, geo.node_links, geo.tri_corners, geo.mesh_root
+    stack, candidates, occluder = stacks.top, stacks.candidates, stacks.occluder
     ox, oy, oz = o
     ix, iy, iz = inverse(d)
     light = 1.0
+    # Traversal state: the next node to open, and the leaf's shapes order[k:end] being tried
     node = -1
-    if info.shape[0] > 0 and box_entry(bounds, 0, ox, oy, oz, ix, iy, iz, t_max) != NO_HIT:
+    if (
+        listed < 0
+        and info.shape[0] > 0
+        and box_entry(bounds, 0, ox, oy, oz, ix, iy, iz, t_max) != NO_HIT
+    ):
         node = 0
-    top = 0
-    while node >= 0:
-        count = info[node, 1]
-        if count > 0:
-            first = info[node, 0]
-            for k in range(first, first + count):
-                shape = order[k]
-                kind = kinds[shape]
-                if kind == SHAPE_CSG:
-                    light *= csg_transmittance(geo, meshes[shape], o, d, t_max, scratch)
-                    if light == 0.0:
-                        return 0.0
-                    continue
-                tau = tau_of_shape[shape]
-                o_obj = affine_point(transforms, shape, o)
-                d_obj = affine_vector(transforms, shape, d)
-                if kind == SHAPE_MESH:
-                    crossings = mesh_crossings(
-                        boxes, links, corners, roots[meshes[shape]], o_obj, d_obj, t_max,
-                        tau == 0.0, mesh_stack, mesh_stack_t,
-                    )  # fmt: skip
-                else:
-                    major, minor = params[shape, 0], params[shape, 1]
-                    crossings = count_crossings(kind, major, minor, o_obj, d_obj, 0.0, t_max)
-                if crossings > 0:
-                    if tau == 0.0:
-                        return 0.0
-                    light *= tau**crossings
-            node = -1
+    top = k = end = 0
+    # List state: position c in candidates; -1 tries the cached occluder first
+    hinted = occluder[OCCLUDER_POSITION] if listed > 0 else -1
+    hinted_factor = 1.0
+    c = -1 if hinted >= 0 else 0
+    while True:
+        probe = False
+        position = -1
+        if listed >= 0:
+            if c >= listed:
+                break
+            probe = c < 0
+            position = hinted if probe else c
+            c += 1
+            if position == hinted and not probe:
+                light *= hinted_factor
+                continue
+            shape = candidates[position]
+            if box_entry(geo.shape_bounds, shape, ox, oy, oz, ix, iy, iz, t_max) == NO_HIT:
+                continue
+        elif k < end:
+            shape = order[k]
+            k += 1
         else:
-            node, top = descend(
-                bounds, info[node, 0], ox, oy, oz, ix, iy, iz, t_max, stack, stack_t, top
-            )
-        if node < 0:
-            node, top = pop_nearer(stack, stack_t, top, t_max)
+            leaf = -1
+            while leaf < 0 and (node >= 0 or top > 0):
+                if node < 0:
+                    top -= 1
+                    node = stack[top]
+                if info[node, 1] > 0:
+                    leaf, node = node, -1
+                else:
+                    node, top = descend_in_order(
+                        bounds, info[node, 0], ox, oy, oz, ix, iy, iz, t_max, stack, top
+                    )
+            if leaf < 0:
+                break
+            k, end = info[leaf, 0], info[leaf, 0] + info[leaf, 1]
+            continue
+        factor = shape_transmittance(geo, shape, o, d, t_max, stacks)
+        if factor == 0.0:
+            if listed >= 0:
+                occluder[OCCLUDER_SHAPE], occluder[OCCLUDER_POSITION] = shape, position
+            return 0.0
+        if probe:
+            hinted_factor = factor
+        else:
+            light *= factor
     return light
-
-
-@kernel
-def shadow_transmittance(geo, o, d, t_max, stacks):
-    """`transmittance` behind a real call, for shading, which asks from two places (point
-    and area lights): with both copies inlined numba's cold compile of the render kernel took
-    192 s instead of 49 s, while the batch entry point, which inlines it, gains 15%."""
-    return transmittance(geo, o, d, t_max, stacks)
 
 
 @kernel

@@ -7,14 +7,20 @@ import numpy as np
 from core.kernels.bvh_build import MAX_TREE_DEPTH
 from core.kernels.bvh_wide import WIDTH
 from core.kernels.csg import CROSSING_CAPACITY, MAX_OPERANDS, SPAN_CAPACITY
+from core.kernels.light_pyramid import MAX_CANDIDATES, PYRAMID_ROWS
 
 # A four-wide node leaves at most WIDTH - 1 children waiting besides the one visited next,
 # and the wide tree is no deeper than the binary one
 MESH_STACK_SIZE = (WIDTH - 1) * MAX_TREE_DEPTH + 1
 
 
-# Slots of Stacks.ray_counts
-RAYS_TRACED, SHADOW_RAYS = 0, 1
+# Slots of Stacks.ray_counts: rays traced to their closest hit; shadow rays answered; shadow
+# rays answered without a test because the light's pyramid held no shape
+RAYS_TRACED, SHADOW_RAYS, SHADOW_RAYS_UNOBSTRUCTED = 0, 1, 2
+RAY_COUNT_SLOTS = 3
+# Slots of Stacks.occluder: the shape that stopped the thread's last listed shadow ray, and
+# its position in the current candidate list (-1 when it is not on it)
+OCCLUDER_SHAPE, OCCLUDER_POSITION = 0, 1
 
 
 class CsgScratch(NamedTuple):
@@ -31,14 +37,20 @@ class CsgScratch(NamedTuple):
 
 class Stacks(NamedTuple):
     """BVH traversal stacks, one for the top level and one for the mesh level, the CSG
-    scratch lists, and the count of rays cast."""
+    scratch lists, an area light's pyramid and the shapes in it, and the count of rays."""
 
     top: np.ndarray  # int32 (MAX_TREE_DEPTH,): top-level nodes waiting
     top_t: np.ndarray  # float64: their entry distances
     mesh: np.ndarray  # int32 (MESH_STACK_SIZE,): mesh-level nodes or leaves waiting
     mesh_t: np.ndarray  # float64
     csg: CsgScratch
-    ray_counts: np.ndarray  # int64 (2,): rays traced to their closest hit, shadow rays
+    ray_counts: np.ndarray  # int64 (RAY_COUNT_SLOTS,)
+    pyramid: np.ndarray  # float64 (PYRAMID_ROWS, 4): see core.kernels.light_pyramid
+    candidates: np.ndarray  # int32 (MAX_CANDIDATES,): shapes that may meet the pyramid
+    occluder: np.ndarray  # int64 (2,): OCCLUDER_SHAPE, OCCLUDER_POSITION
+    # one light's points as seen from a shading point (see core.kernels.shading)
+    light_targets: np.ndarray  # float64 (shadow samples, 4): unit direction xyz, distance
+    visibility: np.ndarray  # float64 (shadow samples,): what reaches the point from each
 
 
 class RayStack(NamedTuple):
@@ -55,7 +67,7 @@ class Workspace(NamedTuple):
     rays: RayStack
 
 
-def new_workspace(max_depth: int) -> Workspace:
+def new_workspace(max_depth: int, shadow_samples: int = 1) -> Workspace:
     # Depth-first, each shading point pops one ray and pushes at most two, so no more than
     # max_depth + 2 rays ever wait
     rays = max_depth + 2
@@ -74,7 +86,12 @@ def new_workspace(max_depth: int) -> Workspace:
                 np.empty(MESH_STACK_SIZE, np.int32),
                 np.zeros(1, np.int64),
             ),
-            np.zeros(2, np.int64),
+            np.zeros(RAY_COUNT_SLOTS, np.int64),
+            np.zeros((PYRAMID_ROWS, 4)),
+            np.zeros(MAX_CANDIDATES, np.int32),
+            np.full(2, -1, np.int64),
+            np.zeros((max(shadow_samples, 1), 4)),
+            np.zeros(max(shadow_samples, 1)),
         ),
         RayStack(
             np.empty((rays, 3)), np.empty((rays, 3)), np.empty((rays, 3)), np.empty(rays, np.int64)

@@ -5,6 +5,7 @@ import math
 import numpy as np
 
 from core.kernels.batch import closest_hits
+from core.kernels.light_pyramid import TRAVERSE_ALL
 from core.kernels.surface import surface_at
 from core.kernels.trace import closest_hit, transmittance
 from core.kernels.workspace import new_workspace
@@ -40,7 +41,7 @@ def surface(packed, origin, direction):
 
 def light_through(packed, origin, direction, t_max):
     o, d = tuple(map(float, origin)), tuple(map(float, direction))
-    return transmittance(packed.geometry, o, d, t_max, WORKSPACE.stacks)
+    return transmittance(packed.geometry, o, d, t_max, WORKSPACE.stacks, TRAVERSE_ALL)
 
 
 def hits(packed, origins, directions, t_max=math.inf):
