@@ -10,6 +10,11 @@ the scene from "borrowed" copies of its arrays: the same data, shape and strides
 owner (a null meminfo), which numba's reference counting skips. This is safe because the
 Python caller holds the real arrays for the whole call, and no borrowed array is stored or
 returned.
+
+A kernel that receives borrowed arrays cannot see that they have no owner, and keeps the
+reference counting it would do for owned ones; re-borrowing its arguments at its top (a
+copy of a few fields, no memory touched) lets LLVM drop it all. The kernels called per
+shading point do so: a shadow ray cast from such a kernel cost 850 ns, 190 ns re-borrowed.
 """
 
 from numba.core import cgutils
@@ -39,12 +44,12 @@ def borrowed(typingctx, array):
 @kernel
 def borrow_scene(ps):
     f, g, s, m, li = ps
-    return PackedScene(_borrow_frame(f), borrow_geometry(g), borrow_surfaces(s),
-                       _borrow_materials(m), _borrow_lights(li))  # fmt: skip
+    return PackedScene(borrow_frame(f), borrow_geometry(g), borrow_surfaces(s),
+                       borrow_materials(m), borrow_lights(li))  # fmt: skip
 
 
 @kernel
-def _borrow_frame(f):
+def borrow_frame(f):
     return Frame(
         borrowed(f.camera),
         borrowed(f.lens),
@@ -91,7 +96,7 @@ def borrow_surfaces(s):
 
 
 @kernel
-def _borrow_materials(m):
+def borrow_materials(m):
     return Materials(
         borrowed(m.diffuse),
         borrowed(m.specular),
@@ -107,7 +112,7 @@ def _borrow_materials(m):
 
 
 @kernel
-def _borrow_lights(li):
+def borrow_lights(li):
     return Lights(
         borrowed(li.point_position),
         borrowed(li.point_intensity),

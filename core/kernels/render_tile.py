@@ -10,7 +10,7 @@ focus. With aperture 0 the lens code does not run: the pinhole picture, exactly.
 
 import math
 
-from core.jit import kernel
+from core.jit import inlined_kernel, kernel
 from core.kernels.borrow import borrow_scene, borrow_workspace, borrowed
 from core.kernels.integrator import trace_ray
 from core.kernels.options import (
@@ -84,7 +84,7 @@ def render_borrowed_tile(ps, image_width, image_height, x0, y0, width, height, o
     )  # fmt: skip
 
 
-@kernel
+@inlined_kernel
 def render_tile(ps, image_width, image_height, x0, y0, width, height, out, ws):
     """Fill out[:height, :width] (float32 RGBA) with pixels x0.. and y0.. of the image.
 

@@ -74,7 +74,7 @@ def povray(pov: Path, settings, out: Path) -> tuple[float, float]:
     return seconds, float(match["seconds"])
 
 
-def with_material(shape: core.Shape, material: core.Material) -> core.Shape:
+def with_material(shape, material: core.Material):
     """A copy of the shape (and of a CSG tree's operands) in one material."""
     copy = dataclasses.replace(shape, material=material)
     if isinstance(shape, core.Csg):

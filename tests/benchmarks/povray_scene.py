@@ -128,7 +128,7 @@ class PovWriter:
         self.meshes[id(mesh)] = name
         return name
 
-    def shape(self, shape: core.Shape, ambient, textured: bool = True) -> str:
+    def shape(self, shape, ambient, textured: bool = True) -> str:
         """One object (with its transform relative to its parent, if a CSG operand)."""
         place = matrix(shape.world_from_object)
         uv = isinstance(shape, core.Mesh | core.Sphere | core.Box | core.Torus)
