@@ -86,8 +86,21 @@ FUZZ_EXAMPLES ?= 5000
 fuzz: setup
 	WHITTED_FUZZ_EXAMPLES=$(FUZZ_EXAMPLES) $(VENV)/bin/python -m pytest -q tests/core/test_fuzz.py
 
-bench: setup $(VENV)/.embree
+bench: setup $(VENV)/.embree $(BUILD)/povray.ok
 	$(VENV)/bin/python -m tests.benchmarks
+
+# POV-Ray 3.7, the classic tracer the final scene is timed against (Debian's povray package)
+$(BUILD)/povray.ok:
+	@if ! command -v povray >/dev/null; then \
+	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
+	    echo "Installing Debian's povray package (no povray on PATH)"; \
+	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq povray >/dev/null; \
+	  else \
+	    echo "make bench times POV-Ray 3.7 as 'povray': install it (sudo apt-get install povray)"; \
+	    exit 1; \
+	  fi; \
+	fi
+	@mkdir -p $(BUILD) && touch $@
 
 $(VENV)/.embree: pyproject.toml | $(VENV)/.installed
 	$(VENV)/bin/pip install --quiet -e ".[embree]"

@@ -19,14 +19,11 @@ import bpy  # first: it makes addon_utils importable
 import addon_utils
 addon_utils.enable("whitted", default_set=True, handle_error=None)
 bpy.ops.wm.open_mainfile(filepath=sys.argv[1])
-# The depsgraph a script gets is the viewport's: show it what a render sees (cutters are
-# hidden from rendering, not from the viewport)
-for obj in bpy.data.objects:
-    obj.hide_viewport = obj.hide_render
 from blender_addon import export
-scene, settings, warnings = export.convert(bpy.context.evaluated_depsgraph_get())
+from tests.blender.render_view import export_scenes
+_, scene, settings = export_scenes(bpy, export)[0]
 with open(sys.argv[2], "wb") as f:
-    pickle.dump((scene, settings, warnings), f)
+    pickle.dump((scene, settings), f)
 """
 
 
@@ -42,7 +39,4 @@ def final_scene(path: Path = SCENE):
         if done.returncode != 0 or not out.exists():
             sys.exit(f"exporting {path.name} failed:\n{done.stdout[-2000:]}{done.stderr[-2000:]}")
         with open(out, "rb") as f:
-            scene, settings, warnings = pickle.load(f)
-    if warnings:
-        sys.exit(f"exporting {path.name} warned: {warnings}")
-    return scene, settings
+            return pickle.load(f)
