@@ -131,6 +131,8 @@ def timed_rounds(pov_default: Path, pov_each_sample: Path, settings, folder: Pat
 def scaling(scene: core.Scene, settings, folder: Path) -> list[tuple]:
     """(axis, value, Whitted render s, POV-Ray trace s) over shadow rays and image sizes."""
     rows = []
+    # The first render of a process pays for loading what it needs once: not a point's cost
+    core.render(scene, dataclasses.replace(settings, width=16, height=16))
     variants = [("shadow rays per shading point", n, dataclasses.replace(settings,
                 width=300, height=300, shadow_samples=n)) for n in SHADOW_SAMPLES]  # fmt: skip
     variants += [

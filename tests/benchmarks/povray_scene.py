@@ -128,11 +128,11 @@ class PovWriter:
         self.meshes[id(mesh)] = name
         return name
 
-    def shape(self, shape, ambient, textured: bool = True) -> str:
+    def shape(self, shape, ambient) -> str:
         """One object (with its transform relative to its parent, if a CSG operand)."""
         place = matrix(shape.world_from_object)
         uv = isinstance(shape, core.Mesh | core.Sphere | core.Box | core.Torus)
-        texture = self.material(shape.material, ambient, uv) if textured else ""
+        texture = self.material(shape.material, ambient, uv)
         if isinstance(shape, core.Csg):
             operation = {"union": "union", "intersection": "intersection",
                          "difference": "difference"}[shape.operation]  # fmt: skip

@@ -418,3 +418,25 @@ def test_collection_instances_share_the_instanced_mesh(empty_scene, monkeypatch)
     assert first.mesh is second.mesh
     gap = second.world_from_object[0, 3] - first.world_from_object[0, 3]
     assert abs(gap) == pytest.approx(6.0)
+
+
+def test_ray_visibility_shadow_off_makes_an_object_cast_no_shadow(empty_scene, monkeypatch):
+    """Object > Visibility > Ray Visibility > Shadow: a tagged shape, a plain mesh and a CSG
+    solid each export casts_shadows as that box says."""
+    bpy = sys.modules["bpy"]
+    ball = add_primitive(bpy, "SPHERE", location=(-3, 0, 0))
+    ball.whitted.shape = "SPHERE"
+    block = add_primitive(bpy, "CUBE", location=(0, 0, 0))
+    cube = add_primitive(bpy, "CUBE", location=(3, 0, 0))
+    cutter = add_primitive(bpy, "CYLINDER", location=(3, 0, 0), scale=(0.5, 0.5, 2))
+    modifier = cube.modifiers.new("Bore", "BOOLEAN")
+    modifier.operation, modifier.object = "DIFFERENCE", cutter
+    cutter.hide_render = True
+    ball.visible_shadow = block.visible_shadow = cube.visible_shadow = False
+    scene, _, _ = exported(bpy, monkeypatch)
+    casting = {shape.name.split(":")[0]: shape.casts_shadows for shape in scene.shapes}
+    assert casting == {"Sphere": False, "Cube": False, "Cube.001": False}, casting
+    block.visible_shadow = cube.visible_shadow = True
+    scene, _, _ = exported(bpy, monkeypatch)
+    casting = {shape.name.split(":")[0]: shape.casts_shadows for shape in scene.shapes}
+    assert casting == {"Sphere": False, "Cube": True, "Cube.001": True}, casting
