@@ -190,6 +190,8 @@ def _block(name: str, rows: np.ndarray) -> str:
 
 
 def camera_block(camera: core.Camera, width: int, height: int) -> str:
+    """The camera from its definition (`core.Camera`), worked out here rather than taken from
+    Whitted's packing, so that the object-mask comparison checks Whitted's camera too."""
     forward = np.asarray(camera.view, float)
     forward /= np.linalg.norm(forward)
     right = np.cross(forward, np.asarray(camera.up, float))
