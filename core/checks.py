@@ -35,6 +35,12 @@ def check_count(owner: str, name: str, value, low: int = 0) -> int:
     return int(value)
 
 
+def check_flag(owner: str, name: str, value) -> bool:
+    if not isinstance(value, bool | np.bool_):
+        raise SceneError(owner, name, f"got {value!r}; need True or False")
+    return bool(value)
+
+
 def check_choice(owner: str, name: str, value, choices: tuple[str, ...]) -> str:
     if value not in choices:
         raise SceneError(owner, name, f"got {value!r}; use one of {', '.join(choices)}")

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from core.checks import check_choice, check_count, check_vec3, valid_affine
+from core.checks import check_choice, check_count, check_flag, check_vec3, valid_affine
 from core.errors import SceneError
 from core.kernels.options import PIXEL_PATTERNS, SHADOW_PATTERNS
 from core.scene_parts import (
@@ -151,6 +151,7 @@ class RenderSettings:
         check_count(owner, "threads", self.threads, low=0)
         check_choice(owner, "pixel_sampling", self.pixel_sampling, PIXEL_SAMPLINGS)
         check_choice(owner, "shadow_sampling", self.shadow_sampling, SHADOW_SAMPLINGS)
+        check_flag(owner, "shadow_culling", self.shadow_culling)
         if self.region is not None:
             x, y, w, h = self.region
             if w < 1 or h < 1 or x < 0 or y < 0 or x + w > self.width or y + h > self.height:

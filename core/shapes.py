@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from core.checks import check_affine, check_array, check_choice, check_number
+from core.checks import check_affine, check_array, check_choice, check_flag, check_number
 from core.errors import SceneError
 from core.scene_parts import Material
 
@@ -53,10 +53,7 @@ class Shape:
         checked = checked if checked is not None else set()
         if id(self.world_from_object) not in checked:
             check_affine(self.owner, "world_from_object", self.world_from_object)
-        if not isinstance(self.casts_shadows, bool | np.bool_):
-            raise SceneError(
-                self.owner, "casts_shadows", f"got {self.casts_shadows!r}; need True or False"
-            )
+        check_flag(self.owner, "casts_shadows", self.casts_shadows)
         if not isinstance(self.material, Material):
             raise SceneError(
                 self.owner, "material", f"got {type(self.material).__name__}; need a Material"

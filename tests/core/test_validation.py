@@ -51,6 +51,10 @@ def test_zero_resolution(field):
         (lambda s: setattr(s.shapes[1].material, "diffuse", (1, 2)), r"material 'ground'.*diffuse"),
         (lambda s: setattr(s.shapes[0], "material", "red"), r"sphere 'Ball': material: got str"),
         (lambda s: setattr(s, "ambient", (-1, 0, 0)), r"scene: ambient"),
+        (
+            lambda s: setattr(s.shapes[0], "casts_shadows", "no"),
+            r"sphere 'Ball': casts_shadows: got 'no'; need True or False",
+        ),
     ],
 )
 def test_bad_fields_are_named(change, message):
@@ -67,6 +71,12 @@ def test_nan_in_transform_and_non_affine_rows():
     scene.shapes[0].world_from_object = np.ones((4, 4))
     with pytest.raises(SceneError, match="bottom row"):
         render_tiny(scene)
+
+
+def test_shadow_culling_must_be_a_flag():
+    settings = RenderSettings(8, 8, shadow_culling=1)
+    with pytest.raises(SceneError, match=r"render settings: shadow_culling: got 1; need True"):
+        render_tiny(ball_on_ground(), settings)
 
 
 def test_region_outside_image():
