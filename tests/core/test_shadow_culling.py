@@ -177,3 +177,30 @@ def test_culled_shadow_rays_give_the_same_bits_as_testing_every_shape(scene, mat
     assert (culled is None) == (tested is None)
     if culled is not None:
         assert np.array_equal(culled, tested, equal_nan=True)
+
+
+def test_a_pyramid_holding_more_shapes_than_the_list_falls_back_to_every_shape():
+    """Forty small balls between the ground and the light: more than MAX_CANDIDATES meet
+    most pyramids, which then test every shape along each ray; the same bits as without
+    culling."""
+    from core.kernels.light_pyramid import MAX_CANDIDATES, TRAVERSE_ALL, pyramid_candidates
+    from tests.core.probe import packed_shapes
+
+    rng = np.random.default_rng(5)
+    centres = [(*rng.uniform(-0.3, 0.3, 2), 3.0 + k * 0.05) for k in range(MAX_CANDIDATES + 8)]
+    balls = [core.Sphere(f"b{k}", core.Material(), _place(c, 0.04)) for k, c in enumerate(centres)]
+    # The ground under the balls sees them all in its pyramid: the list overflows
+    pyramid = np.zeros((PYRAMID_ROWS, 4))
+    build_pyramid(pyramid, (0.0, 0.0, 0.001), (0.0, 0.0, 6.0), (2.0, 0.0, 0.0), (0.0, 2.0, 0.0))
+    candidates = np.zeros(MAX_CANDIDATES, np.int32)
+    stack = np.zeros(128, np.int32)
+    assert pyramid_candidates(packed_shapes(*balls).geometry, pyramid, candidates, stack) == (
+        TRAVERSE_ALL
+    )
+    light = core.AreaLight((0.0, 0.0, 6.0), (2.0, 0.0, 0.0), (0.0, 2.0, 0.0), (30.0,) * 3,
+                           (1.0, 0.0, 0.0))  # fmt: skip
+    scene = core.Scene(look_down(), [ground(), *balls], [light], ambient=(0.1,) * 3)
+    settings = core.RenderSettings(24, 18, pixel_samples=1, shadow_samples=4, threads=1)
+    culled = core.render(scene, settings)
+    tested = core.render(scene, dataclasses.replace(settings, shadow_culling=False))
+    assert np.array_equal(culled.image, tested.image)
