@@ -34,7 +34,7 @@ def test_culling_changes_no_pixel_of_any_sample_scene(bpy_with_whitted, path):
         width = 40
         small = dataclasses.replace(
             settings, width=width, height=max(1, width * settings.height // settings.width),
-            region=None, pixel_samples=1, shadow_samples=6, threads=2,
+            region=None, pixel_samples=1, shadow_samples=8, threads=2,
         )  # fmt: skip
         culled = core.render(scene, small)
         tested = core.render(scene, dataclasses.replace(small, shadow_culling=False))

@@ -11,6 +11,7 @@ from hypothesis import strategies as st
 
 import core
 from core.kernels.light_pyramid import PYRAMID_ROWS, box_meets_pyramid, build_pyramid
+from core.packing import SHADOW_CULLING_MIN_SAMPLES
 from tests.core.test_fuzz import FUZZ, lights, materials, open_meshes, render_or_refuse, solids
 from tests.core.test_lighting import GROUND_KD, ground, look_down
 
@@ -144,6 +145,9 @@ def test_culling_answers_most_shadow_rays_without_a_test_and_changes_no_pixel():
     assert culled.stats.shadow_rays == tested.stats.shadow_rays
     assert tested.stats.shadow_rays_unobstructed == 0
     assert culled.stats.shadow_rays_unobstructed > 0.5 * culled.stats.shadow_rays
+    # With fewer shadow rays per light than listing pays for, every shape is tested
+    few = core.render(scene, dataclasses.replace(settings, shadow_samples=4))
+    assert few.stats.shadow_rays_unobstructed == 0
 
 
 @st.composite
@@ -170,7 +174,7 @@ def test_culled_shadow_rays_give_the_same_bits_as_testing_every_shape(scene, mat
     scene.shapes.append(core.Box("Floor", material, _lift(-5.0) @ np.diag([8.0, 8.0, 0.2, 1.0])))
     settings = core.RenderSettings(
         width=20, height=16, tile_size=8, threads=1, max_depth=4, pixel_samples=1,
-        shadow_samples=1 + seed % 6, seed=seed,
+        shadow_samples=SHADOW_CULLING_MIN_SAMPLES + seed % 5, seed=seed,
     )  # fmt: skip
     culled = render_or_refuse(scene, settings)
     tested = render_or_refuse(scene, dataclasses.replace(settings, shadow_culling=False))
@@ -200,7 +204,7 @@ def test_a_pyramid_holding_more_shapes_than_the_list_falls_back_to_every_shape()
     light = core.AreaLight((0.0, 0.0, 6.0), (2.0, 0.0, 0.0), (0.0, 2.0, 0.0), (30.0,) * 3,
                            (1.0, 0.0, 0.0))  # fmt: skip
     scene = core.Scene(look_down(), [ground(), *balls], [light], ambient=(0.1,) * 3)
-    settings = core.RenderSettings(24, 18, pixel_samples=1, shadow_samples=4, threads=1)
+    settings = core.RenderSettings(24, 18, pixel_samples=1, shadow_samples=8, threads=1)
     culled = core.render(scene, settings)
     tested = core.render(scene, dataclasses.replace(settings, shadow_culling=False))
     assert np.array_equal(culled.image, tested.image)
