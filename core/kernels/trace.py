@@ -2,9 +2,11 @@
 
 The top level is a BVH over the shapes' world-space boxes. At a leaf the ray is carried into
 each shape's object space; an analytic shape is solved there, a mesh instance descends into
-its own BVH (built once per `TriangleMesh`, shared by all its instances). Traversal is
-front-to-back with a fixed-size stack per level (from the `Workspace`), so nearer boxes are
-opened first and farther ones skipped once a nearer hit is known.
+its own BVH (built once per `TriangleMesh`, shared by all its instances). Nearest-hit
+traversal is front-to-back with a fixed-size stack per level (from the `Workspace`), so nearer
+boxes are opened first and farther ones skipped once a nearer hit is known. Shadow rays walk
+the top level in leaf order instead (left child first), so that the transparencies they
+multiply come in one fixed order, the order an area light's candidate list keeps too.
 
 Boxes are tested with the slab method, widened by `SLAB_WIDEN` so that rounding never culls a
 box a ray truly crosses. Mesh BVHs are four wide (`core.kernels.bvh_wide`); their boxes are
