@@ -31,18 +31,23 @@ $(VENV)/.installed: pyproject.toml
 	$(VENV)/bin/pip install --quiet -e ".[test,bench]"
 	touch $@
 
-# Debian's blender package when no blender is on PATH and we may install it.
-$(BUILD)/blender.ok:
-	@if ! command -v blender >/dev/null; then \
+# $(call debian_package,COMMAND,PACKAGE,MESSAGE): install Debian's PACKAGE when COMMAND is
+# not on PATH and we may (root, apt-get); otherwise print MESSAGE (no commas) and fail
+define debian_package
+	@if ! command -v $(1) >/dev/null; then \
 	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
-	    echo "Installing Debian's blender package (no blender on PATH)"; \
-	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq blender >/dev/null; \
+	    echo "Installing Debian's $(2) package (no $(1) on PATH)"; \
+	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $(2) >/dev/null; \
 	  else \
-	    echo "Whitted needs Blender 3.4 or newer as 'blender' on PATH."; \
-	    echo "Install it (Debian/Ubuntu: sudo apt-get install blender) and run make again."; \
+	    echo "$(3)"; \
 	    exit 1; \
 	  fi; \
 	fi
+endef
+
+$(BUILD)/blender.ok:
+	$(call debian_package,blender,blender,Whitted needs Blender 3.4 or newer as 'blender' on PATH: \
+	  install it (Debian/Ubuntu: sudo apt-get install blender) and run make again)
 	@mkdir -p $(BUILD) && blender --version | head -n 1 && touch $@
 
 $(BLENDER_USER_SCRIPTS)/addons/whitted:
@@ -91,15 +96,8 @@ bench: setup $(VENV)/.embree $(BUILD)/povray.ok
 
 # POV-Ray 3.7, the classic tracer the final scene is timed against (Debian's povray package)
 $(BUILD)/povray.ok:
-	@if ! command -v povray >/dev/null; then \
-	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
-	    echo "Installing Debian's povray package (no povray on PATH)"; \
-	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq povray >/dev/null; \
-	  else \
-	    echo "make bench times POV-Ray 3.7 as 'povray': install it (sudo apt-get install povray)"; \
-	    exit 1; \
-	  fi; \
-	fi
+	$(call debian_package,povray,povray,make bench times POV-Ray 3.7 as 'povray': \
+	  install it (sudo apt-get install povray))
 	@mkdir -p $(BUILD) && touch $@
 
 $(VENV)/.embree: pyproject.toml | $(VENV)/.installed

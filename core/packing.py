@@ -65,11 +65,12 @@ SHAPE_KIND_OF_CLASS = {
     Csg: SHAPE_CSG,
 }
 
-# Top-level leaves: shapes per leaf, and the node-visit cost relative to one shape test
 # Listing an area light's shapes costs about as much per shading point as tracing a few
 # shadow rays: on the final scene (300 x 300) culling was slower at 1 to 6 rays per light
 # (0.68 s against 0.53 s at 1), even at 8 and faster from 12 (0.99 s against 1.11 s), 1.4x at 40
 SHADOW_CULLING_MIN_SAMPLES = 8
+
+# Top-level leaves: shapes per leaf, and the node-visit cost relative to one shape test
 _TOP_MAX_LEAF = 2
 _TOP_TRAVERSAL_COST = 1.0
 

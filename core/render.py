@@ -19,7 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from core.kernels.csg import CROSSING_CAPACITY, SPAN_CAPACITY
-from core.kernels.render_tile import render_borrowed_tile
+from core.kernels.render_tile import render_tile
 from core.kernels.workspace import (
     RAY_COUNT_SLOTS,
     RAYS_TRACED,
@@ -93,15 +93,15 @@ def prepare_kernels(packed: PackedScene) -> tuple[float, str]:
     Returns (seconds, source). Done once on the calling thread so that worker threads never
     compile concurrently and so that compile time is reported apart from render time.
     """
-    already = bool(render_borrowed_tile.signatures)
-    hits_before = sum(render_borrowed_tile.stats.cache_hits.values())
+    already = bool(render_tile.signatures)
+    hits_before = sum(render_tile.stats.cache_hits.values())
     start = time.perf_counter()
     empty = np.empty((0, 0, 4), np.float32)
-    render_borrowed_tile(packed, 1, 1, 0, 0, 0, 0, empty, new_workspace(0))
+    render_tile(packed, 1, 1, 0, 0, 0, 0, empty, new_workspace(0))
     seconds = time.perf_counter() - start
     if already:
         return seconds, "memory"
-    loaded = sum(render_borrowed_tile.stats.cache_hits.values()) > hits_before
+    loaded = sum(render_tile.stats.cache_hits.values()) > hits_before
     return seconds, "cache" if loaded else "compiled"
 
 
@@ -128,7 +128,7 @@ def render(
     def render_one(tile: Tile) -> tuple[np.ndarray, int, np.ndarray]:
         pixels = np.empty((tile.height, tile.width, 4), np.float32)
         workspace = new_workspace(settings.max_depth, settings.shadow_samples)
-        render_borrowed_tile(
+        render_tile(
             packed,
             settings.width,
             settings.height,

@@ -75,24 +75,13 @@ def camera_ray(frame, image_width, image_height, px, py, sample, key):
 
 
 @kernel
-def render_borrowed_tile(ps, image_width, image_height, x0, y0, width, height, out, ws):
-    """`render_tile` with reference counting off for the tile's duration (see
-    core.kernels.borrow): the entry point the driver calls."""
-    render_tile(
-        borrow_scene(ps), image_width, image_height, x0, y0, width, height, borrowed(out),
-        borrow_workspace(ws),
-    )  # fmt: skip
-
-
-@kernel
 def render_tile(ps, image_width, image_height, x0, y0, width, height, out, ws):
     """Fill out[:height, :width] (float32 RGBA) with pixels x0.. and y0.. of the image.
 
     Pixels depend only on their image coordinates, never on the tile, so any tiling of the
-    image gives the same picture.
+    image gives the same picture. The entry point the driver calls: it borrows its arrays
+    for the tile's duration (see core.kernels.borrow), so no reference counting runs below.
     """
-    # Re-borrowed (see core.kernels.borrow): a call of its own, not inlined into the entry
-    # point, where numba's inlining of the whole tracer took 35 s more to compile
     ps, ws, out = borrow_scene(ps), borrow_workspace(ws), borrowed(out)
     frame = ps.frame
     n = frame.options[OPTION_PIXEL_SAMPLES]
