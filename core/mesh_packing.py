@@ -1,8 +1,10 @@
 """Triangle meshes into flat arrays: degenerate triangles dropped, normals, UVs, BVH.
 
 Each distinct `TriangleMesh` is packed once, however many `Mesh` shapes use it. Its triangles
-are reordered into the BVH's leaf order so that a leaf names a contiguous range and no
-permutation array is needed at render time.
+are stored in the BVH's leaf blocks (four slots a leaf, see `core.kernels.triangles`), so that
+a leaf names one block and no permutation array is needed at render time. Everything kept per
+triangle (smooth flags, normal and UV rows) is kept per slot; a slot a leaf leaves empty
+repeats one of the leaf's triangles there and NaN corners, so it is never hit.
 """
 
 from __future__ import annotations
@@ -12,7 +14,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from core.kernels.bvh_build import build_bvh
-from core.kernels.bvh_wide import LEAF_COUNT_BITS, collapse_to_wide, offset_links
+from core.kernels.bvh_wide import (
+    LEAF_COUNT_BITS,
+    collapse_to_wide,
+    number_leaf_blocks,
+    offset_links,
+)
 from core.kernels.triangles import LEAF_WIDTH
 from core.shapes import TriangleMesh
 
@@ -21,6 +28,7 @@ from core.shapes import TriangleMesh
 # variants timed in one process (best of 4), as (leaf, cost): primary, incoherent, shadow
 # Mrays/s per core, bytes per triangle: (4, 3) 5.07, 1.05, 2.24, 53; (4, 2) 5.03, 1.01, 2.29,
 # 61; (4, 1) 5.02, 1.02, 2.21, 69; (2, 1) 4.81, 0.99, 2.22, 69; (6, 3) 4.88, 1.03, 2.17, 49.
+# A leaf is one block of LEAF_WIDTH slots, so no leaf may hold more.
 MESH_MAX_LEAF = 4
 assert MESH_MAX_LEAF <= LEAF_WIDTH and MESH_MAX_LEAF < 1 << LEAF_COUNT_BITS
 MESH_TRAVERSAL_COST = 3.0
@@ -36,15 +44,16 @@ class MeshTables:
     uv_offset: list = field(default_factory=list)
     lo: list = field(default_factory=list)  # object-space bounds per mesh
     hi: list = field(default_factory=list)
-    node_boxes: list = field(default_factory=list)  # (n, 6, 4) float32, see bvh_wide
-    node_links: list = field(default_factory=list)  # (n, 4) int32, global
-    tri_corners: list = field(default_factory=list)  # (t, 9) float32
+    node_boxes: list = field(default_factory=list)  # (n, 6, 8) float32, see bvh_wide
+    node_links: list = field(default_factory=list)  # (n, 8) int32, global
+    tri_corners: list = field(default_factory=list)  # (blocks, 9, 4) float32, see triangles
     tri_smooth: list = field(default_factory=list)
     tri_normal_index: list = field(default_factory=list)
     normals: list = field(default_factory=list)
     tri_uv_index: list = field(default_factory=list)
     uvs: list = field(default_factory=list)
-    counts: dict = field(default_factory=lambda: {"nodes": 0, "tris": 0})
+    # nodes, triangles, and triangle slots (four a leaf block, some empty)
+    counts: dict = field(default_factory=lambda: {"nodes": 0, "tris": 0, "slots": 0})
     normal_rows: int = 0
     uv_rows: int = 0
     normal_entries: int = 0
@@ -82,29 +91,38 @@ def add_mesh(tables: MeshTables, mesh: TriangleMesh) -> int:
     lo = np.minimum(np.minimum(v0, v1), v2)[keep]
     hi = np.maximum(np.maximum(v0, v1), v2)[keep]
     node_lo, node_hi, node_info, order = build_bvh(lo, hi, MESH_MAX_LEAF, MESH_TRAVERSAL_COST)
-    source = keep[order]  # original triangle of each packed triangle
+    source = keep[order]  # original triangle of each leaf-ordered triangle
 
-    base_node, base_tri = tables.counts["nodes"], tables.counts["tris"]
+    base_node, base_slot = tables.counts["nodes"], tables.counts["slots"]
     # Boxes one float32 step larger than their triangles: the watertight triangle test may
     # claim a ray that passes a hair outside a triangle at a shared vertex or edge (so that
     # exactly one neighbour claims it), and that triangle's box must not have culled it
     padded_lo = np.nextafter(node_lo.astype(np.float32), np.float32(-np.inf))
     padded_hi = np.nextafter(node_hi.astype(np.float32), np.float32(np.inf))
     boxes, links = collapse_to_wide(padded_lo, padded_hi, node_info)
+    links, block_first, block_count = number_leaf_blocks(links)
+    # The source triangle of every slot; an empty slot repeats its leaf's first triangle
+    lane = np.arange(LEAF_WIDTH)
+    filled = lane < block_count[:, None]
+    leaf_ordered = np.where(filled, block_first[:, None] + lane, block_first[:, None])
+    slot_source = source[leaf_ordered].ravel()
+    corners = vertices[triangles[slot_source]].reshape(len(block_first), LEAF_WIDTH, 9)
+    corners[~filled] = np.nan
     tables.node_boxes.append(boxes)
-    tables.node_links.append(offset_links(links, base_node, base_tri))
-    tables.tri_corners.append(vertices[triangles[source]].reshape(-1, 9))
-    smooth = np.broadcast_to(np.asarray(mesh.smooth, bool), (len(triangles),))[source]
+    tables.node_links.append(offset_links(links, base_node, base_slot // LEAF_WIDTH))
+    tables.tri_corners.append(np.ascontiguousarray(corners.transpose(0, 2, 1)))
+    smooth = np.broadcast_to(np.asarray(mesh.smooth, bool), (len(triangles),))[slot_source]
     tables.tri_smooth.append(smooth.astype(np.uint8))
     tables.root.append(base_node)
-    tables.tri_offset.append(base_tri)
+    tables.tri_offset.append(base_slot)
     tables.lo.append(node_lo[0] if len(keep) else np.zeros(3))
     tables.hi.append(node_hi[0] if len(keep) else np.zeros(3))
 
-    tables.normal_offset.append(_add_normals(tables, mesh, triangles, source, smooth))
-    tables.uv_offset.append(_add_uvs(tables, mesh, triangles, source))
+    tables.normal_offset.append(_add_normals(tables, mesh, triangles, slot_source, smooth))
+    tables.uv_offset.append(_add_uvs(tables, mesh, triangles, slot_source))
     tables.counts["nodes"] += len(links)
     tables.counts["tris"] += len(source)
+    tables.counts["slots"] += len(slot_source)
     return index
 
 

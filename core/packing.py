@@ -16,6 +16,7 @@ import numpy as np
 
 from core.csg_packing import CsgTables, add_csg, csg_world_box
 from core.kernels.bvh_build import build_bvh
+from core.kernels.bvh_wide import WIDTH
 from core.kernels.layout import Frame, Geometry, Lights, Materials, PackedScene, Surfaces
 from core.kernels.options import (
     OPTION_COUNT,
@@ -38,6 +39,7 @@ from core.kernels.shapes import (
     SHAPE_SPHERE,
     SHAPE_TORUS,
 )
+from core.kernels.triangles import LEAF_WIDTH
 from core.mesh_packing import MeshTables, add_mesh, concatenated
 from core.scene import (
     AreaLight,
@@ -181,9 +183,9 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
         shape_transparency=_shadow_transparency(shapes, len(scene.shapes)),
         shape_bounds=np.ascontiguousarray(np.hstack([lo, hi]).reshape(n, 6)),
         mesh_root=np.array(tables.root, np.int32),
-        node_boxes=concatenated(tables.node_boxes, (0, 6, 4), np.float32),
-        node_links=concatenated(tables.node_links, (0, 4), np.int32),
-        tri_corners=concatenated(tables.tri_corners, (0, 9), np.float32),
+        node_boxes=concatenated(tables.node_boxes, (0, 6, WIDTH), np.float32),
+        node_links=concatenated(tables.node_links, (0, WIDTH), np.int32),
+        tri_corners=concatenated(tables.tri_corners, (0, 9, LEAF_WIDTH), np.float32),
         csg_range=np.array(csg_tables.ranges, np.int32).reshape(-1, 2),
         csg_program=np.array(csg_tables.program, np.int32),
     )
@@ -266,7 +268,7 @@ def _shadow_transparency(shapes: list, scene_shapes: int) -> np.ndarray:
 
 def _mesh_has_triangles(tables: MeshTables, shape: Mesh, mesh_index: dict) -> bool:
     m = mesh_index[id(shape.mesh)]
-    end = tables.tri_offset[m + 1] if m + 1 < len(tables.tri_offset) else tables.counts["tris"]
+    end = tables.tri_offset[m + 1] if m + 1 < len(tables.tri_offset) else tables.counts["slots"]
     return end > tables.tri_offset[m]
 
 

@@ -39,10 +39,12 @@ class Geometry(NamedTuple):
     shape_bounds: np.ndarray  # float64 (n, 6): world box (lo xyz, hi xyz), for CSG operands
     # meshes
     mesh_root: np.ndarray  # int32 (m,): its BVH's root in node_*
-    # four-wide BVH nodes of all meshes (see core.kernels.bvh_wide), global indices
-    node_boxes: np.ndarray  # float32 (nodes, 6, 4): lo xyz, hi xyz rows, a column per child
-    node_links: np.ndarray  # int32 (nodes, 4): child node, or ~(first triangle << 3 | count)
-    tri_corners: np.ndarray  # float32 (t, 9): object-space corners, in BVH leaf order
+    # eight-wide BVH nodes of all meshes (see core.kernels.bvh_wide), global indices
+    node_boxes: np.ndarray  # float32 (nodes, 6, 8): lo xyz, hi xyz rows, a column per child
+    node_links: np.ndarray  # int32 (nodes, 8): child node, or ~(leaf block << 3 | count)
+    # object-space corners, four triangles a BVH leaf (see core.kernels.triangles): rows
+    # x y z of corners 0, 1, 2, a column per slot; a triangle is named by its slot
+    tri_corners: np.ndarray  # float32 (blocks, 9, 4)
     # CSG trees as postfix programs (see core.kernels.csg): a step >= 0 pushes the spans of
     # that shape row, CSG_UNION / CSG_INTERSECTION / CSG_DIFFERENCE combine the top two
     csg_range: np.ndarray  # int32 (c, 2): first and end step of each tree's program
@@ -53,10 +55,10 @@ class Surfaces(NamedTuple):
     """What a hit needs beyond geometry: materials of shapes, mesh normals and UVs."""
 
     shape_material: np.ndarray  # int32 (n,): row in Materials
-    mesh_tri_offset: np.ndarray  # int64 (m,): its first triangle in tri_*
+    mesh_tri_offset: np.ndarray  # int64 (m,): its first triangle slot in tri_*
     mesh_normal_offset: np.ndarray  # int64 (m,): its first row in tri_normal_index, or -1
     mesh_uv_offset: np.ndarray  # int64 (m,): its first row in tri_uv_index, or -1
-    tri_smooth: np.ndarray  # uint8 (t,): 1 if the face is smooth shaded
+    tri_smooth: np.ndarray  # uint8 (slots,): 1 if the face is smooth shaded
     tri_normal_index: np.ndarray  # int32 (rows, 3): rows of normals per corner
     normals: np.ndarray  # float32 (r, 3)
     tri_uv_index: np.ndarray  # int32 (rows, 3): rows of uvs per corner

@@ -4,6 +4,7 @@ import math
 
 from core.jit import kernel
 from core.kernels.shapes import SHAPE_MESH, analytic_normal, analytic_uv
+from core.kernels.triangles import block_and_lane
 from core.kernels.vec import (
     add,
     affine_point,
@@ -18,11 +19,13 @@ from core.kernels.vec import (
 
 
 @kernel
-def _corner(corners, tri, first):
+def _corner(corners, slot, first):
+    """Corner (rows first .. first + 2) of the triangle in slot `slot` of the leaf blocks."""
+    block, lane = block_and_lane(slot)
     return (
-        float(corners[tri, first]),
-        float(corners[tri, first + 1]),
-        float(corners[tri, first + 2]),
+        float(corners[block, first, lane]),
+        float(corners[block, first + 1, lane]),
+        float(corners[block, first + 2, lane]),
     )
 
 

@@ -9,8 +9,9 @@ the top level in leaf order instead (left child first), so that the transparenci
 multiply come in one fixed order, the order an area light's candidate list keeps too.
 
 Boxes are tested with the slab method, widened by `SLAB_WIDEN` so that rounding never culls a
-box a ray truly crosses. Mesh BVHs are four wide (`core.kernels.bvh_wide`); their boxes are
-float32 corners of float32 vertices, padded one float32 step; the arithmetic is float64.
+box a ray truly crosses. Mesh BVHs are eight wide (`core.kernels.bvh_wide`); their boxes are
+float32 corners of float32 vertices, padded one float32 step, and tested in float32 with
+conservative rounding.
 """
 
 from core.jit import inlined_kernel, kernel
@@ -191,7 +192,7 @@ def shape_transmittance(geo, shape, o, d, t_max, stacks):
     if kind == SHAPE_MESH:
         crossings = mesh_crossings(
             geo.node_boxes, geo.node_links, geo.tri_corners, geo.mesh_root[geo.shape_index[shape]],
-            o_obj, d_obj, t_max, tau == 0.0, stacks.mesh, stacks.mesh_t,
+            o_obj, d_obj, t_max, tau == 0.0, stacks.mesh,
         )  # fmt: skip
     else:
         major, minor = geo.shape_param[shape, 0], geo.shape_param[shape, 1]

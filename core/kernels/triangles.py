@@ -6,15 +6,20 @@ the same order by both, with swapped signs, so a ray can never slip between them
 is watertight at shared edges and vertices, which ordinary Moller-Trumbore is not. Vertices
 are stored in float32 and converted exactly to float64, where all arithmetic happens.
 
-Triangles are read from `corners` (t, 9) float32: x y z of corner 0, then 1, then 2, stored
-in BVH leaf order, so a leaf's triangles are one contiguous block and no vertex index is
-followed during traversal.
+Triangles are stored in blocks of four, one block a BVH leaf, as `corners` (blocks, 9, 4)
+float32: rows x y z of corner 0, then 1, then 2; one column a triangle. A triangle's number is
+its slot, 4 * block + column. A leaf's four lanes then load as four-wide vectors in whichever
+axis order the ray's shear picks, and no vertex index is followed during traversal. Slots a
+leaf does not fill hold NaN corners, which every comparison of the test fails: they never
+hit, so the test needs no count. Measured against triangles stored one a row: the same speed
+for nearest hits, 10% more shadow rays per second.
 """
 
 from core.jit import inlined_kernel, kernel
 from core.kernels.shapes import NO_HIT
 
-LEAF_WIDTH = 4  # triangles tested at once by `intersect_leaf`; no leaf holds more
+LEAF_WIDTH = 4  # triangles of a block, tested at once by `intersect_leaf`; no leaf holds more
+_LANE_BITS = 2  # a slot is block << _LANE_BITS | lane
 # Makes `facing` positive on a triangle's front: the sign of the sheared determinant there
 FACING_SIGN = 1.0
 
@@ -39,21 +44,22 @@ def permuted(o, shear):
 
 
 @inlined_kernel
-def _triangle_lane(corners, tri, shear, o, t_min, t_max):
-    """(t, b1, b2, facing) of one triangle, NO_HIT in t on a miss; facing > 0 where the
-    ray meets the triangle's front (counter-clockwise) side. Written without early exits so
-    that several copies side by side can be merged into vector instructions."""
+def _triangle_lane(b, lane, shear, o, t_min, t_max):
+    """(t, b1, b2, facing) of the triangle in column `lane` of block b (9, 4), NO_HIT in t on
+    a miss; facing > 0 where the ray meets the triangle's front (counter-clockwise) side.
+    Written without early exits so that several copies side by side can be merged into
+    vector instructions."""
     kx, ky, kz, sx, sy, sz = shear
     ox, oy, oz = o
-    a2 = corners[tri, kz] - oz
-    b2 = corners[tri, 3 + kz] - oz
-    c2 = corners[tri, 6 + kz] - oz
-    ax = corners[tri, kx] - ox - sx * a2
-    ay = corners[tri, ky] - oy - sy * a2
-    bx = corners[tri, 3 + kx] - ox - sx * b2
-    by = corners[tri, 3 + ky] - oy - sy * b2
-    cx = corners[tri, 6 + kx] - ox - sx * c2
-    cy = corners[tri, 6 + ky] - oy - sy * c2
+    a2 = b[kz, lane] - oz
+    b2 = b[3 + kz, lane] - oz
+    c2 = b[6 + kz, lane] - oz
+    ax = b[kx, lane] - ox - sx * a2
+    ay = b[ky, lane] - oy - sy * a2
+    bx = b[3 + kx, lane] - ox - sx * b2
+    by = b[3 + ky, lane] - oy - sy * b2
+    cx = b[6 + kx, lane] - ox - sx * c2
+    cy = b[6 + ky, lane] - oy - sy * c2
     # Edge functions: the ray passes inside when none is negative or none is positive
     u = cx * by - cy * bx
     v = ax * cy - ay * cx
@@ -62,35 +68,42 @@ def _triangle_lane(corners, tri, shear, o, t_min, t_max):
     outside = ((u < 0.0) | (v < 0.0) | (w < 0.0)) & ((u > 0.0) | (v > 0.0) | (w > 0.0))
     det = u + v + w
     t = (u * a2 + v * b2 + w * c2) * sz / det
-    # det == 0 (the ray in the triangle's plane) gives t = nan or inf, which fails here
+    # det == 0 (the ray in the triangle's plane) gives t = nan or inf, which fails here, as
+    # does every NaN of an unfilled slot
     hit = (not outside) & (t > t_min) & (t < t_max)
     return (t if hit else NO_HIT), v / det, w / det, FACING_SIGN * det
 
 
-@kernel
-def intersect_triangle(corners, tri, o, shear, t_min, t_max):
-    """(t, b1, b2, facing) where o + t d meets triangle `tri` of `corners` with
-    t_min < t < t_max, b1 and b2 the barycentric weights of corners 1 and 2, facing > 0 on
-    the front side; NO_HIT in t on a miss. `o` is the origin from `permuted`, `shear` from
-    `shear_setup`."""
-    return _triangle_lane(corners, tri, shear, o, t_min, t_max)
+@inlined_kernel
+def slot_of(block, lane):
+    """The number of the triangle in column `lane` of block `block`."""
+    return (block << _LANE_BITS) | lane
 
 
 @inlined_kernel
-def intersect_leaf(corners, first, end, o, shear, t_min, t_max):
-    """`intersect_triangle` for the up to four triangles first .. end - 1 of a BVH leaf at
-    once, as four (t, b1, b2, facing). Lanes past the leaf's end repeat its last triangle, so every
-    load is valid, and report NO_HIT. Straight-line lanes for the SLP vectorizer: measured
-    5% more primary and 12% more incoherent rays per second than a loop of single tests."""
-    last = end - 1
-    h0 = _triangle_lane(corners, first, shear, o, t_min, t_max)
-    h1 = _triangle_lane(corners, min(first + 1, last), shear, o, t_min, t_max)
-    h2 = _triangle_lane(corners, min(first + 2, last), shear, o, t_min, t_max)
-    h3 = _triangle_lane(corners, min(first + 3, last), shear, o, t_min, t_max)
-    count = end - first
+def block_and_lane(slot):
+    return slot >> _LANE_BITS, slot & (LEAF_WIDTH - 1)
+
+
+@kernel
+def intersect_triangle(corners, slot, o, shear, t_min, t_max):
+    """(t, b1, b2, facing) where o + t d meets triangle `slot` of `corners` with
+    t_min < t < t_max, b1 and b2 the barycentric weights of corners 1 and 2, facing > 0 on
+    the front side; NO_HIT in t on a miss (always, for an unfilled slot). `o` is the origin
+    from `permuted`, `shear` from `shear_setup`."""
+    block, lane = block_and_lane(slot)
+    return _triangle_lane(corners[block], lane, shear, o, t_min, t_max)
+
+
+@inlined_kernel
+def intersect_leaf(corners, block, o, shear, t_min, t_max):
+    """`intersect_triangle` for the four slots of a leaf block at once, as four
+    (t, b1, b2, facing). Straight-line lanes for the SLP vectorizer: measured 5% more
+    primary and 12% more incoherent rays per second than a loop of single tests."""
+    b = corners[block]
     return (
-        h0,
-        h1 if count > 1 else (NO_HIT, 0.0, 0.0, 0.0),
-        h2 if count > 2 else (NO_HIT, 0.0, 0.0, 0.0),
-        h3 if count > 3 else (NO_HIT, 0.0, 0.0, 0.0),
+        _triangle_lane(b, 0, shear, o, t_min, t_max),
+        _triangle_lane(b, 1, shear, o, t_min, t_max),
+        _triangle_lane(b, 2, shear, o, t_min, t_max),
+        _triangle_lane(b, 3, shear, o, t_min, t_max),
     )

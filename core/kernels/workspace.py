@@ -9,7 +9,7 @@ from core.kernels.bvh_wide import WIDTH
 from core.kernels.csg import CROSSING_CAPACITY, MAX_OPERANDS, SPAN_CAPACITY
 from core.kernels.light_pyramid import MAX_CANDIDATES, PYRAMID_ROWS
 
-# A four-wide node leaves at most WIDTH - 1 children waiting besides the one visited next,
+# A wide node leaves at most WIDTH - 1 children waiting besides the one visited next,
 # and the wide tree is no deeper than the binary one
 MESH_STACK_SIZE = (WIDTH - 1) * MAX_TREE_DEPTH + 1
 
@@ -42,7 +42,7 @@ class Stacks(NamedTuple):
     top: np.ndarray  # int32 (MAX_TREE_DEPTH,): top-level nodes waiting
     top_t: np.ndarray  # float64: their entry distances
     mesh: np.ndarray  # int32 (MESH_STACK_SIZE,): mesh-level nodes or leaves waiting
-    mesh_t: np.ndarray  # float64
+    mesh_t: np.ndarray  # float32: their entry distances (the mesh slab test's precision)
     csg: CsgScratch
     ray_counts: np.ndarray  # int64 (RAY_COUNT_SLOTS,)
     pyramid: np.ndarray  # float64 (PYRAMID_ROWS, 4): see core.kernels.light_pyramid
@@ -76,7 +76,7 @@ def new_workspace(max_depth: int, shadow_samples: int = 1) -> Workspace:
             np.empty(MAX_TREE_DEPTH, np.int32),
             np.empty(MAX_TREE_DEPTH),
             np.empty(MESH_STACK_SIZE, np.int32),
-            np.empty(MESH_STACK_SIZE),
+            np.empty(MESH_STACK_SIZE, np.float32),
             CsgScratch(
                 np.empty((SPAN_CAPACITY, 2, 3)),
                 np.empty((SPAN_CAPACITY, 2, 2), np.int32),

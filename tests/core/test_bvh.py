@@ -9,7 +9,7 @@ from core import Box, Mesh, RenderSettings, Scene, Sphere, Torus, TriangleMesh, 
 from core.kernels.bvh_build import build_bvh
 from core.kernels.bvh_wide import WIDTH, collapse_to_wide, leaf_range
 from core.kernels.shapes import NO_HIT, SHAPE_MESH, intersect_analytic
-from core.kernels.triangles import intersect_triangle, permuted, shear_setup
+from core.kernels.triangles import LEAF_WIDTH, intersect_triangle, permuted, shear_setup
 from core.kernels.vec import affine_point, affine_vector
 from core.packing import compile_scene
 from tests.core.probe import hits, surface
@@ -33,7 +33,7 @@ def brute_force(geo, surf, origins, directions):
             if geo.shape_kind[s] == SHAPE_MESH:
                 mesh = geo.shape_index[s]
                 first = surf.mesh_tri_offset[mesh]
-                last = geo.tri_corners.shape[0]
+                last = geo.tri_corners.shape[0] * LEAF_WIDTH  # slots
                 if mesh + 1 < len(geo.mesh_root):
                     last = surf.mesh_tri_offset[mesh + 1]
                 shear = shear_setup(dd)
