@@ -46,6 +46,7 @@ INF32 = np.float32(np.inf)
 _ULP32 = np.float32(2.0**-23)  # at least one float32 step of any normal float32 |y|
 _MIN32 = np.float32(np.finfo(np.float32).tiny)
 _MAX32 = float(np.finfo(np.float32).max)
+_MAX32_F = np.float32(_MAX32)
 
 
 @kernel
@@ -181,20 +182,30 @@ def float32_above(x):
 
 class SlabRay(NamedTuple):
     """What the float32 slab test needs of a ray, worked out once per ray: the inverse
-    direction, the origin rounded for near planes and for far planes, and the box rows the
-    ray enters and leaves by."""
+    direction for near planes and for far planes, the origin rounded for near planes and for
+    far planes, and the box rows the ray enters and leaves by."""
 
-    inverse: tuple  # float32 (3,)
+    near_inverse: tuple  # float32 (3,): 1 / d, held finite
+    far_inverse: tuple  # float32 (3,): 1 / d, inf where it leaves float32's range
     near_origin: tuple  # float32 (3,): rounded so that (plane - origin) * inverse can only drop
     far_origin: tuple  # float32 (3,): rounded so that it can only grow
     rows: tuple  # int (6,): from near_far_rows
 
 
 @inlined_kernel
+def _finite32(i):
+    return np.float32(min(max(i, -_MAX32), _MAX32))
+
+
+@inlined_kernel
 def slab_ray(o, d):
     """The `SlabRay` of o + t d (float64)."""
     ix, iy, iz = 1.0 / d[0], 1.0 / d[1], 1.0 / d[2]
-    inverse = (np.float32(ix), np.float32(iy), np.float32(iz))
+    # A direction component below 1 / float32's range has an inverse beyond it: held finite
+    # for near planes, the entry distances only drop; left to overflow for far planes, the
+    # exit distances only grow (to inf, where the exact one is finite but huge)
+    near_inverse = (_finite32(ix), _finite32(iy), _finite32(iz))
+    far_inverse = (np.float32(ix), np.float32(iy), np.float32(iz))
     # Entering by lo with a positive inverse, t = (lo - o) * i drops as o grows; entering by
     # hi with a negative one, it drops as o shrinks. The far planes go the other way.
     below = (float32_below(o[0]), float32_below(o[1]), float32_below(o[2]))
@@ -209,19 +220,21 @@ def slab_ray(o, d):
         below[1] if iy >= 0.0 else above[1],
         below[2] if iz >= 0.0 else above[2],
     )
-    return SlabRay(inverse, near_origin, far_origin, near_far_rows(ix, iy, iz))
+    return SlabRay(near_inverse, far_inverse, near_origin, far_origin, near_far_rows(ix, iy, iz))
 
 
 @inlined_kernel
 def _slab_entry(b, c, ray, t_min, t_max):
     nx, ny, nz, fx, fy, fz = ray.rows
-    (ix, iy, iz), (nox, noy, noz), (fox, foy, foz) = ray.inverse, ray.near_origin, ray.far_origin
-    t0 = (b[nx, c] - nox) * ix
-    t1 = (b[fx, c] - fox) * ix
-    t2 = (b[ny, c] - noy) * iy
-    t3 = (b[fy, c] - foy) * iy
-    t4 = (b[nz, c] - noz) * iz
-    t5 = (b[fz, c] - foz) * iz
+    nix, niy, niz = ray.near_inverse
+    fix, fiy, fiz = ray.far_inverse
+    (nox, noy, noz), (fox, foy, foz) = ray.near_origin, ray.far_origin
+    t0 = (b[nx, c] - nox) * nix
+    t1 = (b[fx, c] - fox) * fix
+    t2 = (b[ny, c] - noy) * niy
+    t3 = (b[fy, c] - foy) * fiy
+    t4 = (b[nz, c] - noz) * niz
+    t5 = (b[fz, c] - foz) * fiz
     # Written as comparisons so that a NaN (the ray in a face's plane) is skipped and never
     # culls, and so that LLVM maps them onto vector max/min
     near = t_min
@@ -232,7 +245,11 @@ def _slab_entry(b, c, ray, t_min, t_max):
     far = t1 if t1 < far else far
     far = t3 if t3 < far else far
     far = t5 if t5 < far else far
-    return near if near <= far * SLAB_WIDEN32 else INF32
+    if near > far * SLAB_WIDEN32:
+        return INF32
+    # An entry beyond float32's range (a huge object-space distance) overflows to inf, which
+    # is also the mark of a miss: it enters at the largest float32 instead
+    return near if near < _MAX32_F else _MAX32_F
 
 
 @inlined_kernel
