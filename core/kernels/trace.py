@@ -37,39 +37,29 @@ SPAWN_OFFSET_ABSOLUTE = 1e-30
 
 
 @inlined_kernel
+def _slab(lo, hi, o, i, t_near, t_far):
+    """One axis of `box_entry`: the slab's entry and exit, ordered, clip [t_near, t_far].
+    Selects rather than a swap, so that rays of random direction do not mispredict a branch
+    per axis; the same comparisons, so the same bits."""
+    t0 = (lo - o) * i
+    t1 = (hi - o) * i
+    swap = t0 > t1
+    enter = t1 if swap else t0
+    leave = t0 if swap else t1
+    t_near = enter if enter > t_near else t_near
+    t_far = leave if leave < t_far else t_far
+    return t_near, t_far
+
+
+@inlined_kernel
 def box_entry(bounds, k, ox, oy, oz, ix, iy, iz, t_max):
     """Entry distance of the ray (origin o, inverse direction i) into box k of bounds
     (n, 6+) = (lo xyz, hi xyz, ...) within [0, t_max]; NO_HIT when it misses. NaNs (a ray
     in a box's face plane) fail every comparison and so never cull."""
-    t_near = 0.0
-    t_far = t_max
-    t0 = (bounds[k, 0] - ox) * ix
-    t1 = (bounds[k, 3] - ox) * ix
-    if t0 > t1:
-        t0, t1 = t1, t0
-    if t0 > t_near:
-        t_near = t0
-    if t1 < t_far:
-        t_far = t1
-    t0 = (bounds[k, 1] - oy) * iy
-    t1 = (bounds[k, 4] - oy) * iy
-    if t0 > t1:
-        t0, t1 = t1, t0
-    if t0 > t_near:
-        t_near = t0
-    if t1 < t_far:
-        t_far = t1
-    t0 = (bounds[k, 2] - oz) * iz
-    t1 = (bounds[k, 5] - oz) * iz
-    if t0 > t1:
-        t0, t1 = t1, t0
-    if t0 > t_near:
-        t_near = t0
-    if t1 < t_far:
-        t_far = t1
-    if t_near <= t_far * SLAB_WIDEN:
-        return t_near
-    return NO_HIT
+    t_near, t_far = _slab(bounds[k, 0], bounds[k, 3], ox, ix, 0.0, t_max)
+    t_near, t_far = _slab(bounds[k, 1], bounds[k, 4], oy, iy, t_near, t_far)
+    t_near, t_far = _slab(bounds[k, 2], bounds[k, 5], oz, iz, t_near, t_far)
+    return t_near if t_near <= t_far * SLAB_WIDEN else NO_HIT
 
 
 @inlined_kernel
