@@ -14,12 +14,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from core.kernels.bvh_build import build_bvh
-from core.kernels.bvh_wide import (
-    LEAF_COUNT_BITS,
-    collapse_to_wide,
-    number_leaf_blocks,
-    offset_links,
-)
+from core.kernels.bvh_collapse import collapse_to_wide
+from core.kernels.bvh_wide import LEAF_COUNT_BITS, number_leaf_blocks, offset_links
 from core.kernels.triangles import LEAF_WIDTH
 from core.shapes import TriangleMesh
 

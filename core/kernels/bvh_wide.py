@@ -22,16 +22,14 @@ in float32 with the leaf blocks below, 6.6 / 1.5 / 3.5; with prefetching of the 
 closest-hit ray will open, 7.0 / 1.45 / 3.5 (see `core.kernels.prefetch`). Nodes visited per
 ray: 7.1 -> 4.8 primary, 13.7 -> 8.8 incoherent.
 
-Collapsing (as in Wald et al. 2008, "Getting rid of packets"): a wide node starts with the two
-children of a binary node and keeps opening its inner child of largest surface area until
-it holds eight children or only leaves.
+The binary SAH tree is collapsed into this one by `core.kernels.bvh_collapse`.
 """
 
 from typing import NamedTuple
 
 import numpy as np
 
-from core.jit import inlined_kernel, kernel
+from core.jit import inlined_kernel
 
 WIDTH = 8
 LEAF_COUNT_BITS = 3  # so a leaf holds at most 7 triangles
@@ -47,68 +45,6 @@ _ULP32 = np.float32(2.0**-23)  # at least one float32 step of any normal float32
 _MIN32 = np.float32(np.finfo(np.float32).tiny)
 _MAX32 = float(np.finfo(np.float32).max)
 _MAX32_F = np.float32(_MAX32)
-
-
-@kernel
-def _half_area(lo, hi, k):
-    dx, dy, dz = hi[k, 0] - lo[k, 0], hi[k, 1] - lo[k, 1], hi[k, 2] - lo[k, 2]
-    return dx * dy + dy * dz + dz * dx
-
-
-@kernel
-def collapse_to_wide(lo, hi, info):
-    """The four-wide tree of the binary tree (lo, hi (n, 3) float32 boxes, info (n, 2) from
-    `build_bvh`). Returns (boxes, links) with node 0 the root; links are local to this tree.
-    A tree over no triangles becomes one node whose slots are all empty."""
-    binary_count = info.shape[0]
-    boxes = np.empty((binary_count, 6, WIDTH), np.float32)
-    boxes[:, :3, :] = np.inf
-    boxes[:, 3:, :] = -np.inf
-    links = np.full((binary_count, WIDTH), -1, np.int32)
-    # Breadth-first over wide nodes: queue holds (binary node, its wide node)
-    queue_binary = np.empty(binary_count, np.int64)
-    queue_wide = np.empty(binary_count, np.int64)
-    queue_binary[0], queue_wide[0] = 0, 0
-    head, tail, wide_count = 0, 1, 1
-    if binary_count == 1 and info[0, 1] == 0:
-        tail = 0  # no triangles: one node with every slot empty
-    children = np.empty(WIDTH, np.int64)
-    while head < tail:
-        node, wide = queue_binary[head], queue_wide[head]
-        head += 1
-        if info[node, 1] > 0:  # a binary tree that is one leaf
-            children[0] = node
-            filled = 1
-        else:
-            children[0], children[1] = info[node, 0], info[node, 0] + 1
-            filled = 2
-            while filled < WIDTH:
-                largest, largest_area = -1, -1.0
-                for c in range(filled):
-                    if info[children[c], 1] == 0:
-                        area = _half_area(lo, hi, children[c])
-                        if area > largest_area:
-                            largest, largest_area = c, area
-                if largest < 0:
-                    break
-                opened = children[largest]
-                children[largest] = info[opened, 0]
-                children[filled] = info[opened, 0] + 1
-                filled += 1
-        for c in range(filled):
-            child = children[c]
-            for a in range(3):
-                boxes[wide, a, c] = lo[child, a]
-                boxes[wide, 3 + a, c] = hi[child, a]
-            count = info[child, 1]
-            if count > 0:
-                links[wide, c] = ~((info[child, 0] << LEAF_COUNT_BITS) | count)
-            else:
-                links[wide, c] = wide_count
-                queue_binary[tail], queue_wide[tail] = child, wide_count
-                tail += 1
-                wide_count += 1
-    return boxes[:wide_count].copy(), links[:wide_count].copy()
 
 
 def number_leaf_blocks(links: np.ndarray):
