@@ -22,7 +22,10 @@ import numpy as np
 
 from core.jit import kernel
 
-BIN_COUNT = 16
+# Measured on the million-triangle benchmark mesh against 16 bins, interleaved: 2% more rays
+# per second (primary, incoherent and shadow alike) for a build 20% longer (0.65 -> 0.78 s);
+# 64 bins gained nothing more
+BIN_COUNT = 32
 # Below this depth splits are by SAH; deeper (only on pathological input) a node is halved
 # by index, so no tree is deeper than SAH_DEPTH + log2(p) and traversal stacks of
 # `MAX_TREE_DEPTH` entries never overflow.

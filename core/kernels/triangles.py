@@ -24,23 +24,35 @@ _LANE_BITS = 2  # a slot is block << _LANE_BITS | lane
 FACING_SIGN = 1.0
 
 
+@inlined_kernel
+def _component(v, k):
+    """v[k] for a 3-tuple, as selects: numba indexes a tuple by a variable through a jump
+    table, whose indirect branch mispredicts for rays of random direction."""
+    return v[0] if k == 0 else (v[1] if k == 1 else v[2])
+
+
 @kernel
 def shear_setup(d):
-    """Per-ray constants: the axis permutation (kx, ky, kz) and shear (sx, sy, sz)."""
+    """Per-ray constants: the axis permutation (kx, ky, kz) and shear (sx, sy, sz). kz is
+    the axis of the largest |d| component (the first of equals). Written with selects and
+    no short-circuit operator, so that rays of random direction mispredict no branch."""
     ax, ay, az = abs(d[0]), abs(d[1]), abs(d[2])
-    kz = 0 if ax >= ay and ax >= az else (1 if ay >= az else 2)
-    kx = (kz + 1) % 3
-    ky = (kx + 1) % 3
-    if d[kz] < 0.0:
-        kx, ky = ky, kx  # keep the winding, so that edge signs stay consistent
-    sz = 1.0 / d[kz]
-    return kx, ky, kz, d[kx] * sz, d[ky] * sz, sz
+    x_largest = (ax >= ay) & (ax >= az)
+    kz = 0 if x_largest else (1 if ay >= az else 2)
+    kx = 1 if kz == 0 else (2 if kz == 1 else 0)  # (kz + 1) % 3
+    ky = 2 if kz == 0 else (0 if kz == 1 else 1)  # (kx + 1) % 3
+    dz = _component(d, kz)
+    # Swapped where d points down kz, to keep the winding, so that edge signs stay consistent
+    flip = dz < 0.0
+    kx, ky = (ky if flip else kx), (kx if flip else ky)
+    sz = 1.0 / dz
+    return kx, ky, kz, _component(d, kx) * sz, _component(d, ky) * sz, sz
 
 
 @kernel
 def permuted(o, shear):
     """The ray origin in the shear's axis order: (o[kx], o[ky], o[kz])."""
-    return o[shear[0]], o[shear[1]], o[shear[2]]
+    return _component(o, shear[0]), _component(o, shear[1]), _component(o, shear[2])
 
 
 @inlined_kernel
