@@ -1,0 +1,48 @@
+"""A damaged kernel cache heals itself: noticed, removed, rebuilt, said in one line.
+
+numba trusts its cache files: a file cut short (a full disk, a process killed while writing),
+zeroed or garbled makes every later load of that kernel raise from deep in numba's cache
+reader (`EOFError`, `UnpicklingError` and the like), so every render would fail until the user
+found and deleted the folder. Such an error is told apart from any other by where it was
+raised: in numba's cache reader. Then the whole cache folder of this version goes (a kernel's
+cached copy may be inlined in another's, so no single file can be trusted alone), and the
+kernels compile again.
+"""
+
+import shutil
+import sys
+from pathlib import Path
+
+from core.jit import kernel_cache_dir
+
+_NUMBA_CACHE_READER = str(Path("numba") / "core" / "caching.py")
+
+
+def raised_reading_cache(error: BaseException) -> bool:
+    """Whether `error` was raised while numba read a cached kernel."""
+    trace = error.__traceback__
+    while trace is not None:
+        if trace.tb_frame.f_code.co_filename.endswith(_NUMBA_CACHE_READER):
+            return True
+        trace = trace.tb_next
+    return False
+
+
+def load_or_rebuild(get_kernels):
+    """get_kernels() (which compiles the kernels or loads them from the cache); if it fails
+    reading a damaged cache, remove the cache folder, say so on stderr, and call it again.
+    Returns (its result, whether the cache was rebuilt)."""
+    try:
+        return get_kernels(), False
+    except Exception as error:
+        if not raised_reading_cache(error):
+            raise
+        folder = kernel_cache_dir()
+        shutil.rmtree(folder, ignore_errors=True)
+        print(
+            f"Whitted: the kernel cache was damaged ({type(error).__name__}: {error}); "
+            f"removed {folder} and compiling the kernels again",
+            file=sys.stderr,
+            flush=True,
+        )
+        return get_kernels(), True

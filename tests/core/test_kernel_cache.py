@@ -1,0 +1,67 @@
+"""A damaged kernel cache heals itself (core.kernel_cache): in fresh processes sharing one
+cache folder, a kernel is cached, its files are cut short, zeroed or garbled, and the next
+process must say so in one line, rebuild the cache and return the right answer; the one after
+must load the rebuilt cache cleanly."""
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from core.kernel_cache import load_or_rebuild
+
+ROOT = Path(__file__).resolve().parents[2]
+CHILD = (
+    "from core.kernel_cache import load_or_rebuild\n"
+    "from tests.core.cache_probe import doubled\n"
+    "value, rebuilt = load_or_rebuild(lambda: doubled(21.0))\n"
+    "print(value, rebuilt)\n"
+)
+
+
+def run_child(cache: Path) -> subprocess.CompletedProcess:
+    env = {**os.environ, "WHITTED_CACHE_DIR": str(cache)}
+    return subprocess.run(
+        [sys.executable, "-c", CHILD], cwd=ROOT, env=env, capture_output=True, text=True
+    )
+
+
+def damage(path: Path, how: str) -> None:
+    data = path.read_bytes()
+    if how == "truncated":
+        path.write_bytes(data[: len(data) // 2])
+    elif how == "zeroed":
+        path.write_bytes(bytes(len(data)))
+    else:
+        path.write_bytes((b"garbled!" * len(data))[: len(data)])
+
+
+@pytest.mark.parametrize("how", ["truncated", "zeroed", "garbled"])
+@pytest.mark.parametrize("files", ["*.nbi", "*.nbc"])
+def test_a_damaged_cache_is_removed_and_rebuilt(tmp_path, how, files):
+    first = run_child(tmp_path)
+    assert first.returncode == 0, first.stderr
+    assert first.stdout.split() == ["42.0", "False"]
+    cached = sorted(tmp_path.rglob(files))
+    assert cached, f"no {files} cache files were written"
+    for path in cached:
+        damage(path, how)
+
+    healed = run_child(tmp_path)
+    assert healed.returncode == 0, healed.stderr
+    assert healed.stdout.split() == ["42.0", "True"]
+    said = [line for line in healed.stderr.splitlines() if "kernel cache was damaged" in line]
+    assert len(said) == 1 and "compiling the kernels again" in said[0]
+    assert sorted(tmp_path.rglob(files)), "the cache was not written again"
+
+    after = run_child(tmp_path)
+    assert after.returncode == 0, after.stderr
+    assert after.stdout.split() == ["42.0", "False"]
+    assert "damaged" not in after.stderr
+
+
+def test_errors_that_are_not_the_cache_are_not_swallowed():
+    with pytest.raises(ZeroDivisionError):
+        load_or_rebuild(lambda: 1 / 0)
