@@ -228,7 +228,7 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
         sun_toward=rows(toward),
         sun_intensity=rows([lt.intensity for lt in suns]),
     )
-    packed = PackedScene(frame, geometry, surfaces, materials, lights)
+    packed = kernel_ready(PackedScene(frame, geometry, surfaces, materials, lights))
     warnings = [
         f"mesh '{name}': dropped {count} degenerate (zero-area) triangle"
         + ("s" if count != 1 else "")
@@ -251,6 +251,20 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
         if name in group._fields
     )
     return CompiledScene(packed, warnings, tables.counts["tris"], mesh_bytes)
+
+
+def kernel_ready(packed: PackedScene) -> PackedScene:
+    """Every array of the packed scene C-contiguous, aligned and writable, made so here and
+    nowhere else. numba compiles an entry kernel anew for each array layout or read-only flag
+    it is handed, and each compile costs the user a minute or more: a slice of the inverse
+    transforms, say, is C-contiguous for one shape and strided for several. (dtypes and ranks
+    are fixed where each array is built; `tests/core/test_kernel_signature.py` checks all.)"""
+    return PackedScene(
+        *(
+            type(group)(*(np.require(a, requirements=["C", "A", "W"]) for a in group))
+            for group in packed
+        )
+    )
 
 
 def _shadow_transparency(shapes: list, scene_shapes: int) -> np.ndarray:

@@ -1,0 +1,110 @@
+"""One signature per kernel, whatever the scene: every scene packs into arrays of the same
+numba types (dtype, rank, layout, writability), so the render kernel compiled for one scene
+serves all others. A difference here is a minute-long compile for the user on the first
+render of each new kind of scene."""
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numba
+import numpy as np
+import pytest
+
+from core import (
+    AreaLight,
+    Box,
+    Camera,
+    Csg,
+    Cylinder,
+    Material,
+    Mesh,
+    PointLight,
+    RenderSettings,
+    Scene,
+    Sphere,
+    Texture,
+    Torus,
+    TriangleMesh,
+)
+from core.packing import compile_scene
+from tests.meshes import icosphere
+
+ROOT = Path(__file__).resolve().parents[2]
+LIGHT = PointLight((0.0, -4.0, 4.0), (1.0, 1.0, 1.0))
+AREA = AreaLight((0.0, 0.0, 4.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (5.0, 5.0, 5.0))
+
+
+def moved(x):
+    m = np.eye(4)
+    m[0, 3] = x
+    return m
+
+
+def scenes():
+    vertices, triangles = icosphere(1)
+    mesh = Mesh("Ball", mesh=TriangleMesh(vertices, triangles))
+    checker = np.zeros((2, 2, 3))
+    checker[0, 0] = checker[1, 1] = 1.0
+    textured = Material(texture=Texture(pixels=checker))
+    csg = Csg("Cut", operation="difference", left=Box("B"), right=Cylinder("C"))
+    return {
+        "empty": Scene(),
+        "one sphere": Scene(shapes=[Sphere("S")], lights=[LIGHT]),
+        "one mesh": Scene(shapes=[mesh], lights=[LIGHT]),
+        "only CSG": Scene(shapes=[csg], lights=[LIGHT]),
+        "only an area light": Scene(lights=[AREA]),
+        "textured": Scene(shapes=[Sphere("S", textured)], lights=[LIGHT]),
+        "many shapes": Scene(
+            camera=Camera(eye=(0, -8, 0), view=(0, 1, 0), up=(0, 0, 1), fovy=40),
+            shapes=[
+                Sphere("S", world_from_object=moved(-2)),
+                Torus("T", world_from_object=moved(2)),
+                mesh,
+                csg,
+                Sphere("S2", textured, world_from_object=moved(4)),
+            ],
+            lights=[LIGHT, AREA],
+        ),
+    }
+
+
+def numba_types(scene):
+    packed = compile_scene(scene, RenderSettings(8, 8)).packed
+    return {
+        f"{type(group).__name__}.{name}": numba.typeof(array)
+        for group in packed
+        for name, array in group._asdict().items()
+    }
+
+
+@pytest.mark.parametrize("name", [n for n in scenes() if n != "one sphere"])
+def test_every_scene_packs_into_the_same_kernel_types(name):
+    reference = numba_types(scenes()["one sphere"])
+    types = numba_types(scenes()[name])
+    different = {f: (reference[f], t) for f, t in types.items() if reference[f] != t}
+    assert not different, f"{name} packs other array types than one sphere: {different}"
+
+
+def test_fresh_processes_sharing_a_cache_compile_only_the_first_scene(tmp_path):
+    """Each scene rendered in a new process, all sharing one new kernel cache: the first
+    compiles, every later one loads. (A cold compile of its own: the shared test cache may
+    hold every variant already, and then a second signature would go unseen.)"""
+    env = {**os.environ, "WHITTED_CACHE_DIR": str(tmp_path)}
+    sources = []
+    for name in scenes():
+        child = (
+            "from core import RenderSettings, render\n"
+            "from tests.core.test_kernel_signature import scenes\n"
+            f"out = render(scenes()[{name!r}], RenderSettings(4, 4, pixel_samples=1))\n"
+            "print(out.stats.kernel_source)\n"
+        )
+        done = subprocess.run(
+            [sys.executable, "-c", child], cwd=ROOT, env=env, capture_output=True, text=True
+        )
+        assert done.returncode == 0, done.stderr
+        sources.append(done.stdout.split()[-1])
+    assert sources == ["compiled"] + ["cache"] * (len(sources) - 1), dict(
+        zip(scenes(), sources, strict=True)
+    )
