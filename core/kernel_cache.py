@@ -15,14 +15,17 @@ from pathlib import Path
 
 from core.jit import kernel_cache_dir
 
-_NUMBA_CACHE_READER = str(Path("numba") / "core" / "caching.py")
+_NUMBA_CACHE = str(Path("numba") / "core" / "caching.py")
 
 
 def raised_reading_cache(error: BaseException) -> bool:
-    """Whether `error` was raised while numba read a cached kernel."""
+    """Whether `error` was raised while numba read a cached kernel (in one of its cache
+    module's load functions: an error while writing, a full disk say, is not damage, and
+    compiling again would only meet it again)."""
     trace = error.__traceback__
     while trace is not None:
-        if trace.tb_frame.f_code.co_filename.endswith(_NUMBA_CACHE_READER):
+        code = trace.tb_frame.f_code
+        if code.co_filename.endswith(_NUMBA_CACHE) and code.co_name.lstrip("_").startswith("load"):
             return True
         trace = trace.tb_next
     return False

@@ -65,3 +65,29 @@ def test_a_damaged_cache_is_removed_and_rebuilt(tmp_path, how, files):
 def test_errors_that_are_not_the_cache_are_not_swallowed():
     with pytest.raises(ZeroDivisionError):
         load_or_rebuild(lambda: 1 / 0)
+
+
+def test_an_error_while_writing_the_cache_is_not_taken_for_damage(monkeypatch, tmp_path):
+    """A full disk while numba saves a kernel is not a damaged cache: compiling again would
+    only meet it again, so it is raised as it is, after one compile."""
+    from numba.core import caching
+
+    from tests.core.cache_probe import doubled
+
+    assert doubled(1.0) == 2.0  # compiled or loaded before the disk fills
+
+    def disk_full(self, name, data):
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(caching.IndexDataCacheFile, "_save_data", disk_full)
+    # Were it taken for damage, the folder removed would be this one, not the shared cache
+    monkeypatch.setenv("WHITTED_CACHE_DIR", str(tmp_path))
+    compiles = []
+
+    def compile_again():
+        compiles.append(1)
+        doubled.recompile()  # compiles, then saves to the cache
+
+    with pytest.raises(OSError, match="No space left"):
+        load_or_rebuild(compile_again)
+    assert len(compiles) == 1
