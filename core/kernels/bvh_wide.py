@@ -13,8 +13,9 @@ An unused slot has the empty box (lo = +inf, hi = -inf), which every ray misses.
 
 The slab test runs in float32 and stays conservative (it never culls a box the exact ray
 meets): the ray origin is rounded per axis towards the side that can only lower a near
-distance and raise a far one (`SlabRay`), and the far distance is widened by more than the
-three float32 roundings of (box - origin) * inverse can move it (Ize 2013, in float32).
+distance and raise a far one (`SlabRay`), and the far distance is widened by more than its
+float32 roundings can move it: those of (box - origin) * inverse, of the inverse itself and of
+the widening product (`SLAB_WIDEN32`; Ize 2013, in float32).
 
 Measured on the million-triangle benchmark mesh (mesh traversal alone, one process, as Mrays/s
 per core, primary / incoherent / shadow): four-wide in float64, 6.5 / 1.35 / 3.0; eight-wide
