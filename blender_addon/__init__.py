@@ -43,9 +43,9 @@ def _make_core_importable() -> None:
 
 _make_core_importable()
 
-from . import engine, lua_import, operators, properties, ui  # noqa: E402  (core on sys.path first)
+from . import engine, kernel_status, lua_import, operators, properties, ui  # noqa: E402
 
-_modules = (properties, engine, operators, lua_import, ui)
+_modules = (properties, engine, operators, lua_import, ui, kernel_status)
 
 
 def register():

@@ -9,6 +9,7 @@ import bpy
 import numpy as np
 
 import core
+from core.warmup_process import shared_warmup
 
 from . import export
 
@@ -25,11 +26,8 @@ class WhittedRenderEngine(bpy.types.RenderEngine):
             export_s = time.perf_counter() - start
             for warning in warnings:
                 self.report({"WARNING"}, warning)
-            self.update_stats(
-                "",
-                "Whitted | Loading kernels (the first render after an install compiles "
-                "them, a minute or two)",
-            )
+            if not self._kernels_ready():
+                return
             layer = depsgraph.view_layer.name
 
             region = settings.pixel_region()
@@ -57,6 +55,27 @@ class WhittedRenderEngine(bpy.types.RenderEngine):
         )
         self.update_stats("", summary)
         print(summary)
+
+    def _kernels_ready(self) -> bool:
+        """Wait for the kernel warm-up (started when the add-on loaded, or now), showing its
+        steps in the render's stats and, for `blender -b`, on stdout. False if Esc was
+        pressed meanwhile: the warm-up goes on, the render stops."""
+
+        def show(status):
+            self.update_stats("", f"Whitted | {status.text}")
+            print(f"Whitted: {status.text}", flush=True)
+
+        warmup = shared_warmup()
+        warmup.start()
+        status = warmup.wait(self._cancelled, show)
+        if status.state == "running":
+            print("Whitted: render cancelled while the kernels compile", flush=True)
+            return False
+        if status.state == "failed":
+            self.report({"WARNING"}, f"Whitted: {status.text}; compiling in this process")
+            print(f"Whitted: {status.text}; compiling in this process", flush=True)
+        self.update_stats("", "Whitted | Loading kernels")
+        return True
 
     def _cancelled(self):
         """Esc in the UI, or a cancelled job; polled by the driver between tiles."""

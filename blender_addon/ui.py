@@ -6,6 +6,7 @@ colour and power, material slots) are opened to Whitted by adding it to their CO
 
 import bpy
 
+from . import kernel_status
 from .csg_export import OPERATIONS, boolean_modifiers, operand_objects
 from .engine import WhittedRenderEngine
 from .material_export import find_node
@@ -58,6 +59,9 @@ class WHITTED_PT_render(WhittedPanel, bpy.types.Panel):
             self.layout.prop(settings, name)
         for name in ("shadow_sampling", "seed", "tile_size"):
             self.layout.prop(settings, name)
+        warmup = kernel_status.status_text()
+        if warmup:
+            self.layout.label(text=warmup, icon="TIME")
         render = context.scene.render
         self.layout.prop(render, "threads_mode")
         row = self.layout.row()

@@ -20,6 +20,7 @@ from pathlib import Path
 from core.cs488 import ScriptError, load_script
 from core.errors import SceneError
 from core.image_io import save_png
+from core.kernel_warmup import kernels_ready, warm_kernels
 from core.render import render
 
 BAR_WIDTH = 30
@@ -55,6 +56,9 @@ def _render_script(script: Path, output: Path | None, threads: int) -> int:
         raise ScriptError(
             f"{script.name}: the script calls gr.render {len(calls)} times; -o names one file"
         )
+    if not kernels_ready():
+        # The first render on a machine: say what it is waiting for, step by step
+        warm_kernels(lambda line: print(line, file=sys.stderr, flush=True))
     for call in calls:
         for warning in call.warnings:
             print(f"warning: {warning}", file=sys.stderr)

@@ -94,7 +94,7 @@ def _push_all(stack, top, links, node, e):
 def mesh_closest(boxes, links, corners, root, o, d, t_max, stack, stack_t):
     """Nearest triangle of the mesh whose BVH starts at node `root`, for a ray in its object
     space: (t, triangle slot, b1, b2). Children are visited nearest first: those a ray
-    enters go onto the stack sorted by entry distance. Inlined into `closest_hit` by numba:
+    enters go onto the stack sorted by entry distance. Inlined into `closest_hit`:
     measured 8% more primary rays per second than a call."""
     ray, shear, o_sheared = _ray_constants(o, d)
     best_t, best_tri, best_v, best_w, best_det = t_max, -1, 0.0, 0.0, 1.0

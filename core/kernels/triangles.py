@@ -15,7 +15,7 @@ hit, so the test needs no count. Measured against triangles stored one a row: th
 for nearest hits, 10% more shadow rays per second.
 """
 
-from core.jit import inlined_kernel, kernel
+from core.jit import inlined_kernel, ir_inlined_kernel, kernel
 from core.kernels.shapes import NO_HIT
 
 LEAF_WIDTH = 4  # triangles of a block, tested at once by `intersect_leaf`; no leaf holds more
@@ -55,7 +55,7 @@ def permuted(o, shear):
     return _component(o, shear[0]), _component(o, shear[1]), _component(o, shear[2])
 
 
-@inlined_kernel
+@ir_inlined_kernel
 def _triangle_lane(b, lane, shear, o, t_min, t_max):
     """(t, v, w, det) of the triangle in column `lane` of block b (9, 4), NO_HIT in t on a
     miss: its barycentric weights are v / det and w / det (see `barycentrics`), and
@@ -118,7 +118,7 @@ def intersect_triangle(corners, slot, o, shear, t_min, t_max):
     return t, b1, b2, FACING_SIGN * det
 
 
-@inlined_kernel
+@ir_inlined_kernel
 def intersect_leaf(corners, block, o, shear, t_min, t_max):
     """The four slots of a leaf block tested at once, as four (t, v, w, det) of
     `_triangle_lane`. Straight-line lanes for the SLP vectorizer: measured 5% more

@@ -98,3 +98,19 @@ def test_an_animation_renders_frame_by_frame(tmp_path):
     )  # fmt: skip
     assert run.returncode == 0 and "Traceback" not in run.stdout + run.stderr, run.stdout
     assert sorted(p.name for p in tmp_path.iterdir()) == ["frame_0003.png", "frame_0004.png"]
+
+
+def test_a_first_render_on_a_new_machine_prints_the_kernel_compile_steps(tmp_path, monkeypatch):
+    """With an empty kernel cache the render waits for the warm-up process, printing each
+    step as it starts, and then loads every kernel from the cache the warm-up filled. (A
+    cold compile of its own, about a minute.)"""
+    monkeypatch.setenv("WHITTED_CACHE_DIR", str(tmp_path / "cache"))
+    run = blender_34(
+        str(SAMPLE), "--addons", "whitted", "-E", "WHITTED", "-o", f"{tmp_path}/out_####",
+        "-F", "PNG", "-f", "1",
+    )  # fmt: skip
+    assert run.returncode == 0, run.stdout + run.stderr
+    steps = [line for line in run.stdout.splitlines() if "compiling kernels:" in line]
+    assert steps and steps[0] == "Whitted: compiling kernels: 1 of 4 (scene packing)", run.stdout
+    assert steps[-1] == "Whitted: compiling kernels: 4 of 4 (render kernel)", run.stdout
+    assert "kernels cache" in run.stdout and (tmp_path / "out_0001.png").is_file()

@@ -1,0 +1,84 @@
+"""The kernel warm-up as Blender shows it: started early, in the status bar while it runs.
+
+In Blender's window the warm-up process (`core.warmup_process`) starts as soon as the add-on
+loads, so that the kernels are usually ready by the first F12; a timer on the main thread
+reads its status twice a second and shows the step in the status bar ("Whitted: compiling
+kernels: 2 of 4 (nearest hits), 12 s") and the render panel. Under `blender -b` nothing
+starts at load (a farm node rendering with another engine should not compile), the first
+render starts it and prints the same lines.
+"""
+
+import contextlib
+
+import bpy
+
+from core.warmup_process import shared_warmup
+
+POLL_S = 0.5
+
+
+def status_text() -> str:
+    """One line for the status bar and the render panel, or "" when there is nothing to say."""
+    status = shared_warmup().status()
+    if status.state == "running":
+        return f"Whitted: {status.text}, {status.seconds:.0f} s"
+    if status.state == "failed":
+        return "Whitted: kernel warm-up failed; the first render compiles them itself"
+    return ""
+
+
+def _show_in_windows(text: str | None) -> None:
+    """Put `text` in every window's status bar (None gives the bar back to Blender), and
+    redraw the Properties editors, whose render panel shows it too."""
+    for window in bpy.context.window_manager.windows:
+        # status_text_set finds the status bar through the context's window, which a timer
+        # does not have
+        with bpy.context.temp_override(window=window):
+            window.workspace.status_text_set(text)
+        for area in window.screen.areas:
+            if area.type == "PROPERTIES":
+                area.tag_redraw()
+
+
+def _poll():
+    """Timer: keep the status bar current while the warm-up runs; give it back once done."""
+    running = shared_warmup().status().state == "running"
+    # No window yet, or one closing: try again on the next tick
+    with contextlib.suppress(AttributeError, RuntimeError, ReferenceError, TypeError):
+        _show_in_windows(status_text() if running else None)
+    return POLL_S if running else None
+
+
+def _start_in_window():
+    if not bpy.app.background:
+        shared_warmup().start()
+        if shared_warmup().status().state == "running":
+            bpy.app.timers.register(_poll, first_interval=POLL_S, persistent=True)
+    return None
+
+
+def warmup_command() -> list[str] | None:
+    """Blender's own binary in background mode, running `core.kernel_warmup` with this
+    process's module path; None for `bpy` as a Python module, whose interpreter is
+    sys.executable."""
+    binary = bpy.app.binary_path
+    if not binary:
+        return None
+    run = "import runpy; runpy.run_module('core.kernel_warmup', run_name='__main__')"
+    return [binary, "-b", "--factory-startup", "--python-use-system-env",
+            "--python-exit-code", "1", "--python-expr", run]  # fmt: skip
+
+
+def register():
+    shared_warmup(warmup_command())
+    # Not during register itself: Blender may still be loading its start-up file; persistent,
+    # or loading a .blend given on the command line would drop it
+    bpy.app.timers.register(_start_in_window, first_interval=1.0, persistent=True)
+
+
+def unregister():
+    for timer in (_poll, _start_in_window):
+        if bpy.app.timers.is_registered(timer):
+            bpy.app.timers.unregister(timer)
+    with contextlib.suppress(AttributeError, RuntimeError, ReferenceError, TypeError):
+        _show_in_windows(None)

@@ -1,0 +1,143 @@
+"""Compile every kernel a render needs before a render asks, in steps that report progress.
+
+A cold compile takes tens of seconds. Blender must not wait on it with a frozen window, so
+the add-on runs `python -m core.kernel_warmup` in a process of its own, which fills the
+shared kernel cache and prints one progress line a step; the render then only loads the
+cache. The command line and the fallback compile run the same steps in-process.
+
+Each step compiles one group of kernels for a scene that holds one of every kind of thing
+(shapes, a mesh, CSG, a texture, both kinds of light). Since every scene packs into the same
+array types (`core.packing.kernel_ready`), kernels compiled for it serve every scene; the
+kernels the render kernel calls are compiled first, each on its own, so that the steps show
+where a compile is, and the render kernel finds them done.
+
+A marker file in the cache folder says that all steps finished there, so the add-on starts
+no process when the cache is complete.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+import time
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+
+from core.jit import kernel_cache_dir
+
+PROGRESS_PREFIX = "Whitted: compiling kernels: "
+READY_PREFIX = "Whitted: kernels ready"
+MARKER = "warm.ok"
+
+
+def warmup_scene():
+    """A small scene with one of everything a packed scene can hold."""
+    from core import (
+        AreaLight,
+        Box,
+        Csg,
+        Cylinder,
+        Material,
+        Mesh,
+        PointLight,
+        Scene,
+        Sphere,
+        Texture,
+        Torus,
+        TriangleMesh,
+    )
+
+    def moved(x):
+        m = np.eye(4)
+        m[0, 3] = x
+        return m
+
+    # A tetrahedron: enough triangles for a mesh BVH with a leaf
+    vertices = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], float)
+    triangles = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+    checker = np.zeros((2, 2, 3))
+    checker[0, 0] = checker[1, 1] = 1.0
+    glass = Material(transparency=0.5, reflectivity=0.3)
+    return Scene(
+        shapes=[
+            Sphere("Sphere", glass, world_from_object=moved(-2)),
+            Torus("Torus", world_from_object=moved(2)),
+            Mesh("Mesh", mesh=TriangleMesh(vertices, triangles), world_from_object=moved(4)),
+            Csg("Csg", operation="difference", left=Box("Box"), right=Cylinder("Cylinder")),
+            Sphere("Textured", Material(texture=Texture(pixels=checker)), moved(6)),
+        ],
+        lights=[
+            PointLight((0.0, -4.0, 4.0), (1.0, 1.0, 1.0)),
+            AreaLight((0.0, 0.0, 4.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (5.0, 5.0, 5.0)),
+        ],
+    )
+
+
+def warmup_steps() -> list[tuple[str, Callable[[], None]]]:
+    """(what it compiles, how) for each step, in order."""
+    from core import RenderSettings
+    from core.kernels.light_pyramid import TRAVERSE_ALL
+    from core.kernels.trace import closest_hit, transmittance
+    from core.kernels.workspace import new_workspace
+    from core.packing import compile_scene
+    from core.render import prepare_kernels
+
+    packed = []
+    stacks = new_workspace(0).stacks
+    o, d = (0.0, -5.0, 0.5), (0.0, 1.0, 0.0)
+
+    def pack():
+        packed.append(compile_scene(warmup_scene(), RenderSettings(8, 8)).packed)
+
+    return [
+        ("scene packing", pack),
+        ("nearest hits", lambda: closest_hit(packed[0].geometry, o, d, math.inf, stacks)),
+        ("shadow rays", lambda: transmittance(packed[0].geometry, o, d, 9.0, stacks, TRAVERSE_ALL)),
+        ("render kernel", lambda: prepare_kernels(packed[0])),
+    ]
+
+
+def progress_line(step: int, steps: int, label: str) -> str:
+    return f"{PROGRESS_PREFIX}{step} of {steps} ({label})"
+
+
+def warm_kernels(report: Callable[[str], None] = print) -> float:
+    """Run every step in this process, report(line) before each; returns the seconds taken.
+    Writes the marker when all are done."""
+    start = time.perf_counter()
+    steps = warmup_steps()
+    took = []
+    for number, (label, compile_step) in enumerate(steps, 1):
+        report(progress_line(number, len(steps), label))
+        step_start = time.perf_counter()
+        compile_step()
+        took.append(f"{label} {time.perf_counter() - step_start:.1f} s")
+    seconds = time.perf_counter() - start
+    marker_path().parent.mkdir(parents=True, exist_ok=True)
+    marker_path().write_text(f"{seconds:.1f} s: " + ", ".join(took) + "\n")
+    report(f"{READY_PREFIX} in {seconds:.1f} s (" + ", ".join(took) + ")")
+    return seconds
+
+
+def marker_path() -> Path:
+    return kernel_cache_dir() / MARKER
+
+
+def kernels_ready() -> bool:
+    """Whether a warm-up finished in this version's cache folder."""
+    return marker_path().is_file()
+
+
+def main() -> int:
+    import core
+
+    # The first line names the package compiled, for the parent to check it is its own
+    print(f"Whitted: core {Path(core.__file__).resolve().parent}", flush=True)
+    warm_kernels(lambda line: print(line, flush=True))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,111 @@
+"""The warm-up process as the add-on watches it, with stand-in children (shell scripts that
+print what `python -m core.kernel_warmup` prints, or fail): progress lines become its
+status, a cancelled wait returns at once while the child goes on, a failed or foreign child
+is reported as failed with its last words. The real warm-up's compile is tested in
+test_kernel_signature."""
+
+import os
+import stat
+import time
+from pathlib import Path
+
+import pytest
+
+import core
+from core import kernel_warmup
+from core.warmup_process import WarmupProcess
+
+OWN_CORE = Path(core.__file__).resolve().parent
+
+
+def fake_python(tmp_path, body: str) -> str:
+    script = tmp_path / "python"
+    script.write_text("#!/bin/sh\n" + body)
+    script.chmod(script.stat().st_mode | stat.S_IXUSR)
+    return [str(script)]
+
+
+@pytest.fixture(autouse=True)
+def empty_cache(tmp_path, monkeypatch):
+    monkeypatch.setenv("WHITTED_CACHE_DIR", str(tmp_path / "cache"))
+
+
+def wait_until_done(warmup, seconds=20.0):
+    deadline = time.monotonic() + seconds
+    while warmup.status().state == "running" and time.monotonic() < deadline:
+        time.sleep(0.02)
+    return warmup.status()
+
+
+def test_progress_lines_become_the_status_and_a_clean_exit_is_ready(tmp_path):
+    python = fake_python(
+        tmp_path,
+        f'echo "Whitted: core {OWN_CORE}"\n'
+        'echo "Whitted: compiling kernels: 1 of 2 (scene packing)"\n'
+        "sleep 0.3\n"
+        'echo "Whitted: compiling kernels: 2 of 2 (render kernel)"\n'
+        "sleep 0.3\n",
+    )
+    warmup = WarmupProcess(python)
+    warmup.start()
+    seen = []
+    status = warmup.wait(lambda: False, lambda s: seen.append(s.text), poll_s=0.01)
+    assert status.state == "ready"
+    steps = [text for text in seen if text != "compiling kernels: starting"]
+    assert steps == ["compiling kernels: 1 of 2 (scene packing)",
+                     "compiling kernels: 2 of 2 (render kernel)"]  # fmt: skip
+
+
+def test_a_cancelled_wait_returns_at_once_and_the_child_goes_on(tmp_path):
+    done = tmp_path / "done"
+    python = fake_python(
+        tmp_path,
+        f'echo "Whitted: compiling kernels: 1 of 1 (render kernel)"\nsleep 1.5\ntouch {done}\n',
+    )
+    warmup = WarmupProcess(python)
+    warmup.start()
+    start = time.monotonic()
+    status = warmup.wait(lambda: True, lambda s: None, poll_s=0.01)
+    assert status.state == "running"
+    assert time.monotonic() - start < 0.5
+    assert wait_until_done(warmup).state == "ready"
+    assert done.exists()
+
+
+def test_a_failing_child_is_reported_with_its_last_words_and_not_retried(tmp_path):
+    python = fake_python(tmp_path, 'echo "ModuleNotFoundError: No module named numba"\nexit 1\n')
+    warmup = WarmupProcess(python)
+    warmup.start()
+    status = wait_until_done(warmup)
+    assert status.state == "failed"
+    assert "status 1" in status.text and "No module named numba" in status.text
+    warmup.start()
+    assert warmup.status().state == "failed"
+
+
+def test_a_child_that_compiled_another_core_is_a_failure(tmp_path):
+    python = fake_python(tmp_path, 'echo "Whitted: core /somewhere/else/core"\n')
+    warmup = WarmupProcess(python)
+    warmup.start()
+    status = wait_until_done(warmup)
+    assert status.state == "failed" and "/somewhere/else/core" in status.text
+
+
+def test_an_interpreter_that_cannot_start_is_a_failure(tmp_path):
+    warmup = WarmupProcess([str(tmp_path / "no-such-python")])
+    warmup.start()
+    status = warmup.status()
+    assert status.state == "failed" and "could not start" in status.text
+
+
+def test_no_child_starts_when_the_cache_is_complete(tmp_path):
+    marker = kernel_warmup.marker_path()
+    marker.parent.mkdir(parents=True)
+    marker.write_text("done\n")
+    started = tmp_path / "started"
+    warmup = WarmupProcess(fake_python(tmp_path, f"touch {started}\n"))
+    warmup.start()
+    assert warmup.status().state == "ready"
+    time.sleep(0.2)
+    assert not started.exists()
+    assert os.environ["WHITTED_CACHE_DIR"] in str(marker)
