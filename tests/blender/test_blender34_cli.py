@@ -110,7 +110,11 @@ def test_a_first_render_on_a_new_machine_prints_the_kernel_compile_steps(tmp_pat
         "-F", "PNG", "-f", "1",
     )  # fmt: skip
     assert run.returncode == 0, run.stdout + run.stderr
-    steps = [line for line in run.stdout.splitlines() if "compiling kernels:" in line]
+    lines = run.stdout.splitlines()
+    steps = [
+        line for line in lines if line.startswith("Whitted: compiling kernels: ") and " of " in line
+    ]
     assert steps and steps[0] == "Whitted: compiling kernels: 1 of 4 (scene packing)", run.stdout
     assert steps[-1] == "Whitted: compiling kernels: 4 of 4 (render kernel)", run.stdout
+    assert "exited with status" not in run.stdout
     assert "kernels cache" in run.stdout and (tmp_path / "out_0001.png").is_file()
