@@ -1,9 +1,9 @@
 """Compile every kernel a render needs before a render asks, in steps that report progress.
 
 A cold compile takes tens of seconds. Blender must not wait on it with a frozen window, so
-the add-on runs `python -m core.kernel_warmup` in a process of its own, which fills the
-shared kernel cache and prints one progress line a step; the render then only loads the
-cache. The command line and the fallback compile run the same steps in-process.
+the add-on runs this module as a program in a process of its own (`core.warmup_process`),
+which fills the shared kernel cache and prints one progress line a step; the render then
+only loads the cache. The command line runs the same steps in-process.
 
 Each step compiles one group of kernels for a scene that holds one of every kind of thing
 (shapes, a mesh, CSG, a texture, both kinds of light). Since every scene packs into the same
