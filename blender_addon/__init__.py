@@ -19,6 +19,15 @@ bl_info = {
 }
 
 
+def _import_as_core(folder: Path) -> None:
+    spec = importlib.util.spec_from_file_location(
+        "core", folder / "__init__.py", submodule_search_locations=[str(folder)]
+    )
+    module = importlib.util.module_from_spec(spec)
+    sys.modules["core"] = module
+    spec.loader.exec_module(module)
+
+
 def _make_core_importable() -> None:
     """Find `core` and its packages: in the zip a user installed (`core` inside the add-on,
     numba and Pillow as the extension's wheels), or from a link into Blender's add-ons
@@ -28,12 +37,18 @@ def _make_core_importable() -> None:
     """
     here = Path(__file__).resolve().parent
     checkout = here.parent
-    if importlib.util.find_spec("core") is None:
-        # An installed zip carries `core` inside the add-on; a checkout has it beside it
-        for folder in (here, checkout):
-            if (folder / "core").is_dir():
-                sys.path.append(str(folder))
-                break
+    own_core = here / "core"
+    if own_core.is_dir():
+        # An installed zip carries `core` inside the add-on: that one, which its shipped
+        # kernels were compiled from, even where another package of that common name can be
+        # imported (an editable install of a checkout, say)
+        if str(here) not in sys.path:
+            sys.path.append(str(here))
+        found = importlib.util.find_spec("core")
+        if found is None or Path(found.origin).resolve().parent != own_core:
+            _import_as_core(own_core)
+    elif importlib.util.find_spec("core") is None:
+        sys.path.append(str(checkout))
     if importlib.util.find_spec("numba") is None:
         version = f"python{sys.version_info[0]}.{sys.version_info[1]}"
         site = checkout / ".venv" / "lib" / version / "site-packages"

@@ -16,6 +16,7 @@ from pathlib import Path
 import numba
 from numba.core import types
 
+from core.portable_cache import choose_cpu_target, use_relocatable_cache_folders
 from core.version import VERSION
 
 
@@ -35,6 +36,10 @@ def kernel_cache_dir() -> Path:
 
 
 numba.config.CACHE_DIR = str(kernel_cache_dir())
+# The cache can be moved to another folder and another machine (core.portable_cache): the
+# extension ships it filled
+use_relocatable_cache_folders()
+CPU_TARGET = choose_cpu_target()
 
 # The four-wide BVH's box tests are written as four straight-line copies for LLVM's SLP
 # vectorizer to merge into vector instructions (core.kernels.bvh_wide): 1.6x the rays per

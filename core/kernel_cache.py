@@ -7,13 +7,24 @@ found and deleted the folder. Such an error is told apart from any other by wher
 raised: in numba's cache reader. Then the whole cache folder of this version goes (a kernel's
 cached copy may be inlined in another's, so no single file can be trusted alone), and the
 kernels compile again.
+
+The extension ships its kernels compiled (`make addon`; core.portable_cache says how one
+cache serves other folders and machines): the first look for a complete cache copies them
+into the user's cache folder, so a new install renders without compiling.
 """
 
+import os
 import shutil
 import sys
 from pathlib import Path
 
 from core.jit import kernel_cache_dir
+from core.portable_cache import PACKAGE_ROOT
+
+# Where the extension's zip holds its compiled kernels: beside `core`, one folder a version
+SHIPPED_KERNELS = PACKAGE_ROOT / "kernel_cache"
+# Left in a cache folder that healed: a damaged shipped copy is not copied in again
+REFUSED = "shipped.refused"
 
 _NUMBA_CACHE = str(Path("numba") / "core" / "caching.py")
 
@@ -42,6 +53,8 @@ def load_or_rebuild(get_kernels):
             raise
         folder = kernel_cache_dir()
         shutil.rmtree(folder, ignore_errors=True)
+        folder.mkdir(parents=True, exist_ok=True)
+        (folder / REFUSED).touch()
         print(
             f"Whitted: the kernel cache was damaged ({type(error).__name__}: {error}); "
             f"removed {folder} and compiling the kernels again",
@@ -49,3 +62,33 @@ def load_or_rebuild(get_kernels):
             flush=True,
         )
         return get_kernels(), True
+
+
+def shipped_kernels() -> Path:
+    return SHIPPED_KERNELS / kernel_cache_dir().name
+
+
+def copy_shipped_kernels(marker: str) -> bool:
+    """Copy the extension's compiled kernels for this version into the user's cache folder
+    if they were compiled for this CPU target (their warm-up left `marker`) and the folder
+    has no complete warm-up of its own. Each file lands whole (copied aside, then renamed), so
+    a render reading the folder meanwhile sees the old file or the new one; the marker comes
+    last. Returns whether it copied."""
+    source, target = shipped_kernels(), kernel_cache_dir()
+    if not (source / marker).is_file() or (target / marker).is_file():
+        return False
+    if (target / REFUSED).exists():
+        return False
+    files = [p for p in source.rglob("*") if p.is_file() and p.name != marker]
+    for path in [*files, source / marker]:
+        destination = target / path.relative_to(source)
+        destination.parent.mkdir(parents=True, exist_ok=True)
+        partial = destination.with_name(f".{destination.name}.{os.getpid()}.partial")
+        shutil.copyfile(path, partial)
+        os.replace(partial, destination)
+    print(
+        f"Whitted: copied the extension's compiled kernels ({marker}) into {target}",
+        file=sys.stderr,
+        flush=True,
+    )
+    return True

@@ -25,11 +25,13 @@ from pathlib import Path
 
 import numpy as np
 
-from core.jit import kernel_cache_dir
+from core.jit import CPU_TARGET, kernel_cache_dir
+from core.kernel_cache import copy_shipped_kernels
 
 PROGRESS_PREFIX = "Whitted: compiling kernels: "
 READY_PREFIX = "Whitted: kernels ready"
-MARKER = "warm.ok"
+# One for each CPU target: a cache folder can hold the kernels of several (core.portable_cache)
+MARKER = f"warm-{CPU_TARGET}.ok"
 
 
 def warmup_scene():
@@ -126,7 +128,9 @@ def marker_path() -> Path:
 
 
 def kernels_ready() -> bool:
-    """Whether a warm-up finished in this version's cache folder."""
+    """Whether a warm-up for this CPU target finished in this version's cache folder, or the
+    extension shipped one that is now copied there."""
+    copy_shipped_kernels(MARKER)
     return marker_path().is_file()
 
 

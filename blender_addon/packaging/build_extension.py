@@ -1,6 +1,8 @@
 """Build the zip a Blender user installs: a Blender 4.2+ extension (blender_manifest.toml,
-with numba, llvmlite, Pillow and lupa bundled as wheels; Blender brings numpy). Blender 3.4 to 4.1
-load the same modules as a legacy add-on (bl_info) from a checkout's link instead.
+with numba, llvmlite, Pillow and lupa bundled as wheels; Blender brings numpy), and its kernels
+compiled for x86-64-v3 CPUs, so that a new install renders without compiling first
+(core.portable_cache). Blender 3.4 to 4.1 load the same modules as a legacy add-on
+(bl_info) from a checkout's link instead.
 
     python blender_addon/packaging/build_extension.py OUT_DIR
 
@@ -11,6 +13,7 @@ them at import) and the wheels the manifest names, for Linux x86-64 and CPython 
 
 from __future__ import annotations
 
+import os
 import re
 import subprocess
 import sys
@@ -35,10 +38,31 @@ def download_wheels(folder: Path) -> list[Path]:
     return sorted(folder.glob("*.whl"))
 
 
-def build(out_dir: Path, with_wheels: bool = True) -> Path:
+def compile_kernels(cache_base: Path) -> Path:
+    """Run the kernel warm-up in a process of its own with its cache in cache_base, for the
+    portable CPU target whatever this machine's (which must be able to run it); returns the
+    folder of this version's kernels. A complete cache there only loads."""
+    from core.portable_cache import PORTABLE_CPU
+
+    env = dict(os.environ, WHITTED_CACHE_DIR=str(cache_base))
+    env.update(NUMBA_CPU_NAME=PORTABLE_CPU, NUMBA_CPU_FEATURES="")
+    folder = subprocess.run(
+        [sys.executable, "-c", "from core.jit import kernel_cache_dir; print(kernel_cache_dir())"],
+        cwd=ROOT, env=env, check=True, capture_output=True, text=True,
+    ).stdout.strip()  # fmt: skip
+    subprocess.run([sys.executable, "-m", "core.kernel_warmup"], cwd=ROOT, env=env, check=True)
+    marker = Path(folder) / f"warm-{PORTABLE_CPU}.ok"
+    if not marker.is_file():
+        raise SystemExit(f"the kernel warm-up left no {marker}")
+    return Path(folder)
+
+
+def build(out_dir: Path, with_wheels: bool = True, kernel_cache: Path | None = None) -> Path:
     """The zip in out_dir, with blender_manifest.toml as it stands in blender_addon/; the
     wheels it names must be the ones downloaded. Without wheels (for tests, offline) their
-    list is left out and the extension relies on the numba and Pillow Blender can import."""
+    list is left out and the extension relies on the numba and Pillow Blender can import.
+    The kernels are compiled with their cache in kernel_cache (out_dir/kernel_cache unless
+    given: a second build only loads them)."""
     sys.path.insert(0, str(ROOT))
     from core.version import VERSION
 
@@ -57,6 +81,7 @@ def build(out_dir: Path, with_wheels: bool = True) -> Path:
             )
     else:
         manifest = re.sub(r"wheels = \[.*?\]\n", "", manifest, flags=re.S)
+    kernels = compile_kernels(kernel_cache or out_dir / "kernel_cache")
     target = out_dir / f"whitted-{VERSION}.zip"
     with zipfile.ZipFile(target, "w", zipfile.ZIP_DEFLATED) as archive:
         archive.writestr("blender_manifest.toml", manifest)
@@ -64,6 +89,10 @@ def build(out_dir: Path, with_wheels: bool = True) -> Path:
             archive.write(path, path.name)
         for path in sorted((ROOT / "core").rglob("*.py")):
             archive.write(path, str(path.relative_to(ROOT)))
+        # numba's index and machine-code files, in the folders core.portable_cache names
+        for path in sorted(kernels.rglob("*")):
+            if path.suffix in (".nbi", ".nbc", ".ok"):
+                archive.write(path, f"kernel_cache/{kernels.name}/{path.relative_to(kernels)}")
         for wheel in wheels:
             archive.write(wheel, f"wheels/{wheel.name}")
     return target

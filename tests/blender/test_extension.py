@@ -1,14 +1,15 @@
-"""The installable zip: Blender 5.0 installs it as an extension, and it renders."""
+"""The installable zip: Blender 5.0 installs it as an extension, and it renders at once with
+the kernels it ships compiled."""
 
 import os
 import subprocess
 import sys
 import zipfile
+from pathlib import Path
 
 import pytest
 
 from blender_addon.packaging.build_extension import build
-from tests.blender.conftest import ROOT
 
 pytestmark = pytest.mark.bpy5
 
@@ -37,14 +38,18 @@ print("IMPORTED", result, sorted(o.name for o in bpy.context.scene.objects))
 
 
 def test_the_zip_installs_as_an_extension_and_renders(tmp_path):
-    target = build(tmp_path / "dist", with_wheels=False)
+    # compiled in the shared test cache: loads, when other tests compiled there first
+    shared = Path(os.environ["WHITTED_CACHE_DIR"])
+    target = build(tmp_path / "dist", with_wheels=False, kernel_cache=shared)
     with zipfile.ZipFile(target) as archive:
         names = archive.namelist()
         manifest = archive.read("blender_manifest.toml").decode()
     assert {"__init__.py", "engine.py", "lua_import.py", "core/__init__.py",
             "core/kernels/trace.py", "core/cs488/sandbox.py"} <= set(names)  # fmt: skip
     assert 'id = "whitted"' in manifest and 'type = "add-on"' in manifest
+    # a new user: no kernel cache of their own yet
     env = dict(os.environ, BLENDER_USER_RESOURCES=str(tmp_path / "blender_home"))
+    env["WHITTED_CACHE_DIR"] = str(tmp_path / "new_user_cache")
     out = tmp_path / "sphere.png"
     script = tmp_path / "ball.lua"
     script.write_text(
@@ -53,10 +58,12 @@ def test_the_zip_installs_as_an_extension_and_renders(tmp_path):
     )
     run = subprocess.run(
         [sys.executable, "-c", INSTALL_AND_RENDER, str(target), str(out), str(script)],
-        env=env, cwd=ROOT, capture_output=True, text=True, timeout=600,
+        env=env, cwd=tmp_path, capture_output=True, text=True, timeout=600,
     )  # fmt: skip
     assert run.returncode == 0, run.stdout + run.stderr
     assert "bl_ext.user_default.whitted.engine" in run.stdout
+    assert "copied the extension's compiled kernels" in run.stderr, run.stdout + run.stderr
+    assert "Whitted: compiling kernels" not in run.stdout + run.stderr
     assert "IMPORTED {'FINISHED'}" in run.stdout and "'ball'" in run.stdout
     from PIL import Image
 

@@ -1,0 +1,77 @@
+"""Kernel caches that move: one cache folder serves any place `core` is unpacked and any
+x86-64 CPU of one feature level, so the extension can ship its kernels compiled.
+
+Two things tie numba's cache to one machine. It names the folder of a module's cached
+kernels by a hash of the module's absolute path, so a cache built where the extension is
+built is not found where Blender unpacks it; the locator here names it by the module's path
+inside the package (`core/kernels`) instead. And numba compiles for the host's exact CPU
+(znver5 with AVX-512 here) and keys every cached kernel by the CPU's name and features, so
+a cache built on one model of CPU never loads on another; here every x86-64 CPU with AVX2
+and FMA (Intel since Haswell, AMD since Zen: the x86-64-v3 level) compiles for that level
+instead, and older or other CPUs for themselves. Set NUMBA_CPU_NAME to choose yourself.
+
+Only numba's own cache files are read; whether a cached kernel fits is still numba's check
+(the same source bytes, numba version and CPU target), so a moved cache that does not fit is
+compiled over, never run.
+"""
+
+import os
+import platform
+from pathlib import Path
+
+import llvmlite.binding as llvm
+import numba
+from numba.core.caching import CacheImpl, UserProvidedCacheLocator
+
+# The folder that holds `core`: cache folders are named by paths below it
+PACKAGE_ROOT = Path(__file__).resolve().parent.parent
+CORE = PACKAGE_ROOT / "core"
+
+PORTABLE_CPU = "x86-64-v3"
+# What x86-64-v3 requires, in LLVM's names for the host's features (v1 and v2 included)
+PORTABLE_CPU_FEATURES = frozenset(
+    ("cmov", "cx8", "fxsr", "mmx", "sse", "sse2", "cx16", "sahf", "popcnt", "sse3", "sse4.1",
+     "sse4.2", "ssse3", "avx", "avx2", "bmi", "bmi2", "f16c", "fma", "lzcnt", "movbe", "xsave")
+)  # fmt: skip
+
+
+class RelocatableCacheLocator(UserProvidedCacheLocator):
+    """numba's locator for a cache folder of one's own (config.CACHE_DIR), with each module's
+    kernels in the folder of its path inside the package rather than of its absolute path."""
+
+    def __init__(self, py_func, py_file):
+        super().__init__(py_func, py_file)
+        inside = Path(py_file).resolve().parent.relative_to(PACKAGE_ROOT)
+        self._cache_path = os.path.join(numba.config.CACHE_DIR, *inside.parts)
+
+    @classmethod
+    def from_function(cls, py_func, py_file):
+        if not Path(py_file).resolve().is_relative_to(CORE):
+            return None  # not ours: numba's own locators decide
+        return super().from_function(py_func, py_file)
+
+
+def host_has_portable_level() -> bool:
+    if platform.machine().lower() not in ("x86_64", "amd64"):
+        return False
+    features = llvm.get_host_cpu_features()
+    return all(features.get(name, False) for name in PORTABLE_CPU_FEATURES)
+
+
+def choose_cpu_target() -> str:
+    """Set numba's CPU target (before anything compiles) and return its name."""
+    if os.environ.get("NUMBA_CPU_NAME"):
+        return os.environ["NUMBA_CPU_NAME"]  # the user's choice, read by numba itself
+    if host_has_portable_level():
+        numba.config.CPU_NAME = PORTABLE_CPU
+        numba.config.CPU_FEATURES = ""  # exactly the level's features, none of the host's
+        return PORTABLE_CPU
+    return llvm.get_host_cpu_name()
+
+
+def use_relocatable_cache_folders() -> None:
+    """Ours first; numba's own after it, in numba's order, for kernels outside `core` (the
+    list replaces numba's, and names numba's classes as its cache module does)."""
+    names = [f"{__name__}.{RelocatableCacheLocator.__name__}"]
+    names += [locator.__name__ for locator in CacheImpl._locator_classes]
+    numba.config.CACHE_LOCATOR_CLASSES = ",".join(names)

@@ -1,0 +1,119 @@
+"""Kernel caches that move (core.portable_cache, core.kernel_cache): a cache filled where
+`core` lies in one folder loads, without compiling, where a copy of `core` with new file
+times lies in another; kernels compile for the portable x86-64-v3 level on CPUs that have
+it (or for the CPU the user names); the extension's shipped kernels are copied into the
+user's cache only when they were compiled for this process's CPU target."""
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+import pytest
+
+import core
+from core import kernel_cache, kernel_warmup
+from core.kernel_cache import REFUSED, load_or_rebuild
+from core.portable_cache import PORTABLE_CPU, host_has_portable_level
+
+CORE = os.path.dirname(core.__file__)
+
+# Compiles (or loads) one small kernel and says which, and where its cache files went
+CALL_A_KERNEL = r"""
+import json, numba
+from core.jit import CPU_TARGET, kernel_cache_dir
+from core.kernels.vec import dot
+assert dot((1.0, 2.0, 3.0), (4.0, 5.0, 6.0)) == 32.0
+from numba.core.registry import cpu_target
+print(json.dumps({"hits": sum(dot.stats.cache_hits.values()),
+                  "misses": sum(dot.stats.cache_misses.values()),
+                  "target": CPU_TARGET,
+                  "magic": list(cpu_target.target_context.codegen().magic_tuple()),
+                  "cache": str(kernel_cache_dir())}))
+"""
+
+
+def call_a_kernel(package_root, cache_base, **more_env):
+    env = {**os.environ, "PYTHONPATH": str(package_root), "WHITTED_CACHE_DIR": str(cache_base)}
+    run = subprocess.run(
+        [sys.executable, "-c", CALL_A_KERNEL], cwd=package_root, env={**env, **more_env},
+        capture_output=True, text=True, timeout=300,
+    )  # fmt: skip
+    assert run.returncode == 0, run.stderr
+    return json.loads(run.stdout.splitlines()[-1])
+
+
+def copy_core(to):
+    # shutil.copy gives every file a new modification time, as unpacking a zip does
+    ignore = shutil.ignore_patterns("__pycache__")
+    shutil.copytree(CORE, to / "core", copy_function=shutil.copy, ignore=ignore)
+    return to
+
+
+def test_a_cache_moved_with_core_to_another_folder_loads_without_compiling(tmp_path):
+    first = call_a_kernel(copy_core(tmp_path / "built_here"), tmp_path / "cache")
+    assert first["misses"] == 1 and first["hits"] == 0
+    shutil.copytree(tmp_path / "cache", tmp_path / "moved_cache")
+    moved = call_a_kernel(copy_core(tmp_path / "installed_there"), tmp_path / "moved_cache")
+    assert moved["hits"] == 1 and moved["misses"] == 0, moved
+    # in the folder named by the module's place in the package, not by its absolute path
+    assert list((tmp_path / "moved_cache").glob("*/core/kernels/vec.dot-*.nbi")), moved
+
+
+@pytest.mark.skipif(not host_has_portable_level(), reason="this CPU lacks x86-64-v3")
+def test_kernels_compile_for_the_portable_level_or_the_cpu_the_user_names(tmp_path):
+    ours = call_a_kernel(copy_core(tmp_path / "a"), tmp_path / "cache")
+    assert ours["target"] == PORTABLE_CPU and ours["magic"][1:] == [PORTABLE_CPU, ""], ours
+    named = call_a_kernel(tmp_path / "a", tmp_path / "cache", NUMBA_CPU_NAME="generic")
+    # another target's kernels are compiled anew beside the first, never run
+    assert named["magic"][1:] == ["generic", ""] and named["misses"] == 1, named
+
+
+@pytest.fixture
+def shipped(tmp_path, monkeypatch):
+    """A stand-in for the extension's kernel_cache folder, and an empty user cache."""
+    monkeypatch.setenv("WHITTED_CACHE_DIR", str(tmp_path / "user_cache"))
+    monkeypatch.setattr(kernel_cache, "SHIPPED_KERNELS", tmp_path / "extension" / "kernel_cache")
+    folder = kernel_cache.shipped_kernels()
+    (folder / "core" / "kernels").mkdir(parents=True)
+    (folder / "core" / "kernels" / "trace.closest_hit-12.py311.nbi").write_bytes(b"index")
+    (folder / "core" / "kernels" / "trace.closest_hit-12.py311.1.nbc").write_bytes(b"code" * 99)
+    return folder
+
+
+def test_shipped_kernels_for_this_target_are_copied_once(shipped, capsys):
+    (shipped / kernel_warmup.MARKER).write_text("built\n")
+    assert kernel_warmup.kernels_ready()
+    user = kernel_warmup.kernel_cache_dir()
+    for path in shipped.rglob("*"):
+        if path.is_file():
+            assert (user / path.relative_to(shipped)).read_bytes() == path.read_bytes()
+    assert "copied the extension's compiled kernels" in capsys.readouterr().err
+    assert not list(user.rglob("*.partial"))
+    assert kernel_warmup.kernels_ready()
+    assert "copied" not in capsys.readouterr().err  # once: the user's folder is complete now
+
+
+def test_shipped_kernels_for_another_target_are_left_alone(shipped):
+    (shipped / "warm-some-other-cpu.ok").write_text("built\n")
+    assert not kernel_warmup.kernels_ready()
+    assert not kernel_warmup.kernel_cache_dir().exists()
+
+
+def test_a_healed_cache_copies_no_shipped_kernels_again(shipped, monkeypatch):
+    """The heal removes a damaged folder; were the damage in the shipped copy, copying it in
+    again would only damage the next render too."""
+    (shipped / kernel_warmup.MARKER).write_text("built\n")
+    failures = iter([EOFError("cut short")])
+
+    def kernels():
+        for error in failures:
+            raise error
+        return "compiled"
+
+    # as if raised in numba's cache reader, where load_or_rebuild tells damage apart
+    monkeypatch.setattr(kernel_cache, "raised_reading_cache", lambda error: True)
+    assert load_or_rebuild(kernels) == ("compiled", True)
+    assert (kernel_warmup.kernel_cache_dir() / REFUSED).exists()
+    assert not kernel_warmup.kernels_ready()
