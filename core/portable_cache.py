@@ -5,10 +5,14 @@ Two things tie numba's cache to one machine. It names the folder of a module's c
 kernels by a hash of the module's absolute path, so a cache built where the extension is
 built is not found where Blender unpacks it; the locator here names it by the module's path
 inside the package (`core/kernels`) instead. And numba compiles for the host's exact CPU
-(znver5 with AVX-512 here) and keys every cached kernel by the CPU's name and features, so
-a cache built on one model of CPU never loads on another; here every x86-64 CPU with AVX2
-and FMA (Intel since Haswell, AMD since Zen: the x86-64-v3 level) compiles for that level
-instead, and older or other CPUs for themselves. Set NUMBA_CPU_NAME to choose yourself.
+(znver5 here) and keys every cached kernel by the CPU's name and features, so a cache built
+on one model of CPU never loads on another. Here a CPU compiles instead for the highest of
+two x86-64 feature levels it has: x86-64-v4 (AVX-512: Intel Xeons since Skylake, AMD since
+Zen 4) or x86-64-v3 (AVX2 and FMA: Intel since Haswell, AMD since Zen); older or other
+CPUs compile for themselves. Measured on this znver5 (bench_bvh, Embree/ours per core, two
+interleaved rounds each): the host's own 1.25-1.34 primary and 1.11-1.16 shadow, x86-64-v4
+1.20-1.22 and 1.10-1.13, x86-64-v3 1.27-1.42 and 1.20-1.25; so v4, not one v3 for all. Set
+NUMBA_CPU_NAME to choose yourself.
 
 Only numba's own cache files are read; whether a cached kernel fits is still numba's check
 (the same source bytes, numba version and CPU target), so a moved cache that does not fit is
@@ -27,12 +31,15 @@ from numba.core.caching import CacheImpl, UserProvidedCacheLocator
 PACKAGE_ROOT = Path(__file__).resolve().parent.parent
 CORE = PACKAGE_ROOT / "core"
 
-PORTABLE_CPU = "x86-64-v3"
-# What x86-64-v3 requires, in LLVM's names for the host's features (v1 and v2 included)
-PORTABLE_CPU_FEATURES = frozenset(
-    ("cmov", "cx8", "fxsr", "mmx", "sse", "sse2", "cx16", "sahf", "popcnt", "sse3", "sse4.1",
-     "sse4.2", "ssse3", "avx", "avx2", "bmi", "bmi2", "f16c", "fma", "lzcnt", "movbe", "xsave")
-)  # fmt: skip
+# What each level requires, in LLVM's names for the host's features (lower levels included)
+_V3 = (
+    *("cmov", "cx8", "fxsr", "mmx", "sse", "sse2"),
+    *("cx16", "sahf", "popcnt", "sse3", "sse4.1", "sse4.2", "ssse3"),
+    *("avx", "avx2", "bmi", "bmi2", "f16c", "fma", "lzcnt", "movbe", "xsave"),
+)
+_V4 = (*_V3, "avx512f", "avx512bw", "avx512cd", "avx512dq", "avx512vl")
+# Highest first: a CPU compiles for the first it has, and the extension ships kernels for each
+PORTABLE_LEVELS = {"x86-64-v4": frozenset(_V4), "x86-64-v3": frozenset(_V3)}
 
 
 class RelocatableCacheLocator(UserProvidedCacheLocator):
@@ -51,22 +58,27 @@ class RelocatableCacheLocator(UserProvidedCacheLocator):
         return super().from_function(py_func, py_file)
 
 
-def host_has_portable_level() -> bool:
+def host_portable_level() -> str | None:
+    """The highest portable level this CPU has, or None (not x86-64, or older than v3)."""
     if platform.machine().lower() not in ("x86_64", "amd64"):
-        return False
+        return None
     features = llvm.get_host_cpu_features()
-    return all(features.get(name, False) for name in PORTABLE_CPU_FEATURES)
+    for level, required in PORTABLE_LEVELS.items():
+        if all(features.get(name, False) for name in required):
+            return level
+    return None
 
 
 def choose_cpu_target() -> str:
     """Set numba's CPU target (before anything compiles) and return its name."""
     if os.environ.get("NUMBA_CPU_NAME"):
         return os.environ["NUMBA_CPU_NAME"]  # the user's choice, read by numba itself
-    if host_has_portable_level():
-        numba.config.CPU_NAME = PORTABLE_CPU
-        numba.config.CPU_FEATURES = ""  # exactly the level's features, none of the host's
-        return PORTABLE_CPU
-    return llvm.get_host_cpu_name()
+    level = host_portable_level()
+    if level is None:
+        return llvm.get_host_cpu_name()
+    numba.config.CPU_NAME = level
+    numba.config.CPU_FEATURES = ""  # exactly the level's features, none of the host's
+    return level
 
 
 def use_relocatable_cache_folders() -> None:

@@ -1,7 +1,7 @@
 """Build the zip a Blender user installs: a Blender 4.2+ extension (blender_manifest.toml,
 with numba, llvmlite, Pillow and lupa bundled as wheels; Blender brings numpy), and its kernels
-compiled for x86-64-v3 CPUs, so that a new install renders without compiling first
-(core.portable_cache). Blender 3.4 to 4.1 load the same modules as a legacy add-on
+compiled for the x86-64-v4 and -v3 feature levels, so that a new install renders without
+compiling first (core.portable_cache). Blender 3.4 to 4.1 load the same modules as a legacy add-on
 (bl_info) from a checkout's link instead.
 
     python blender_addon/packaging/build_extension.py OUT_DIR
@@ -38,32 +38,37 @@ def download_wheels(folder: Path) -> list[Path]:
     return sorted(folder.glob("*.whl"))
 
 
-def compile_kernels(cache_base: Path) -> Path:
+def compile_kernels(cache_base: Path, level: str) -> Path:
     """Run the kernel warm-up in a process of its own with its cache in cache_base, for the
-    portable CPU target whatever this machine's (which must be able to run it); returns the
-    folder of this version's kernels. A complete cache there only loads."""
-    from core.portable_cache import PORTABLE_CPU
-
+    portable CPU level given, whatever this machine's (which must be able to run it);
+    returns the folder of this version's kernels. A complete cache there only loads."""
     env = dict(os.environ, WHITTED_CACHE_DIR=str(cache_base))
-    env.update(NUMBA_CPU_NAME=PORTABLE_CPU, NUMBA_CPU_FEATURES="")
+    env.update(NUMBA_CPU_NAME=level, NUMBA_CPU_FEATURES="")
     folder = subprocess.run(
         [sys.executable, "-c", "from core.jit import kernel_cache_dir; print(kernel_cache_dir())"],
         cwd=ROOT, env=env, check=True, capture_output=True, text=True,
     ).stdout.strip()  # fmt: skip
     subprocess.run([sys.executable, "-m", "core.kernel_warmup"], cwd=ROOT, env=env, check=True)
-    marker = Path(folder) / f"warm-{PORTABLE_CPU}.ok"
+    marker = Path(folder) / f"warm-{level}.ok"
     if not marker.is_file():
         raise SystemExit(f"the kernel warm-up left no {marker}")
     return Path(folder)
 
 
-def build(out_dir: Path, with_wheels: bool = True, kernel_cache: Path | None = None) -> Path:
+def build(
+    out_dir: Path,
+    with_wheels: bool = True,
+    kernel_cache: Path | None = None,
+    levels: tuple[str, ...] | None = None,
+) -> Path:
     """The zip in out_dir, with blender_manifest.toml as it stands in blender_addon/; the
     wheels it names must be the ones downloaded. Without wheels (for tests, offline) their
     list is left out and the extension relies on the numba and Pillow Blender can import.
-    The kernels are compiled with their cache in kernel_cache (out_dir/kernel_cache unless
-    given: a second build only loads them)."""
+    The kernels are compiled for each of `levels` (every portable level unless given) with
+    their cache in kernel_cache (out_dir/kernel_cache unless given: a second build only
+    loads them)."""
     sys.path.insert(0, str(ROOT))
+    from core.portable_cache import PORTABLE_LEVELS
     from core.version import VERSION
 
     manifest = (ADDON / "blender_manifest.toml").read_text()
@@ -81,7 +86,8 @@ def build(out_dir: Path, with_wheels: bool = True, kernel_cache: Path | None = N
             )
     else:
         manifest = re.sub(r"wheels = \[.*?\]\n", "", manifest, flags=re.S)
-    kernels = compile_kernels(kernel_cache or out_dir / "kernel_cache")
+    for level in levels or tuple(PORTABLE_LEVELS):
+        kernels = compile_kernels(kernel_cache or out_dir / "kernel_cache", level)
     target = out_dir / f"whitted-{VERSION}.zip"
     with zipfile.ZipFile(target, "w", zipfile.ZIP_DEFLATED) as archive:
         archive.writestr("blender_manifest.toml", manifest)

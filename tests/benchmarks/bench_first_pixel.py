@@ -7,6 +7,8 @@ Prints, as `name: value` lines:
   first_pixel_cold_s           process start to the final scene's first tile, new cache
                                (imports, warm-up, export of the pickled scene, first tile)
   first_pixel_cached_s         the same with the cache the cold run filled
+  first_pixel_installed_s      the same from the unpacked extension zip (`make addon`) with
+                               a new user cache: the kernels it ships are copied, not compiled
   kernel_recompiles_across_scenes   new processes, one shared cache filled by the warm-up:
                                how many of the scenes (every kind, and the final scene)
                                compiled anything at render time; must be 0
@@ -20,6 +22,7 @@ import re
 import subprocess
 import sys
 import tempfile
+import zipfile
 from pathlib import Path
 
 import matplotlib
@@ -27,6 +30,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+from blender_addon.packaging.build_extension import build  # noqa: E402
+from core.jit import CPU_TARGET  # noqa: E402
 from tests.benchmarks.final_scene_data import final_scene  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -66,15 +71,15 @@ print(render(scene, RenderSettings(8, 8, pixel_samples=1)).stats.kernel_source)
 """
 
 
-def python(code, cache, *args):
+def python(code, cache, *args, cwd=ROOT):
     env = {**os.environ, "WHITTED_CACHE_DIR": str(cache)}
-    done = subprocess.run([sys.executable, "-c", code, *args], cwd=ROOT, env=env,
+    done = subprocess.run([sys.executable, "-c", code, *args], cwd=cwd, env=env,
                           capture_output=True, text=True, check=True)  # fmt: skip
     return done.stdout
 
 
-def first_pixel(cache, scene_file):
-    out = python(FIRST_PIXEL, cache, str(scene_file))
+def first_pixel(cache, scene_file, cwd=ROOT):
+    out = python(FIRST_PIXEL, cache, str(scene_file), cwd=cwd)
     seconds, source = re.search(r"first_pixel ([\d.]+) kernels (\w+)", out).groups()
     ready = READY.search(out)
     return float(seconds), source, ready
@@ -88,6 +93,14 @@ def main():
         scene_file.write_bytes(pickle.dumps(final_scene()))
         cold, cold_source, ready = first_pixel(cache, scene_file)
         cached, cached_source, _ = first_pixel(cache, scene_file)
+        # The extension as Blender unpacks it; its `core` comes first on the path (the
+        # working folder), before the checkout's
+        installed_folder = Path(folder) / "installed"
+        zip_path = build(Path(folder) / "dist", False, kernel_cache=cache, levels=(CPU_TARGET,))
+        zipfile.ZipFile(zip_path).extractall(installed_folder)
+        installed, installed_source, compiled = first_pixel(
+            Path(folder) / "new_user_cache", scene_file, cwd=installed_folder
+        )
         names = [*scenes(), "final scene"]
         sources = {n: python(SCENE_SOURCE, cache, n, str(scene_file)).split()[-1] for n in names}
     steps = [(s.rsplit(" ", 2)[0], float(s.rsplit(" ", 2)[1])) for s in ready["steps"].split(", ")]
@@ -96,26 +109,33 @@ def main():
         print(f"kernel_compile_{label.replace(' ', '_')}_s: {seconds:.1f}")
     print(f"first_pixel_cold_s: {cold:.1f}")
     print(f"first_pixel_cached_s: {cached:.2f} (kernels from the {cached_source})")
+    print(
+        f"first_pixel_installed_s: {installed:.2f} (kernels from the {installed_source}"
+        + ("; compiled!" if compiled else ", shipped")
+        + ")"
+    )
     recompiled = [n for n, s in sources.items() if s != "cache"]
     print(
         f"kernel_recompiles_across_scenes: {len(recompiled)}"
         + (f" {recompiled}" * bool(recompiled))
     )
-    write_results(steps, cold, cached)
+    write_results(steps, cold, cached, installed)
 
 
-def write_results(steps, cold, cached):
+def write_results(steps, cold, cached, installed):
     RESULTS.mkdir(exist_ok=True)
     with open(RESULTS / "first_pixel.csv", "w", newline="") as f:
         writer = csv.writer(f)
         writer.writerow(["figure", "seconds"])
         writer.writerows([(f"compile: {label}", s) for label, s in steps])
-        writer.writerows([("first pixel, new cache", cold), ("first pixel, cached", cached)])
+        writer.writerows([("first pixel, new cache", cold), ("first pixel, cached", cached),
+                          ("first pixel, new install", installed)])  # fmt: skip
     fig, (left, right) = plt.subplots(1, 2, figsize=(10, 3.6))
     left.barh([label for label, _ in steps][::-1], [s for _, s in steps][::-1], color="tab:blue")
     left.set_xlabel("seconds")
     left.set_title("Cold compile, step by step")
-    right.bar(["new cache", "cached"], [cold, cached], color=["tab:red", "tab:green"])
+    right.bar(["new cache", "cached", "new install\n(shipped kernels)"], [cold, cached, installed],
+              color=["tab:red", "tab:green", "tab:olive"])  # fmt: skip
     right.set_yscale("log")
     right.set_ylabel("seconds, process start to first tile (log)")
     right.set_title("First pixel of the final scene")

@@ -13,9 +13,9 @@ import sys
 import pytest
 
 import core
-from core import kernel_cache, kernel_warmup
+from core import kernel_cache, kernel_warmup, portable_cache
 from core.kernel_cache import REFUSED, load_or_rebuild
-from core.portable_cache import PORTABLE_CPU, host_has_portable_level
+from core.portable_cache import PORTABLE_LEVELS, host_portable_level
 
 CORE = os.path.dirname(core.__file__)
 
@@ -61,10 +61,11 @@ def test_a_cache_moved_with_core_to_another_folder_loads_without_compiling(tmp_p
     assert list((tmp_path / "moved_cache").glob("*/core/kernels/vec.dot-*.nbi")), moved
 
 
-@pytest.mark.skipif(not host_has_portable_level(), reason="this CPU lacks x86-64-v3")
+@pytest.mark.skipif(host_portable_level() is None, reason="this CPU lacks x86-64-v3")
 def test_kernels_compile_for_the_portable_level_or_the_cpu_the_user_names(tmp_path):
+    level = host_portable_level()
     ours = call_a_kernel(copy_core(tmp_path / "a"), tmp_path / "cache")
-    assert ours["target"] == PORTABLE_CPU and ours["magic"][1:] == [PORTABLE_CPU, ""], ours
+    assert ours["target"] == level and ours["magic"][1:] == [level, ""], ours
     named = call_a_kernel(tmp_path / "a", tmp_path / "cache", NUMBA_CPU_NAME="generic")
     # another target's kernels are compiled anew beside the first, never run
     assert named["magic"][1:] == ["generic", ""] and named["misses"] == 1, named
@@ -117,3 +118,18 @@ def test_a_healed_cache_copies_no_shipped_kernels_again(shipped, monkeypatch):
     assert load_or_rebuild(kernels) == ("compiled", True)
     assert (kernel_warmup.kernel_cache_dir() / REFUSED).exists()
     assert not kernel_warmup.kernels_ready()
+
+
+@pytest.mark.parametrize(
+    "has, level",
+    [
+        (PORTABLE_LEVELS["x86-64-v4"], "x86-64-v4"),
+        (PORTABLE_LEVELS["x86-64-v3"] | {"avx512f"}, "x86-64-v3"),  # AVX-512 in part: not v4
+        (PORTABLE_LEVELS["x86-64-v3"] - {"fma"}, None),  # Sandy/Ivy Bridge: AVX without FMA
+    ],
+)
+def test_a_cpu_gets_the_highest_level_it_has_in_full(monkeypatch, has, level):
+    features = {name: name in has for name in PORTABLE_LEVELS["x86-64-v4"]}
+    monkeypatch.setattr(portable_cache.llvm, "get_host_cpu_features", lambda: features)
+    monkeypatch.setattr(portable_cache.platform, "machine", lambda: "x86_64")
+    assert portable_cache.host_portable_level() == level
