@@ -45,8 +45,8 @@ def _make_core_importable() -> None:
         if str(here) not in sys.path:
             sys.path.append(str(here))
         found = importlib.util.find_spec("core")
-        if found is None or Path(found.origin).resolve().parent != own_core:
-            _import_as_core(own_core)
+        if found is None or not found.origin or Path(found.origin).resolve().parent != own_core:
+            _import_as_core(own_core)  # ahead of a `core` earlier on sys.path
     elif importlib.util.find_spec("core") is None:
         sys.path.append(str(checkout))
     if importlib.util.find_spec("numba") is None:

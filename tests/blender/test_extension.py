@@ -52,6 +52,10 @@ def test_the_zip_installs_as_an_extension_and_renders(tmp_path):
     # a new user: no kernel cache of their own yet
     env = dict(os.environ, BLENDER_USER_RESOURCES=str(tmp_path / "blender_home"))
     env["WHITTED_CACHE_DIR"] = str(tmp_path / "new_user_cache")
+    # and another package named `core` ahead on the path, which the add-on must not import
+    (tmp_path / "elsewhere" / "core").mkdir(parents=True)
+    (tmp_path / "elsewhere" / "core" / "__init__.py").write_text("raise ImportError('foreign')")
+    env["PYTHONPATH"] = str(tmp_path / "elsewhere")
     out = tmp_path / "sphere.png"
     script = tmp_path / "ball.lua"
     script.write_text(
