@@ -91,7 +91,10 @@ def inlined_kernel(function):
 
 
 # Inlined by numba itself, for the few small functions repeated side by side as vector lanes
-# (`core.kernels.triangles`): LLVM inlines a callee it has already optimized alone, where the
-# lane number was not a constant, and the copies no longer merge into vector instructions
-# (measured: 10% fewer mesh shadow rays per second than inlined by numba).
+# (`core.kernels.triangles`) or whose results feed such copies (`bvh_wide.child_entries`):
+# LLVM inlines a callee it has already optimized alone, where the lane number was not a
+# constant, and the copies no longer merge into vector instructions (measured: 10% fewer
+# mesh shadow rays per second than inlined by numba). Only small bodies: numba types an
+# inlined body again at every call site and every call inside it (inlining the box test's
+# eight calls too added 20 s to a cold compile).
 ir_inlined_kernel = numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")

@@ -30,7 +30,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from core.jit import inlined_kernel
+from core.jit import inlined_kernel, ir_inlined_kernel
 
 WIDTH = 8
 LEAF_COUNT_BITS = 3  # so a leaf holds at most 7 triangles
@@ -190,11 +190,14 @@ def _slab_entry(b, c, ray, t_min, t_max):
     return entry if near <= far * SLAB_WIDEN32 else INF32
 
 
-@inlined_kernel
+@ir_inlined_kernel
 def child_entries(boxes, node, ray, t_min, t_max):
     """Entry distances (float32) of the ray into the eight children of `node` within
     [t_min, t_max] (float32, t_max rounded up); INF32 for a child it misses. Eight
-    straight-line copies, which the SLP vectorizer merges."""
+    straight-line copies, which the SLP vectorizer merges. Inlined by numba (its eight
+    calls, not their bodies), so that the copies are optimized together with the pushes of
+    their results in the traversal: 4-5% more mesh shadow rays than as a function LLVM
+    optimized alone first (in-process A/B and bench_bvh), and a cold compile no longer."""
     b = boxes[node]
     return (
         _slab_entry(b, 0, ray, t_min, t_max),
