@@ -11,11 +11,16 @@ kernels compile again.
 The extension ships its kernels compiled (`make addon`; core.portable_cache says how one
 cache serves other folders and machines): the first look for a complete cache copies them
 into the user's cache folder, so a new install renders without compiling.
+
+Every kernel edit or upgrade starts a new cache folder (its name holds the versions and a
+hash of the kernel sources), so old ones are removed once unused for a while.
 """
 
+import contextlib
 import os
 import shutil
 import sys
+import time
 from pathlib import Path
 
 from core.jit import kernel_cache_dir
@@ -25,6 +30,8 @@ from core.portable_cache import PACKAGE_ROOT
 SHIPPED_KERNELS = PACKAGE_ROOT / "kernel_cache"
 # Left in a cache folder that healed: a damaged shipped copy is not copied in again
 REFUSED = "shipped.refused"
+# A cache folder no render has used this long is removed after a warm-up fills a new one
+STALE_DAYS = 30
 
 _NUMBA_CACHE = str(Path("numba") / "core" / "caching.py")
 
@@ -92,3 +99,25 @@ def copy_shipped_kernels(marker: str) -> bool:
         flush=True,
     )
     return True
+
+
+def note_use() -> None:
+    """Mark this version's cache folder as used now (its time is what pruning reads)."""
+    with contextlib.suppress(OSError):  # a cache folder one may only read: nothing to prune
+        os.utime(kernel_cache_dir())
+
+
+def prune_stale(keep_days: float = STALE_DAYS) -> list[Path]:
+    """Remove the other versions' cache folders beside this one that were not used for
+    keep_days (only Whitted's, named whitted-*: the folder above may be shared). Another
+    Blender with another Whitted still in use keeps its own. Returns what was removed."""
+    current = kernel_cache_dir()
+    if not current.parent.is_dir():
+        return []
+    cutoff = time.time() - keep_days * 86400
+    removed = []
+    for folder in current.parent.glob("whitted-*"):
+        if folder != current and folder.is_dir() and folder.stat().st_mtime < cutoff:
+            shutil.rmtree(folder, ignore_errors=True)
+            removed.append(folder)
+    return removed

@@ -26,7 +26,7 @@ from pathlib import Path
 import numpy as np
 
 from core.jit import CPU_TARGET, kernel_cache_dir
-from core.kernel_cache import copy_shipped_kernels
+from core.kernel_cache import STALE_DAYS, copy_shipped_kernels, prune_stale
 
 PROGRESS_PREFIX = "Whitted: compiling kernels: "
 READY_PREFIX = "Whitted: kernels ready"
@@ -120,6 +120,8 @@ def warm_kernels(report: Callable[[str], None] = print) -> float:
     marker_path().parent.mkdir(parents=True, exist_ok=True)
     marker_path().write_text(f"{seconds:.1f} s: " + ", ".join(took) + "\n")
     report(f"{READY_PREFIX} in {seconds:.1f} s (" + ", ".join(took) + ")")
+    for folder in prune_stale():
+        report(f"Whitted: removed the kernel cache {folder.name}, unused for {STALE_DAYS} days")
     return seconds
 
 

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from core.kernel_cache import load_or_rebuild
+from core.kernel_cache import load_or_rebuild, note_use
 from core.kernels.csg import CROSSING_CAPACITY, SPAN_CAPACITY
 from core.kernels.render_tile import render_tile
 from core.kernels.workspace import (
@@ -104,6 +104,7 @@ def prepare_kernels(packed: PackedScene) -> tuple[float, str]:
     seconds = time.perf_counter() - start
     if already:
         return seconds, "memory"
+    note_use()  # once a process: what keeps this cache folder from being pruned
     loaded = sum(render_tile.stats.cache_hits.values()) > hits_before
     return seconds, "cache" if loaded and not rebuilt else "compiled"
 

@@ -9,6 +9,7 @@ import os
 import shutil
 import subprocess
 import sys
+import time
 
 import pytest
 
@@ -133,3 +134,26 @@ def test_a_cpu_gets_the_highest_level_it_has_in_full(monkeypatch, has, level):
     monkeypatch.setattr(portable_cache.llvm, "get_host_cpu_features", lambda: features)
     monkeypatch.setattr(portable_cache.platform, "machine", lambda: "x86_64")
     assert portable_cache.host_portable_level() == level
+
+
+def test_cache_folders_unused_for_a_month_are_pruned_and_no_others(tmp_path, monkeypatch):
+    monkeypatch.setenv("WHITTED_CACHE_DIR", str(tmp_path))
+    current = kernel_warmup.kernel_cache_dir()
+    month = 86400 * kernel_cache.STALE_DAYS
+    folders = {
+        "current": current,
+        "stale": tmp_path / "whitted-0.0.9-numba-0.60.0-py311-0123456789ab",
+        "in use": tmp_path / "whitted-0.1.0-numba-0.68.1-py313-0123456789ab",
+        "not ours": tmp_path / "somebody-elses-cache",
+    }
+    for folder in folders.values():
+        (folder / "core").mkdir(parents=True)
+        (folder / "core" / "x.nbi").write_bytes(b"index")
+    for name in ("current", "stale", "not ours"):
+        os.utime(folders[name], (0, time.time() - month - 60))
+    removed = kernel_cache.prune_stale()
+    assert removed == [folders["stale"]]
+    assert [name for name, f in folders.items() if f.exists()] == ["current", "in use", "not ours"]
+    # a render marks its folder used
+    kernel_cache.note_use()
+    assert time.time() - current.stat().st_mtime < 60
