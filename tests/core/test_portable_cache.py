@@ -19,6 +19,7 @@ from core.kernel_cache import REFUSED, load_or_rebuild
 from core.portable_cache import PORTABLE_LEVELS, host_portable_level
 
 CORE = os.path.dirname(core.__file__)
+ROOT = os.path.dirname(CORE)
 
 # Compiles (or loads) one small kernel and says which, and where its cache files went
 CALL_A_KERNEL = r"""
@@ -157,3 +158,44 @@ def test_cache_folders_unused_for_a_month_are_pruned_and_no_others(tmp_path, mon
     # a render marks its folder used
     kernel_cache.note_use()
     assert time.time() - current.stat().st_mtime < 60
+
+
+# A mesh traversal (the eight-wide box test, the four-wide triangle test) compiled anew for a
+# level, and the AVX-512 marks in its machine code: zmm registers, mask registers, the
+# EVEX-only xmm/ymm16-31, broadcasts, vpternlog. Compiled anew because machine code loaded
+# from a cache has no assembly to read; what it calls may load.
+COUNT_AVX512 = r"""
+import re
+import numba
+import numpy as np
+from core import Mesh, RenderSettings, Scene, TriangleMesh
+from core.kernels.mesh_trace import mesh_line_crossings
+from core.packing import compile_scene
+from tests.meshes import icosphere
+v, t = icosphere(2)
+scene = Scene(shapes=[Mesh(mesh=TriangleMesh(v, t))])
+g = compile_scene(scene, RenderSettings(8, 8, pixel_samples=1)).packed.geometry
+fresh = numba.njit(nogil=True, error_model="numpy")(mesh_line_crossings.py_func)
+fresh(g.node_boxes, g.node_links, g.tri_corners, g.mesh_root[0], (0.0, 0.0, 0.0),
+      (0.0, 0.0, 1.0), np.empty((64, 3)), np.empty((64, 2), np.int32), np.empty(256, np.int32))
+asm = "".join(fresh.inspect_asm().values())
+marks = r"%zmm\d+|%k[1-7]\b|%[xy]mm(?:1[6-9]|2\d|3[01])\b|\{1to\d+\}|vpternlog"
+print(len(re.findall(marks, asm)), len(re.findall(r"%ymm\d+", asm)))
+"""
+
+
+@pytest.mark.skipif(host_portable_level() != "x86-64-v4", reason="this CPU cannot run v4 code")
+def test_kernels_for_the_v3_level_hold_no_avx512_instruction():
+    """What the extension ships for x86-64-v3 runs on a CPU without AVX-512, though it was
+    compiled on one with it: the same kernel compiled for v4 shows the marks the check looks
+    for."""
+    counts = {}
+    for level in PORTABLE_LEVELS:
+        env = {**os.environ, "NUMBA_CPU_NAME": level, "NUMBA_CPU_FEATURES": ""}
+        run = subprocess.run([sys.executable, "-c", COUNT_AVX512], cwd=ROOT, env=env,
+                             capture_output=True, text=True, timeout=600)  # fmt: skip
+        assert run.returncode == 0, run.stderr
+        avx512, ymm = map(int, run.stdout.split()[-2:])
+        assert ymm > 100, (level, run.stdout)  # real vector code was read
+        counts[level] = avx512
+    assert counts["x86-64-v3"] == 0 and counts["x86-64-v4"] > 100, counts
