@@ -17,6 +17,7 @@ no process when the cache is complete.
 
 from __future__ import annotations
 
+import contextlib
 import math
 import sys
 import time
@@ -32,6 +33,7 @@ PROGRESS_PREFIX = "Whitted: compiling kernels: "
 READY_PREFIX = "Whitted: kernels ready"
 # One for each CPU target: a cache folder can hold the kernels of several (core.portable_cache)
 MARKER = f"warm-{CPU_TARGET}.ok"
+LOCK = "warm.lock"
 
 
 def warmup_scene():
@@ -105,9 +107,39 @@ def progress_line(step: int, steps: int, label: str) -> str:
     return f"{PROGRESS_PREFIX}{step} of {steps} ({label})"
 
 
+@contextlib.contextmanager
+def one_warmup_at_a_time(report: Callable[[str], None]):
+    """Hold the cache folder's warm-up lock, waiting (and saying so) while another process
+    holds it: two Blenders or farm renders starting at once on one machine would otherwise
+    both compile, each at half speed on shared cores. The lock goes with its process, killed
+    or not. Without fcntl (Windows) each compiles on its own."""
+    try:
+        import fcntl
+    except ImportError:
+        yield
+        return
+    kernel_cache_dir().mkdir(parents=True, exist_ok=True)
+    with open(kernel_cache_dir() / LOCK, "w") as lock:
+        try:
+            fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            report(f"{PROGRESS_PREFIX}waiting for another process that compiles them")
+            fcntl.flock(lock, fcntl.LOCK_EX)
+        yield
+
+
 def warm_kernels(report: Callable[[str], None] = print) -> float:
     """Run every step in this process, report(line) before each; returns the seconds taken.
-    Writes the marker when all are done."""
+    Writes the marker when all are done. If another process is compiling into the same
+    cache, waits for it, and compiles nothing if the cache is complete then."""
+    with one_warmup_at_a_time(report):
+        if kernels_ready():
+            report(f"{READY_PREFIX}: the cache is complete (another process compiled it)")
+            return 0.0
+        return _warm_kernels(report)
+
+
+def _warm_kernels(report: Callable[[str], None]) -> float:
     start = time.perf_counter()
     steps = warmup_steps()
     took = []

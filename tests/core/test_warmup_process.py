@@ -6,6 +6,8 @@ test_kernel_signature."""
 
 import os
 import stat
+import subprocess
+import sys
 import time
 from pathlib import Path
 
@@ -16,6 +18,7 @@ from core import kernel_warmup
 from core.warmup_process import WarmupProcess
 
 OWN_CORE = Path(core.__file__).resolve().parent
+ROOT = OWN_CORE.parent
 
 
 def fake_python(tmp_path, body: str) -> str:
@@ -109,3 +112,24 @@ def test_no_child_starts_when_the_cache_is_complete(tmp_path):
     time.sleep(0.2)
     assert not started.exists()
     assert os.environ["WHITTED_CACHE_DIR"] in str(marker)
+
+
+def test_a_second_warmup_waits_for_the_first_and_then_compiles_nothing():
+    """Two warm-ups on one cache (two Blenders started at once): the second says it waits,
+    and once the first is done finds the cache complete. Here the test holds the lock as
+    the first process would, and writes the first's marker before letting go."""
+    fcntl = pytest.importorskip("fcntl")
+    folder = kernel_warmup.kernel_cache_dir()
+    folder.mkdir(parents=True)
+    with open(folder / kernel_warmup.LOCK, "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        second = subprocess.Popen(
+            [sys.executable, "-m", "core.kernel_warmup"], cwd=ROOT, env=dict(os.environ),
+            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+        )  # fmt: skip
+        first_lines = [second.stdout.readline(), second.stdout.readline()]
+        assert "waiting for another process" in first_lines[1], first_lines
+        kernel_warmup.marker_path().write_text("the first's warm-up\n")
+    out, _ = second.communicate(timeout=120)
+    assert second.returncode == 0, out
+    assert "the cache is complete" in out and "1 of" not in out, out
