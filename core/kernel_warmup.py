@@ -118,8 +118,13 @@ def one_warmup_at_a_time(report: Callable[[str], None]):
     except ImportError:
         yield
         return
-    kernel_cache_dir().mkdir(parents=True, exist_ok=True)
-    with open(kernel_cache_dir() / LOCK, "w") as lock:
+    try:
+        kernel_cache_dir().mkdir(parents=True, exist_ok=True)
+        lock = open(kernel_cache_dir() / LOCK, "w")  # noqa: SIM115 (the with below closes it)
+    except OSError:  # a cache folder one may not write: no lock to share either
+        yield
+        return
+    with lock:
         try:
             fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except BlockingIOError:
