@@ -139,7 +139,7 @@ def warm_kernels(report: Callable[[str], None] = print) -> float:
     cache, waits for it, and compiles nothing if the cache is complete then."""
     with one_warmup_at_a_time(report):
         if kernels_ready():
-            report(f"{READY_PREFIX}: the cache is complete (another process compiled it)")
+            report(f"{READY_PREFIX}: the cache is complete (compiled before, or elsewhere)")
             return 0.0
         return _warm_kernels(report)
 

@@ -86,8 +86,11 @@ def build(
             )
     else:
         manifest = re.sub(r"wheels = \[.*?\]\n", "", manifest, flags=re.S)
-    for level in levels or tuple(PORTABLE_LEVELS):
-        kernels = compile_kernels(kernel_cache or out_dir / "kernel_cache", level)
+    # Every level's kernels go into the one folder of this version (numba keys each by target)
+    (kernels,) = {
+        compile_kernels(kernel_cache or out_dir / "kernel_cache", level)
+        for level in levels or tuple(PORTABLE_LEVELS)
+    }
     target = out_dir / f"whitted-{VERSION}.zip"
     with zipfile.ZipFile(target, "w", zipfile.ZIP_DEFLATED) as archive:
         archive.writestr("blender_manifest.toml", manifest)
