@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-import core
+from . import core
 
 OPERATIONS = {"UNION": "union", "INTERSECT": "intersection", "DIFFERENCE": "difference"}
 SOLID_TYPES = {"MESH"}

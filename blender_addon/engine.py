@@ -8,10 +8,8 @@ import time
 import bpy
 import numpy as np
 
-import core
-from core.warmup_process import shared_warmup
-
-from . import export
+from . import core, export
+from .core.warmup_process import shared_warmup
 
 
 class WhittedRenderEngine(bpy.types.RenderEngine):

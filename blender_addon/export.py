@@ -17,8 +17,7 @@ import math
 
 import numpy as np
 
-import core
-
+from . import core
 from .csg_export import boolean_modifiers, solid
 from .material_export import convert_material, find_node
 from .mesh_export import MeshCache

@@ -12,7 +12,7 @@ import contextlib
 
 import bpy
 
-from core.warmup_process import shared_warmup
+from .core.warmup_process import CHILD_PROGRAM, child_arguments, shared_warmup
 
 POLL_S = 0.5
 
@@ -58,15 +58,15 @@ def _start_in_window():
 
 
 def warmup_command() -> list[str] | None:
-    """Blender's own binary in background mode, running `core.kernel_warmup` with this
-    process's module path; None for `bpy` as a Python module, whose interpreter is
-    sys.executable."""
+    """Blender's own binary in background mode, running the warm-up of this add-on's `core`
+    under its name here, with this process's module path; None for `bpy` as a Python module,
+    whose interpreter is sys.executable."""
     binary = bpy.app.binary_path
     if not binary:
         return None
-    run = "import runpy; runpy.run_module('core.kernel_warmup', run_name='__main__')"
     return [binary, "-b", "--factory-startup", "--python-use-system-env",
-            "--python-exit-code", "1", "--python-expr", run]  # fmt: skip
+            "--python-exit-code", "1", "--python-expr", CHILD_PROGRAM,
+            "--", *child_arguments()]  # fmt: skip
 
 
 def register():

@@ -18,10 +18,9 @@ import bpy
 import numpy as np
 from mathutils import Matrix
 
-from core.cs488.graph import Z_TO_MINUS_Y, CsgNode, GeometryNode
-from core.cs488.render_call import UNSET_MATERIAL
-
 from .compat import give_nodes
+from .core.cs488.graph import Z_TO_MINUS_Y, CsgNode, GeometryNode
+from .core.cs488.render_call import UNSET_MATERIAL
 
 # The script's y up onto Blender's z up (and its z, towards the viewer, onto -y)
 Y_UP_TO_Z_UP = Z_TO_MINUS_Y

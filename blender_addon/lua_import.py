@@ -19,9 +19,8 @@ import numpy as np
 from bpy_extras.io_utils import ImportHelper
 from mathutils import Matrix
 
-from core.cs488 import ScriptError, load_script
-
 from .compat import give_nodes
+from .core.cs488 import ScriptError, load_script
 from .export import WATTS_TO_INTENSITY
 from .lua_build import Y_UP_TO_Z_UP, Builder, place
 

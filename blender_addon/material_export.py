@@ -21,8 +21,7 @@ from __future__ import annotations
 
 import numpy as np
 
-import core
-
+from . import core
 from .compat import TRANSMISSION_INPUTS, node_tree_in_use
 
 MAX_SHININESS = 10000.0

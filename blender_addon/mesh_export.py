@@ -8,8 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-import core
-
+from . import core
 from .compat import prepare_corner_normals
 
 

@@ -14,7 +14,7 @@ from bpy.props import (
     PointerProperty,
 )
 
-from core.scene import DEFAULT_PIXEL_SAMPLES, DEFAULT_SHADOW_SAMPLES
+from .core.scene import DEFAULT_PIXEL_SAMPLES, DEFAULT_SHADOW_SAMPLES
 
 # Each analytic shape matches the Blender primitive added with default settings, so tagging
 # that primitive renders the exact shape where its mesh sits

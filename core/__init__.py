@@ -1,12 +1,12 @@
 """Whitted's renderer: scene model, packing, numba kernels and the tile driver. No bpy here.
 
-from core import Camera, Material, PointLight, RenderSettings, Scene, Sphere, render
+from . import Camera, Material, PointLight, RenderSettings, Scene, Sphere, render
 """
 
-from core.errors import SceneError
-from core.image_io import save_png
-from core.render import RenderOutput, RenderStats, Tile, render, split_into_tiles
-from core.scene import (
+from .errors import SceneError
+from .image_io import save_png
+from .render import RenderOutput, RenderStats, Tile, render, split_into_tiles
+from .scene import (
     AreaLight,
     Box,
     Camera,
@@ -24,7 +24,7 @@ from core.scene import (
     Torus,
     TriangleMesh,
 )
-from core.version import VERSION
+from .version import VERSION
 
 __all__ = [
     "VERSION",

@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from core.errors import SceneError
+from .errors import SceneError
 
 # A transform whose smallest singular value is below this fraction of its largest squashes
 # the shape flat: the inverse needed for object-space intersection would be meaningless.

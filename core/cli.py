@@ -17,11 +17,11 @@ import tempfile
 import time
 from pathlib import Path
 
-from core.cs488 import ScriptError, load_script
-from core.errors import SceneError
-from core.image_io import save_png
-from core.kernel_warmup import kernels_ready, warm_kernels
-from core.render import render
+from .cs488 import ScriptError, load_script
+from .errors import SceneError
+from .image_io import save_png
+from .kernel_warmup import kernels_ready, warm_kernels
+from .render import render
 
 BAR_WIDTH = 30
 

@@ -13,10 +13,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from core.checks import valid_affine
-from core.errors import SceneError
-from core.kernels.csg import CSG_DIFFERENCE, CSG_INTERSECTION, CSG_UNION, MAX_OPERANDS
-from core.shapes import Csg, Shape
+from .checks import valid_affine
+from .errors import SceneError
+from .kernels.csg import CSG_DIFFERENCE, CSG_INTERSECTION, CSG_UNION, MAX_OPERANDS
+from .shapes import Csg, Shape
 
 OPERATION_CODES = {
     "union": CSG_UNION,

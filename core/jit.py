@@ -16,22 +16,26 @@ from pathlib import Path
 import numba
 from numba.core import types
 
-from core.portable_cache import choose_cpu_target, use_relocatable_cache_folders
-from core.version import VERSION
+from .portable_cache import choose_cpu_target, use_relocatable_cache_folders
+from .version import VERSION
 
 
-def kernel_source_hash() -> str:
+def kernel_source_hash(package: str = __package__) -> str:
     here = Path(__file__).parent
-    digest = hashlib.sha1()
+    # The package's import name too: numba's cache records the module each kernel came from
+    # and imports it by that name on loading, so kernels compiled as `core` (a checkout) do
+    # not load as an add-on's `bl_ext.user_default.whitted.core`, nor the other way round
+    digest = hashlib.sha1(package.encode())
     for path in sorted([here / "jit.py", *(here / "kernels").glob("*.py")]):
         digest.update(path.name.encode() + path.read_bytes())
     return digest.hexdigest()[:12]
 
 
-def kernel_cache_dir() -> Path:
+def kernel_cache_dir(package: str = __package__) -> Path:
+    """This version's cache folder, for this package imported under the name given."""
     base = os.environ.get("WHITTED_CACHE_DIR") or Path.home() / ".cache" / "whitted"
     python = f"py{sys.version_info[0]}{sys.version_info[1]}"
-    tag = f"whitted-{VERSION}-numba-{numba.__version__}-{python}-{kernel_source_hash()}"
+    tag = f"whitted-{VERSION}-numba-{numba.__version__}-{python}-{kernel_source_hash(package)}"
     return Path(base) / tag
 
 

@@ -23,8 +23,8 @@ import sys
 import time
 from pathlib import Path
 
-from core.jit import kernel_cache_dir
-from core.portable_cache import PACKAGE_ROOT
+from .jit import kernel_cache_dir
+from .portable_cache import PACKAGE_ROOT
 
 # Where the extension's zip holds its compiled kernels: beside `core`, one folder a version
 SHIPPED_KERNELS = PACKAGE_ROOT / "kernel_cache"

@@ -26,8 +26,8 @@ from pathlib import Path
 
 import numpy as np
 
-from core.jit import CPU_TARGET, kernel_cache_dir
-from core.kernel_cache import STALE_DAYS, copy_shipped_kernels, prune_stale
+from .jit import CPU_TARGET, kernel_cache_dir
+from .kernel_cache import STALE_DAYS, copy_shipped_kernels, prune_stale
 
 PROGRESS_PREFIX = "Whitted: compiling kernels: "
 READY_PREFIX = "Whitted: kernels ready"
@@ -38,7 +38,7 @@ LOCK = "warm.lock"
 
 def warmup_scene():
     """A small scene with one of everything a packed scene can hold."""
-    from core import (
+    from . import (
         AreaLight,
         Box,
         Csg,
@@ -81,12 +81,12 @@ def warmup_scene():
 
 def warmup_steps() -> list[tuple[str, Callable[[], None]]]:
     """(what it compiles, how) for each step, in order."""
-    from core import RenderSettings
-    from core.kernels.light_pyramid import TRAVERSE_ALL
-    from core.kernels.trace import closest_hit, transmittance
-    from core.kernels.workspace import new_workspace
-    from core.packing import compile_scene
-    from core.render import prepare_kernels
+    from . import RenderSettings
+    from .kernels.light_pyramid import TRAVERSE_ALL
+    from .kernels.trace import closest_hit, transmittance
+    from .kernels.workspace import new_workspace
+    from .packing import compile_scene
+    from .render import prepare_kernels
 
     packed = []
     stacks = new_workspace(0).stacks
@@ -162,6 +162,12 @@ def _warm_kernels(report: Callable[[str], None]) -> float:
     return seconds
 
 
+def own_core() -> str:
+    """This package's import name and folder: a warm-up fills the cache of another process
+    only if it compiled the same package under the same name (core.jit)."""
+    return f"{__package__} at {Path(__file__).resolve().parent}"
+
+
 def marker_path() -> Path:
     return kernel_cache_dir() / MARKER
 
@@ -174,10 +180,8 @@ def kernels_ready() -> bool:
 
 
 def main() -> int:
-    import core
-
     # The first line names the package compiled, for the parent to check it is its own
-    print(f"Whitted: core {Path(core.__file__).resolve().parent}", flush=True)
+    print(f"Whitted: core {own_core()}", flush=True)
     warm_kernels(lambda line: print(line, flush=True))
     return 0
 

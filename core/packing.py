@@ -14,11 +14,11 @@ from typing import NamedTuple
 
 import numpy as np
 
-from core.csg_packing import CsgTables, add_csg, csg_world_box
-from core.kernels.bvh_build import build_bvh
-from core.kernels.bvh_wide import WIDTH
-from core.kernels.layout import Frame, Geometry, Lights, Materials, PackedScene, Surfaces
-from core.kernels.options import (
+from .csg_packing import CsgTables, add_csg, csg_world_box
+from .kernels.bvh_build import build_bvh
+from .kernels.bvh_wide import WIDTH
+from .kernels.layout import Frame, Geometry, Lights, Materials, PackedScene, Surfaces
+from .kernels.options import (
     OPTION_COUNT,
     OPTION_MAX_DEPTH,
     OPTION_PIXEL_PATTERN,
@@ -30,7 +30,7 @@ from core.kernels.options import (
     PIXEL_PATTERNS,
     SHADOW_PATTERNS,
 )
-from core.kernels.shapes import (
+from .kernels.shapes import (
     SHAPE_BOX,
     SHAPE_CONE,
     SHAPE_CSG,
@@ -39,9 +39,9 @@ from core.kernels.shapes import (
     SHAPE_SPHERE,
     SHAPE_TORUS,
 )
-from core.kernels.triangles import LEAF_WIDTH
-from core.mesh_packing import MeshTables, add_mesh, concatenated
-from core.scene import (
+from .kernels.triangles import LEAF_WIDTH
+from .mesh_packing import MeshTables, add_mesh, concatenated
+from .scene import (
     AreaLight,
     Box,
     Cone,
@@ -55,7 +55,7 @@ from core.scene import (
     Sphere,
     Torus,
 )
-from core.textures import load_texture
+from .textures import load_texture
 
 SHAPE_KIND_OF_CLASS = {
     Sphere: SHAPE_SPHERE,

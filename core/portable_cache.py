@@ -27,9 +27,10 @@ import llvmlite.binding as llvm
 import numba
 from numba.core.caching import CacheImpl, UserProvidedCacheLocator
 
-# The folder that holds `core`: cache folders are named by paths below it
-PACKAGE_ROOT = Path(__file__).resolve().parent.parent
-CORE = PACKAGE_ROOT / "core"
+# This package's folder, and the one that holds it: cache folders are named by paths below
+# that (`core/kernels`), whatever the package is imported as
+CORE = Path(__file__).resolve().parent
+PACKAGE_ROOT = CORE.parent
 
 # What each level requires, in LLVM's names for the host's features (lower levels included)
 _V3 = (

@@ -18,18 +18,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from core.kernel_cache import load_or_rebuild, note_use
-from core.kernels.csg import CROSSING_CAPACITY, SPAN_CAPACITY
-from core.kernels.render_tile import render_tile
-from core.kernels.workspace import (
+from .kernel_cache import load_or_rebuild, note_use
+from .kernels.csg import CROSSING_CAPACITY, SPAN_CAPACITY
+from .kernels.render_tile import render_tile
+from .kernels.workspace import (
     RAY_COUNT_SLOTS,
     RAYS_TRACED,
     SHADOW_RAYS,
     SHADOW_RAYS_UNOBSTRUCTED,
     new_workspace,
 )
-from core.packing import PackedScene, compile_scene
-from core.scene import RenderSettings, Scene
+from .packing import PackedScene, compile_scene
+from .scene import RenderSettings, Scene
 
 # How often the driver asks "cancelled?" while tiles are still running.
 _CANCEL_POLL_S = 0.05

@@ -13,10 +13,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from core.checks import check_choice, check_count, check_flag, check_vec3, valid_affine
-from core.errors import SceneError
-from core.kernels.options import PIXEL_PATTERNS, SHADOW_PATTERNS
-from core.scene_parts import (
+from .checks import check_choice, check_count, check_flag, check_vec3, valid_affine
+from .errors import SceneError
+from .kernels.options import PIXEL_PATTERNS, SHADOW_PATTERNS
+from .scene_parts import (
     AreaLight,
     Camera,
     DirectionalLight,
@@ -25,7 +25,7 @@ from core.scene_parts import (
     Texture,
     Vec3,
 )
-from core.shapes import Box, Cone, Csg, Cylinder, Mesh, Shape, Sphere, Torus, TriangleMesh
+from .shapes import Box, Cone, Csg, Cylinder, Mesh, Shape, Sphere, Torus, TriangleMesh
 
 __all__ = [
     "AreaLight",

@@ -11,8 +11,8 @@ from pathlib import Path
 
 import numpy as np
 
-from core.checks import check_number, check_vec3
-from core.errors import SceneError
+from .checks import check_number, check_vec3
+from .errors import SceneError
 
 Vec3 = tuple[float, float, float]
 

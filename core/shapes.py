@@ -21,9 +21,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from core.checks import check_affine, check_array, check_choice, check_flag, check_number
-from core.errors import SceneError
-from core.scene_parts import Material
+from .checks import check_affine, check_array, check_choice, check_flag, check_number
+from .errors import SceneError
+from .scene_parts import Material
 
 
 def _identity() -> np.ndarray:

@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 from PIL import Image, UnidentifiedImageError
 
-from core.errors import SceneError
-from core.scene_parts import Texture
+from .errors import SceneError
+from .scene_parts import Texture
 
 
 def srgb_to_linear(c: np.ndarray) -> np.ndarray:

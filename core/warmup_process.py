@@ -7,7 +7,8 @@ does nothing else, and this process only reads `status()` now and then. The chil
 this process's own Python with its module path, so that it compiles this `core` into the same
 cache: in Blender that is Blender's binary in background mode (`sys.executable` there may be
 some other Python 3.11 found on PATH, whose packages do not mix with Blender's), elsewhere
-`sys.executable`. The child names the `core` it imported, and a different one is a failure.
+`sys.executable`. The child imports this `core` under this process's name for it and names the
+`core` it imported: a different one is a failure.
 
 A render that finds the warm-up running waits for it (polling its own cancel test); a
 cancelled render leaves the child running so that the next render finds the cache filled.
@@ -25,7 +26,33 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
-from core.kernel_warmup import PROGRESS_PREFIX, READY_PREFIX, kernels_ready
+from .kernel_warmup import PROGRESS_PREFIX, READY_PREFIX, kernels_ready, own_core
+
+# The child's program: import this package under this process's name for it (in Blender an
+# add-on's subpackage, `bl_ext.user_default.whitted.core`), which numba records in the cache
+# (core.jit), and run its warm-up. Parent packages not yet imported are stood in for by empty
+# ones, so that an add-on's own __init__, which needs Blender's modules, does not run. Its two
+# arguments, last on the command line: the package's name and folder.
+CHILD_PROGRAM = """
+import runpy, sys, types
+from pathlib import Path
+name, folder = sys.argv[-2], Path(sys.argv[-1])
+parts = name.split(".")
+if len(parts) == 1:
+    sys.path.insert(0, str(folder.parent))
+for depth in range(1, len(parts)):
+    parent = ".".join(parts[:depth])
+    if parent not in sys.modules:
+        stand_in = types.ModuleType(parent)
+        stand_in.__path__ = [str(folder.parents[len(parts) - depth - 1])]
+        sys.modules[parent] = stand_in
+runpy.run_module(name + ".kernel_warmup", run_name="__main__")
+"""
+
+
+def child_arguments() -> list[str]:
+    """CHILD_PROGRAM's two arguments for this package."""
+    return [__package__, str(Path(__file__).resolve().parent)]
 
 
 @dataclass(frozen=True)
@@ -36,7 +63,7 @@ class WarmupStatus:
 
 
 def python_command() -> list[str]:
-    return [sys.executable, "-m", "core.kernel_warmup"]
+    return [sys.executable, "-c", CHILD_PROGRAM, *child_arguments()]
 
 
 class WarmupProcess:
@@ -78,15 +105,12 @@ class WarmupProcess:
             threading.Thread(target=self._read, args=(self._process,), daemon=True).start()
 
     def _read(self, process: subprocess.Popen) -> None:
-        import core
-
-        own_core = str(Path(core.__file__).resolve().parent)
-        foreign = ""
+        own, foreign = own_core(), ""
         for line in process.stdout:
             line = line.rstrip("\n")
             with self._lock:
                 self._output.append(line)
-                if line.startswith("Whitted: core ") and line[len("Whitted: core ") :] != own_core:
+                if line.startswith("Whitted: core ") and line[len("Whitted: core ") :] != own:
                     foreign = line[len("Whitted: core ") :]
                 if line.startswith(PROGRESS_PREFIX) or line.startswith(READY_PREFIX):
                     self._text = line[len("Whitted: ") :]

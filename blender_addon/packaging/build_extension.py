@@ -15,8 +15,10 @@ from __future__ import annotations
 
 import os
 import re
+import shutil
 import subprocess
 import sys
+import tempfile
 import zipfile
 from pathlib import Path
 
@@ -38,21 +40,35 @@ def download_wheels(folder: Path) -> list[Path]:
     return sorted(folder.glob("*.whl"))
 
 
-def compile_kernels(cache_base: Path, level: str) -> Path:
-    """Run the kernel warm-up in a process of its own with its cache in cache_base, for the
-    portable CPU level given, whatever this machine's (which must be able to run it);
-    returns the folder of this version's kernels. A complete cache there only loads."""
+# The name Blender imports the installed `core` as, for an extension installed from disk into
+# the user repository it offers first; numba's cache records it (core.jit), so the shipped
+# kernels are compiled under it. Installed into another repository, Whitted compiles its own.
+INSTALLED_AS = "bl_ext.user_default.whitted.core"
+
+
+def compile_kernels(cache_base: Path, level: str, stage: Path) -> Path:
+    """Run the kernel warm-up in a process of its own, with its cache in cache_base and
+    `core` imported under INSTALLED_AS from a copy in stage, for the portable CPU level
+    given, whatever this machine's (which must be able to run it); returns the folder of
+    this version's kernels. A complete cache there only loads."""
+    from core.jit import kernel_cache_dir
+    from core.warmup_process import CHILD_PROGRAM
+
+    core = stage.joinpath(*INSTALLED_AS.split("."))
+    if not core.is_dir():
+        shutil.copytree(ROOT / "core", core, ignore=shutil.ignore_patterns("__pycache__"))
     env = dict(os.environ, WHITTED_CACHE_DIR=str(cache_base))
     env.update(NUMBA_CPU_NAME=level, NUMBA_CPU_FEATURES="")
-    folder = subprocess.run(
-        [sys.executable, "-c", "from core.jit import kernel_cache_dir; print(kernel_cache_dir())"],
-        cwd=ROOT, env=env, check=True, capture_output=True, text=True,
-    ).stdout.strip()  # fmt: skip
-    subprocess.run([sys.executable, "-m", "core.kernel_warmup"], cwd=ROOT, env=env, check=True)
-    marker = Path(folder) / f"warm-{level}.ok"
+    env.pop("PYTHONPATH", None)  # nothing but the staged copy may answer to its name
+    subprocess.run(
+        [sys.executable, "-c", CHILD_PROGRAM, INSTALLED_AS, str(core)],
+        cwd=stage, env=env, check=True,
+    )  # fmt: skip
+    folder = cache_base / kernel_cache_dir(INSTALLED_AS).name
+    marker = folder / f"warm-{level}.ok"
     if not marker.is_file():
         raise SystemExit(f"the kernel warm-up left no {marker}")
-    return Path(folder)
+    return folder
 
 
 def build(
@@ -87,10 +103,11 @@ def build(
     else:
         manifest = re.sub(r"wheels = \[.*?\]\n", "", manifest, flags=re.S)
     # Every level's kernels go into the one folder of this version (numba keys each by target)
-    (kernels,) = {
-        compile_kernels(kernel_cache or out_dir / "kernel_cache", level)
-        for level in levels or tuple(PORTABLE_LEVELS)
-    }
+    with tempfile.TemporaryDirectory() as stage:
+        (kernels,) = {
+            compile_kernels(kernel_cache or out_dir / "kernel_cache", level, Path(stage))
+            for level in levels or tuple(PORTABLE_LEVELS)
+        }
     target = out_dir / f"whitted-{VERSION}.zip"
     with zipfile.ZipFile(target, "w", zipfile.ZIP_DEFLATED) as archive:
         archive.writestr("blender_manifest.toml", manifest)

@@ -1,6 +1,6 @@
 """CS488 Lua scene scripts (the A4 modelling language and the report's extensions).
 
-    from core.cs488 import load_script
+    from . import load_script
     for call in load_script("scene.lua"):      # runs the script, checking every gr call
         core.render(call.scene, call.settings)  # then save to call.output
 
@@ -10,9 +10,9 @@ anywhere renders nothing.
 
 from pathlib import Path
 
-from core.cs488.commands import Commands
-from core.cs488.render_call import RenderCall
-from core.cs488.sandbox import ScriptError, run_script
+from .commands import Commands
+from .render_call import RenderCall
+from .sandbox import ScriptError, run_script
 
 __all__ = ["RenderCall", "ScriptError", "load_script"]
 

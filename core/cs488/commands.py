@@ -13,7 +13,9 @@ from pathlib import Path
 import numpy as np
 from PIL import Image, UnidentifiedImageError
 
-from core.cs488.graph import (
+from ..obj_file import ObjError, read_obj, summed_face_normals
+from ..scene import AreaLight, Material, PointLight, Texture, TriangleMesh
+from .graph import (
     CSG_OPERATIONS,
     CsgNode,
     GeometryNode,
@@ -24,10 +26,8 @@ from core.cs488.graph import (
     describe,
     object_matrix,
 )
-from core.cs488.render_call import RenderCall
-from core.cs488.sandbox import ArgumentError
-from core.obj_file import ObjError, read_obj, summed_face_normals
-from core.scene import AreaLight, Material, PointLight, Texture, TriangleMesh
+from .render_call import RenderCall
+from .sandbox import ArgumentError
 
 MATERIAL_USAGE = "{dr, dg, db}, {sr, sg, sb}, p[, reflectivity[, outer_ior[, inner_ior]]]"
 TEXTURE_USAGE = "file, {sr, sg, sb}, p[, reflectivity[, outer_ior[, inner_ior]]]"

@@ -18,8 +18,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from core.cs488.sandbox import ArgumentError, ScriptObject
-from core.scene import Box, Cone, Csg, Cylinder, Material, Mesh, Sphere, Torus, TriangleMesh
+from ..scene import Box, Cone, Csg, Cylinder, Material, Mesh, Sphere, Torus, TriangleMesh
+from .sandbox import ArgumentError, ScriptObject
 
 AXES = {"x": 0, "y": 1, "z": 2}
 CSG_OPERATIONS = {"union": "union", "intersection": "intersection", "diff": "difference"}

@@ -7,10 +7,10 @@ from pathlib import Path
 
 import numpy as np
 
-from core.cs488.graph import CsgNode, GeometryNode, Node, vec3
-from core.cs488.sandbox import ArgumentError
-from core.errors import SceneError
-from core.scene import Camera, Material, RenderSettings, Scene
+from ..errors import SceneError
+from ..scene import Camera, Material, RenderSettings, Scene
+from .graph import CsgNode, GeometryNode, Node, vec3
+from .sandbox import ArgumentError
 
 # A shape with no material renders in this, with a warning (A4 would have crashed)
 UNSET_MATERIAL = Material(diffuse=(0.7, 0.7, 0.7), specular=(0.0, 0.0, 0.0), name="(none set)")

@@ -6,11 +6,11 @@ across threads themselves; one `Stacks` (from a `Workspace`) per calling thread.
 the packed scene's `geometry` group (and its `surfaces` group for normals).
 """
 
-from core.jit import kernel
-from core.kernels.borrow import borrow_geometry, borrow_stacks, borrow_surfaces
-from core.kernels.light_pyramid import TRAVERSE_ALL
-from core.kernels.surface import surface_at
-from core.kernels.trace import closest_hit, transmittance
+from ..jit import kernel
+from .borrow import borrow_geometry, borrow_stacks, borrow_surfaces
+from .light_pyramid import TRAVERSE_ALL
+from .surface import surface_at
+from .trace import closest_hit, transmittance
 
 
 @kernel

@@ -20,9 +20,9 @@ shading point do so: a shadow ray cast from such a kernel cost 850 ns, 190 ns re
 from numba.core import cgutils
 from numba.extending import intrinsic
 
-from core.jit import kernel
-from core.kernels.layout import Frame, Geometry, Lights, Materials, PackedScene, Surfaces
-from core.kernels.workspace import CsgScratch, RayStack, Stacks, Workspace
+from ..jit import kernel
+from .layout import Frame, Geometry, Lights, Materials, PackedScene, Surfaces
+from .workspace import CsgScratch, RayStack, Stacks, Workspace
 
 
 @intrinsic

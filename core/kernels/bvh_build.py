@@ -20,7 +20,7 @@ constant; a million triangles build in about a second here.
 
 import numpy as np
 
-from core.jit import kernel
+from ..jit import kernel
 
 # Measured on the million-triangle benchmark mesh against 16 bins, interleaved: 2% more rays
 # per second (primary, incoherent and shadow alike) for a build 20% longer (0.65 -> 0.78 s);

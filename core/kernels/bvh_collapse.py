@@ -21,8 +21,8 @@ fills 6.1, with 58 000 nodes instead of 87 000, and traces 5-7% more rays per se
 
 import numpy as np
 
-from core.jit import kernel
-from core.kernels.bvh_wide import LEAF_COUNT_BITS, WIDTH
+from ..jit import kernel
+from .bvh_wide import LEAF_COUNT_BITS, WIDTH
 
 # How a binary node m covers its subtree with at most j children, choice[m, j]:
 _AS_ONE_CHILD = 0  # m is a single child (a leaf, or the root of a wide node)

@@ -30,7 +30,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from core.jit import inlined_kernel, ir_inlined_kernel
+from ..jit import inlined_kernel, ir_inlined_kernel
 
 WIDTH = 8
 LEAF_COUNT_BITS = 3  # so a leaf holds at most 7 triangles

@@ -23,11 +23,11 @@ sliver of skin, on every pixel alike, and on equal footing the left operand's la
 
 import math
 
-from core.jit import inlined_kernel, kernel
-from core.kernels.mesh_trace import mesh_line_crossings
-from core.kernels.shapes import SHAPE_MESH, SHAPE_TORUS, convex_interval
-from core.kernels.torus import torus_roots
-from core.kernels.vec import affine_point, affine_vector
+from ..jit import inlined_kernel, kernel
+from .mesh_trace import mesh_line_crossings
+from .shapes import SHAPE_MESH, SHAPE_TORUS, convex_interval
+from .torus import torus_roots
+from .vec import affine_point, affine_vector
 
 CSG_UNION = -1
 CSG_INTERSECTION = -2

@@ -15,13 +15,13 @@ after `max_depth` bounces, or once their weight can no longer show (MIN_WEIGHT).
 
 import math
 
-from core.jit import inlined_kernel, kernel
-from core.kernels.options import OPTION_MAX_DEPTH
-from core.kernels.shading import local_colour
-from core.kernels.surface import diffuse_colour, surface_at
-from core.kernels.trace import closest_hit, spawn_point
-from core.kernels.vec import add, as_tuple, dot, mul, normalize, row, scale, sub
-from core.kernels.workspace import RAYS_TRACED
+from ..jit import inlined_kernel, kernel
+from .options import OPTION_MAX_DEPTH
+from .shading import local_colour
+from .surface import diffuse_colour, surface_at
+from .trace import closest_hit, spawn_point
+from .vec import add, as_tuple, dot, mul, normalize, row, scale, sub
+from .workspace import RAYS_TRACED
 
 MIN_WEIGHT = 1e-6
 

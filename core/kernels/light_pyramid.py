@@ -22,8 +22,8 @@ with min over its corners of normal . x > offset is outside), then its bounding 
 
 import math
 
-from core.jit import kernel
-from core.kernels.vec import add, cross, dot, max_abs, scale, sub
+from ..jit import kernel
+from .vec import add, cross, dot, max_abs, scale, sub
 
 # Rays are computed to a few ulps of the coordinates involved; the margin is far above that
 # and far below any size a scene cares about (the same relative size as the spawn offset)

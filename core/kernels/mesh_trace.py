@@ -15,12 +15,12 @@ import math
 
 import numpy as np
 
-from core.jit import inlined_kernel, kernel
-from core.kernels.bvh_wide import INF32, SLAB_WIDEN32, child_entries, float32_above, slab_ray
-from core.kernels.bvh_wide import leaf_block as _leaf_block
-from core.kernels.prefetch import prefetch_row
-from core.kernels.shapes import NO_HIT
-from core.kernels.triangles import (
+from ..jit import inlined_kernel, kernel
+from .bvh_wide import INF32, SLAB_WIDEN32, child_entries, float32_above, slab_ray
+from .bvh_wide import leaf_block as _leaf_block
+from .prefetch import prefetch_row
+from .shapes import NO_HIT
+from .triangles import (
     FACING_SIGN,
     LEAF_WIDTH,
     barycentrics,

@@ -10,18 +10,18 @@ focus. With aperture 0 the lens code does not run: the pinhole picture, exactly.
 
 import math
 
-from core.jit import kernel
-from core.kernels.borrow import borrow_scene, borrow_workspace, borrowed
-from core.kernels.integrator import trace_ray
-from core.kernels.options import (
+from ..jit import kernel
+from .borrow import borrow_scene, borrow_workspace, borrowed
+from .integrator import trace_ray
+from .options import (
     OPTION_PIXEL_PATTERN,
     OPTION_PIXEL_SAMPLES,
     OPTION_SEED,
     PIXEL_GRID,
     PIXEL_RANDOM,
 )
-from core.kernels.rng import PURPOSE_LENS, PURPOSE_PIXEL, permuted, sample_key, uniform2
-from core.kernels.vec import add, normalize, row, scale, sub
+from .rng import PURPOSE_LENS, PURPOSE_PIXEL, permuted, sample_key, uniform2
+from .vec import add, normalize, row, scale, sub
 
 FLOAT32_MAX = 3.4028234663852886e38
 

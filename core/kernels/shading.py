@@ -17,20 +17,20 @@ tested (OPTION_SHADOW_CULLING off, kept to show that).
 
 import math
 
-from core.jit import inlined_kernel, kernel
-from core.kernels.borrow import borrow_frame, borrow_geometry, borrow_lights, borrow_stacks
-from core.kernels.light_pyramid import TRAVERSE_ALL, build_pyramid, pyramid_candidates
-from core.kernels.options import (
+from ..jit import inlined_kernel, kernel
+from .borrow import borrow_frame, borrow_geometry, borrow_lights, borrow_stacks
+from .light_pyramid import TRAVERSE_ALL, build_pyramid, pyramid_candidates
+from .options import (
     OPTION_SHADOW_CULLING,
     OPTION_SHADOW_PATTERN,
     OPTION_SHADOW_SAMPLES,
     SHADOW_HALTON,
     SHADOW_STRATIFIED,
 )
-from core.kernels.rng import PURPOSE_LIGHT, PURPOSE_LIGHT_SHIFT, uniform2
-from core.kernels.trace import transmittance
-from core.kernels.vec import add, as_tuple, dot, mul, row, scale, sub
-from core.kernels.workspace import (
+from .rng import PURPOSE_LIGHT, PURPOSE_LIGHT_SHIFT, uniform2
+from .trace import transmittance
+from .vec import add, as_tuple, dot, mul, row, scale, sub
+from .workspace import (
     OCCLUDER_POSITION,
     OCCLUDER_SHAPE,
     SHADOW_RAYS,

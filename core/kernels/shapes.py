@@ -17,9 +17,9 @@ passed around as a value would miss numba's cache in every new process.
 
 import math
 
-from core.jit import kernel
-from core.kernels.torus import torus_roots
-from core.kernels.vec import dot
+from ..jit import kernel
+from .torus import torus_roots
+from .vec import dot
 
 SHAPE_SPHERE = 0
 SHAPE_BOX = 1

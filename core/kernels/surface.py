@@ -2,10 +2,10 @@
 
 import math
 
-from core.jit import kernel
-from core.kernels.shapes import SHAPE_MESH, analytic_normal, analytic_uv
-from core.kernels.triangles import block_and_lane
-from core.kernels.vec import (
+from ..jit import kernel
+from .shapes import SHAPE_MESH, analytic_normal, analytic_uv
+from .triangles import block_and_lane
+from .vec import (
     add,
     affine_point,
     affine_transpose_vector,

@@ -14,19 +14,19 @@ float32 corners of float32 vertices, padded one float32 step, and tested in floa
 conservative rounding.
 """
 
-from core.jit import inlined_kernel, kernel
-from core.kernels.bvh_wide import SLAB_WIDEN
-from core.kernels.csg import csg_closest, csg_transmittance
-from core.kernels.mesh_trace import inverse, mesh_closest, mesh_crossings
-from core.kernels.shapes import (
+from ..jit import inlined_kernel, kernel
+from .bvh_wide import SLAB_WIDEN
+from .csg import csg_closest, csg_transmittance
+from .mesh_trace import inverse, mesh_closest, mesh_crossings
+from .shapes import (
     NO_HIT,
     SHAPE_CSG,
     SHAPE_MESH,
     count_crossings,
     intersect_analytic,
 )
-from core.kernels.vec import add, affine_point, affine_vector, max_abs, scale
-from core.kernels.workspace import OCCLUDER_POSITION, OCCLUDER_SHAPE
+from .vec import add, affine_point, affine_vector, max_abs, scale
+from .workspace import OCCLUDER_POSITION, OCCLUDER_SHAPE
 
 # Secondary rays start this far off the surface, relative to the magnitude of the
 # coordinates involved: float64 hit points are accurate to a few ulps of that magnitude, so a

@@ -15,8 +15,8 @@ hit, so the test needs no count. Measured against triangles stored one a row: th
 for nearest hits, 10% more shadow rays per second.
 """
 
-from core.jit import inlined_kernel, ir_inlined_kernel, kernel
-from core.kernels.shapes import NO_HIT
+from ..jit import inlined_kernel, ir_inlined_kernel, kernel
+from .shapes import NO_HIT
 
 LEAF_WIDTH = 4  # triangles of a block, tested at once by `intersect_leaf`; no leaf holds more
 _LANE_BITS = 2  # a slot is block << _LANE_BITS | lane

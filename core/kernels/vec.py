@@ -2,7 +2,7 @@
 
 import math
 
-from core.jit import kernel
+from ..jit import kernel
 
 
 @kernel

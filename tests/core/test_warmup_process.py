@@ -5,6 +5,7 @@ is reported as failed with its last words. The real warm-up's compile is tested 
 test_kernel_signature."""
 
 import os
+import shutil
 import stat
 import subprocess
 import sys
@@ -15,10 +16,11 @@ import pytest
 
 import core
 from core import kernel_warmup
-from core.warmup_process import WarmupProcess
+from core.jit import kernel_cache_dir
+from core.warmup_process import CHILD_PROGRAM, WarmupProcess
 
-OWN_CORE = Path(core.__file__).resolve().parent
-ROOT = OWN_CORE.parent
+OWN_CORE = kernel_warmup.own_core()
+ROOT = Path(core.__file__).resolve().parent.parent
 
 
 def fake_python(tmp_path, body: str) -> str:
@@ -133,3 +135,25 @@ def test_a_second_warmup_waits_for_the_first_and_then_compiles_nothing():
     out, _ = second.communicate(timeout=120)
     assert second.returncode == 0, out
     assert "the cache is complete" in out and "1 of" not in out, out
+
+
+def test_the_child_imports_core_under_the_parents_name_without_running_its_parents(tmp_path):
+    """In Blender `core` is an add-on's subpackage, and numba's cache records that name: the
+    child must import it so too, from the same folder, without the add-on's __init__ (which
+    needs Blender) running. Here that __init__ raises, and the cache is complete, so the
+    child only says what it imported."""
+    name = "bl_ext.some_repo.whitted.core"
+    staged = tmp_path.joinpath(*name.split("."))
+    shutil.copytree(ROOT / "core", staged, ignore=shutil.ignore_patterns("__pycache__"))
+    (staged.parent / "__init__.py").write_text("raise ImportError('the add-on ran')\n")
+    folder = kernel_cache_dir(name)  # in this test's own cache folder
+    folder.mkdir(parents=True)
+    (folder / kernel_warmup.MARKER).write_text("compiled\n")
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    run = subprocess.run(
+        [sys.executable, "-c", CHILD_PROGRAM, name, str(staged)],
+        cwd=tmp_path, env=env, capture_output=True, text=True, timeout=120,
+    )  # fmt: skip
+    assert run.returncode == 0, run.stdout + run.stderr
+    assert f"Whitted: core {name} at {staged.resolve()}" in run.stdout
+    assert "the cache is complete" in run.stdout
