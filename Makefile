@@ -2,7 +2,8 @@
 #   make render [SCENE=path/to.blend]   set everything up, render headless (the report's final
 #                                       scene by default), print the PNG path
 #   make render SCENE=path/to.lua       render a CS488 Lua scene script to the PNG it names
-#   make test                           set everything up, lint, run the whole test suite
+#   make test                           set everything up, lint, run the whole test suite, and
+#                                       the Blender tests in every bpy version
 #   make bench                          run the benchmarks in tests/benchmarks/
 #   make fuzz [FUZZ_EXAMPLES=5000]      the fuzz tests' properties with thousands of examples
 SHELL := /bin/bash
@@ -21,7 +22,16 @@ BLENDER_RUN := PYTHONPATH=$(CURDIR):$(CURDIR)/$(SITE) blender -b --python-use-sy
 
 .PHONY: setup render test bench fuzz samples addon lint format clean
 
-setup: $(VENV)/.installed $(BUILD)/blender.ok $(BLENDER_USER_SCRIPTS)/addons/whitted
+# The Blenders tested as the bpy module besides the .venv's 5.0, each in .venvs/bpy-<version>
+# (tests/blender/versions.py, which holds their pins; a test checks the two lists agree)
+BPY_VERSIONS := 4.2 4.5 5.2
+BPY_VENVS := $(foreach v,$(BPY_VERSIONS),.venvs/bpy-$(v)/.installed)
+
+setup: $(VENV)/.installed $(BUILD)/blender.ok $(BLENDER_USER_SCRIPTS)/addons/whitted $(BPY_VENVS)
+
+.venvs/bpy-%/.installed: tests/blender/versions.py pyproject.toml | $(VENV)/.installed
+	$(VENV)/bin/python -m tests.blender.versions venv $*
+	touch $@
 
 $(VENV)/.installed: pyproject.toml
 	@$(PYTHON) -c 'import sys; sys.exit(sys.version_info[:2] != (3, 11))' || \
@@ -69,9 +79,11 @@ else
 	@echo "Rendered: $(RENDERS)/$(basename $(notdir $(SCENE)))_0001.png"
 endif
 
-# The zip a Blender 4.2+ user installs (Preferences > Get Extensions > Install from Disk)
-addon: $(VENV)/.installed
-	$(VENV)/bin/python blender_addon/packaging/build_extension.py dist
+# The zips a Blender 4.2+ user installs (Preferences > Get Extensions > Install from Disk), one
+# per platform; the Linux one with kernels compiled by both Pythons Blender runs (3.11, 3.13)
+addon: $(VENV)/.installed .venvs/bpy-5.2/.installed
+	$(VENV)/bin/python blender_addon/packaging/build_extension.py dist \
+	  $(VENV)/bin/python .venvs/bpy-5.2/bin/python
 
 samples: setup
 	$(BLENDER_RUN) --factory-startup --addons whitted --python sample_blends/build_samples.py
@@ -86,6 +98,7 @@ format: $(VENV)/.installed
 
 test: setup lint
 	$(VENV)/bin/python -m pytest
+	@for v in $(BPY_VERSIONS); do $(VENV)/bin/python -m tests.blender.versions test $$v || exit 1; done
 
 FUZZ_EXAMPLES ?= 5000
 fuzz: setup
@@ -105,4 +118,4 @@ $(VENV)/.embree: pyproject.toml | $(VENV)/.installed
 	touch $@
 
 clean:
-	rm -rf $(VENV) $(BUILD) .cache build
+	rm -rf $(VENV) .venvs $(BUILD) .cache build

@@ -34,6 +34,7 @@ READY_PREFIX = "Whitted: kernels ready"
 # One for each CPU target: a cache folder can hold the kernels of several (core.portable_cache)
 MARKER = f"warm-{CPU_TARGET}.ok"
 LOCK = "warm.lock"
+CACHE_LINE = "Whitted: kernel cache "
 
 
 def warmup_scene():
@@ -182,6 +183,7 @@ def kernels_ready() -> bool:
 def main() -> int:
     # The first line names the package compiled, for the parent to check it is its own
     print(f"Whitted: core {own_core()}", flush=True)
+    print(f"{CACHE_LINE}{kernel_cache_dir()}", flush=True)
     warm_kernels(lambda line: print(line, flush=True))
     return 0
 

@@ -14,11 +14,13 @@ interleaved rounds each): the host's own 1.25-1.34 primary and 1.11-1.16 shadow,
 1.20-1.22 and 1.10-1.13, x86-64-v3 1.27-1.42 and 1.20-1.25; so v4, not one v3 for all. Set
 NUMBA_CPU_NAME to choose yourself.
 
-Only numba's own cache files are read; whether a cached kernel fits is still numba's check
-(the same source bytes, numba version and CPU target), so a moved cache that does not fit is
-compiled over, never run.
+Sources are stamped by their bytes, not their times. Only numba's own cache files are read;
+whether a cached kernel fits is still numba's check (the same source bytes, numba version
+and CPU target), so a moved cache that does not fit is compiled over, never run.
 """
 
+import functools
+import hashlib
 import os
 import platform
 from pathlib import Path
@@ -57,6 +59,19 @@ class RelocatableCacheLocator(UserProvidedCacheLocator):
         if not Path(py_file).resolve().is_relative_to(CORE):
             return None  # not ours: numba's own locators decide
         return super().from_function(py_func, py_file)
+
+    def get_source_stamp(self):
+        """The source file by its bytes, not its time: unpacking or copying gives the files
+        new times. numba 0.63+ stamps so itself; 0.62, the last with wheels for Intel Macs,
+        by time and size."""
+        stat = os.stat(self._py_file)
+        return _content_stamp(self._py_file, stat.st_mtime_ns, stat.st_size)
+
+
+@functools.lru_cache(maxsize=256)
+def _content_stamp(path: str, mtime_ns: int, size: int) -> str:
+    """Read once per file and version of it (every kernel of a module asks)."""
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
 
 
 def host_portable_level() -> str | None:

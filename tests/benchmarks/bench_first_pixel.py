@@ -96,7 +96,10 @@ def main():
         # The extension as Blender unpacks it; its `core` comes first on the path (the
         # working folder), before the checkout's
         installed_folder = Path(folder) / "installed"
-        zip_path = build(Path(folder) / "dist", False, kernel_cache=cache, levels=(CPU_TARGET,))
+        zip_path = build(
+            Path(folder) / "dist", False, kernel_cache=cache, levels=(CPU_TARGET,),
+            platforms=("linux-x64",),
+        )["linux-x64"]  # fmt: skip
         zipfile.ZipFile(zip_path).extractall(installed_folder)
         installed, installed_source, compiled = first_pixel(
             Path(folder) / "new_user_cache", scene_file, cwd=installed_folder

@@ -37,3 +37,11 @@ def clear_scene(bpy):
         for datablock in list(collection):
             collection.remove(datablock)
     return bpy.context.scene
+
+
+def pytest_collection_modifyitems(items):
+    """Every test that loads bpy is marked `bpy`: those run in each Blender version's
+    environment (tests/blender/versions.py)."""
+    for item in items:
+        if "bpy_with_whitted" in getattr(item, "fixturenames", ()):
+            item.add_marker(pytest.mark.bpy)

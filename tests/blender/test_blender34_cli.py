@@ -118,3 +118,25 @@ def test_a_first_render_on_a_new_machine_prints_the_kernel_compile_steps(tmp_pat
     assert steps[-1] == "Whitted: compiling kernels: 4 of 4 (render kernel)", run.stdout
     assert "exited with status" not in run.stdout
     assert "kernels cache" in run.stdout and (tmp_path / "out_0001.png").is_file()
+
+
+def test_a_checkout_link_loads_core_as_the_add_ons_own_and_keeps_kernels_in_the_checkout():
+    """As a user's Blender loads a linked checkout: no checkout on the module path and no
+    cache folder named. `core` is then the add-on's subpackage, no top-level `core` appears,
+    and kernels go under the checkout."""
+    site = ROOT / ".venv" / "lib" / "python3.11" / "site-packages"
+    env = {k: v for k, v in os.environ.items() if k != "WHITTED_CACHE_DIR"}
+    env["PYTHONPATH"] = str(site)
+    probe = (
+        "import os, sys; print('CORE', sys.modules['whitted.core'].__file__,"
+        " 'core' in sys.modules, os.environ['WHITTED_CACHE_DIR'])"
+    )
+    run = subprocess.run(
+        [shutil.which("blender"), "-b", "--python-use-system-env", "--addons", "whitted",
+         "--python-expr", probe],
+        env=env, capture_output=True, text=True, timeout=300,
+    )  # fmt: skip
+    assert run.returncode == 0, run.stdout + run.stderr
+    line = next(line for line in run.stdout.splitlines() if line.startswith("CORE "))
+    assert line.split() == ["CORE", str(ROOT / "core" / "__init__.py"), "False",
+                            str(ROOT / ".cache" / "kernels")]  # fmt: skip

@@ -8,8 +8,9 @@ from PIL import Image
 
 import core
 from tests.blender.blender_reference import expected_pixels, sample_grid
+from tests.blender.versions import SUPPORTED
 
-pytestmark = pytest.mark.bpy5
+pytestmark = pytest.mark.bpy
 
 
 def render_to_array(bpy, scene, path):
@@ -24,7 +25,7 @@ def engine_class():
 
 def test_engine_is_registered_and_listed(bpy_with_whitted):
     bpy = bpy_with_whitted
-    assert bpy.app.version[:2] in {(3, 4), (5, 0)}  # also run inside Blender 3.4
+    assert bpy.app.version[:2] in SUPPORTED  # also run inside Blender 3.4
     scene = bpy.context.scene
     # The engine enum is dynamic: Blender lists its valid items when given an invalid one
     with pytest.raises(TypeError, match=r"'WHITTED'"):

@@ -15,7 +15,7 @@ from tests.core.probe import hits, packed_shapes
 from tests.csg_examples import EXAMPLES, analytic_tree
 from tests.rays import rays_towards_origin
 
-pytestmark = pytest.mark.bpy5
+pytestmark = pytest.mark.bpy
 
 SEGMENTS = 128
 BLENDER_OPERATION = {"intersection": "INTERSECT", "union": "UNION", "difference": "DIFFERENCE"}

@@ -11,7 +11,7 @@ from tests.blender.conftest import clear_scene
 from tests.core.probe import hits, packed_shapes
 from tests.rays import rays_towards_origin
 
-pytestmark = pytest.mark.bpy5
+pytestmark = pytest.mark.bpy
 
 
 @pytest.fixture

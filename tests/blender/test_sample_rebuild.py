@@ -10,7 +10,7 @@ import pytest
 from tests.blender.conftest import ROOT
 from tests.blender.test_blender34_cli import blender_34
 
-pytestmark = [pytest.mark.bpy5, pytest.mark.blender34]
+pytestmark = [pytest.mark.bpy, pytest.mark.blender34]
 SAMPLES = ROOT / "sample_blends"
 
 

@@ -11,7 +11,7 @@ from PIL import Image
 from core.textures import srgb_to_linear
 from tests.blender.conftest import ROOT
 
-pytestmark = pytest.mark.bpy5
+pytestmark = pytest.mark.bpy
 SAMPLES = ROOT / "sample_blends"
 
 

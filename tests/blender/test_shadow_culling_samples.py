@@ -13,7 +13,7 @@ import core
 from tests.blender.conftest import ROOT
 from tests.blender.render_view import export_scenes
 
-pytestmark = pytest.mark.bpy5
+pytestmark = pytest.mark.bpy
 SAMPLES = sorted((ROOT / "sample_blends").glob("*.blend"))
 
 

@@ -58,7 +58,8 @@ def test_vertex_normals_are_the_reports_sum_of_face_normals():
     (computed here face by face)."""
     points = np.array([[0.0, 0, 0], [2, 0, 0], [0, 1, 0], [0, 0, 3]])
     faces = [(0, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3)]
-    text = b"".join(b"v %r %r %r\n" % tuple(p) for p in points)
+    # floats, not numpy scalars, whose repr is `np.float64(2.0)` under numpy 2
+    text = b"".join(b"v %r %r %r\n" % tuple(map(float, p)) for p in points)
     text += b"".join(b"f %d %d %d\n" % tuple(i + 1 for i in f) for f in faces)
     mesh = parse_obj(text)
     for vertex in range(4):
