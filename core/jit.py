@@ -26,7 +26,9 @@ def kernel_source_hash(package: str = __package__) -> str:
     # and imports it by that name on loading, so kernels compiled as `core` (a checkout) do
     # not load as an add-on's `bl_ext.user_default.whitted.core`, nor the other way round
     digest = hashlib.sha1(package.encode())
-    for path in sorted([here / "jit.py", *(here / "kernels").glob("*.py")]):
+    # portable_cache.py too: it decides how cached kernels are found and stamped
+    sources = [here / "jit.py", here / "portable_cache.py", *(here / "kernels").glob("*.py")]
+    for path in sorted(sources):
         digest.update(path.name.encode() + path.read_bytes())
     return digest.hexdigest()[:12]
 
