@@ -27,7 +27,7 @@ BLENDER_RUN := PYTHONPATH=$(CURDIR):$(CURDIR)/$(SITE) blender -b --python-use-sy
 BPY_VERSIONS := 4.2 4.5 5.2
 BPY_VENVS := $(foreach v,$(BPY_VERSIONS),.venvs/bpy-$(v)/.installed)
 
-setup: $(VENV)/.installed $(BUILD)/blender.ok $(BLENDER_USER_SCRIPTS)/addons/whitted $(BPY_VENVS)
+setup: $(VENV)/.installed $(BUILD)/blender.ok $(BLENDER_USER_SCRIPTS)/addons/whitted
 
 .venvs/bpy-%/.installed: tests/blender/versions.py pyproject.toml | $(VENV)/.installed
 	$(VENV)/bin/python -m tests.blender.versions venv $*
@@ -96,7 +96,7 @@ format: $(VENV)/.installed
 	$(VENV)/bin/ruff format .
 	$(VENV)/bin/ruff check --fix .
 
-test: setup lint
+test: setup $(BPY_VENVS) lint
 	$(VENV)/bin/python -m pytest
 	@for v in $(BPY_VERSIONS); do $(VENV)/bin/python -m tests.blender.versions test $$v || exit 1; done
 

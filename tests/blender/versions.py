@@ -9,8 +9,8 @@ PYTHON313.
 
 `make test` runs the whole suite in the project's `.venv` (bpy 5.0, Blender 3.4's binary),
 then, for each other version, every test that imports `bpy` (tests/blender, marked `bpy`), in
-that version's environment; in the two whose numpy, Python or numba differ from the project's,
-the core's tests too.
+that version's environment; in 5.2's (numpy 2, Python 3.13) the core's tests too, and in 4.5's
+(numba 0.62.1) those of the kernel cache.
 
     python -m tests.blender.versions venv 5.2    build the environment of one version
     python -m tests.blender.versions test 5.2    run its tests
@@ -50,11 +50,20 @@ class BpyVersion:
 
 
 IN_PROJECT_VENV = "5.0"
-CORE_TOO = ("-m", "not blender34")  # the Blender tests and the core's (Blender 3.4 runs in one)
+# Blender 3.4's binary tests and the zips' wheel checks run in the project's venv only
+ONCE = ("-m", "not blender34", "--ignore=tests/blender/test_platform_zips.py")
+CORE_TOO = (*ONCE, "tests")  # the Blender tests and the core's
+# The Blender tests, and those of the kernel cache, whose stamps numba 0.62 makes otherwise
+CACHE_TOO = (
+    *ONCE,
+    "tests/blender",
+    "tests/core/test_portable_cache.py",
+    "tests/core/test_warmup_process.py",
+)
 BPY_VERSIONS = (
     BpyVersion("4.2", "3.11", ("bpy==4.2.23", "numpy==1.26.4")),
-    # With the numba an Intel Mac gets (the last Blender there), the core's tests too
-    BpyVersion("4.5", "3.11", ("bpy==4.5.15", "numpy==1.26.4", *INTEL_MAC_NUMBA), CORE_TOO),
+    # With the numba an Intel Mac gets (the last Blender there)
+    BpyVersion("4.5", "3.11", ("bpy==4.5.15", "numpy==1.26.4", *INTEL_MAC_NUMBA), CACHE_TOO),
     BpyVersion("5.0", "3.11", ("bpy==5.0.1", "numpy==1.26.4")),
     # The one with numpy 2 and Python 3.13: the core's tests run here too
     BpyVersion("5.2", "3.13", ("bpy==5.2.3", "numpy==2.5.5"), CORE_TOO),
