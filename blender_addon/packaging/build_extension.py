@@ -92,7 +92,7 @@ def compile_kernels(python: str, cache_base: Path, level: str, stage: Path) -> P
     core = stage.joinpath(*INSTALLED_AS.split("."))
     if not core.is_dir():
         shutil.copytree(ROOT / "core", core, ignore=shutil.ignore_patterns("__pycache__"))
-    env = dict(os.environ, WHITTED_CACHE_DIR=str(cache_base))
+    env = dict(os.environ, WHITTED_CACHE_DIR=str(cache_base.absolute()))  # the child runs in stage
     env.update(NUMBA_CPU_NAME=level, NUMBA_CPU_FEATURES="")
     env.pop("PYTHONPATH", None)  # nothing but the staged copy may answer to its name
     lines = subprocess.run(
@@ -192,5 +192,7 @@ def build(
 
 if __name__ == "__main__":
     out = Path(sys.argv[1]) if len(sys.argv) > 1 else ROOT / "dist"
-    for name, path in build(out, pythons=tuple(sys.argv[2:]) or (sys.executable,)).items():
+    # Absolute, as the warm-ups run elsewhere; not resolved, or a venv's python leaves its venv
+    pythons = tuple(os.path.abspath(p) for p in sys.argv[2:]) or (sys.executable,)
+    for name, path in build(out, pythons=pythons).items():
         print(f"{name}: {path} ({path.stat().st_size / 1e6:.0f} MB)")
