@@ -2,9 +2,10 @@
 
 numba reads `config.CACHE_DIR` when a function is decorated, so this module must be imported
 (it is, by `core.kernels`) before any kernel module. The folder's name holds the package,
-numba and Python versions and a hash of the kernels' source: numba checks only a cached
-function's own file for changes, not the files of the functions it calls, so without the hash
-an edit to one kernel module could leave stale machine code inlined in another. Tests,
+numba and Python versions and a hash of the kernels' source (and of the package's import
+name): numba checks only a cached function's own file for changes, not the files of the
+functions it calls, so without the hash an edit to one kernel module could leave stale
+machine code inlined in another. Tests,
 benchmarks and Blender subprocesses share the folder through WHITTED_CACHE_DIR.
 """
 

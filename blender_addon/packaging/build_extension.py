@@ -17,7 +17,6 @@ addon`, with the project's Python 3.11 and the Python 3.13 of Blender 5.1+.
 from __future__ import annotations
 
 import os
-import re
 import shutil
 import subprocess
 import sys
@@ -77,8 +76,9 @@ def download_wheels(platform: Platform, folder: Path) -> list[Path]:
              "--platform", platform.pip_platform, "--dest", str(folder), *platform.wheels],
             check=True,
         )  # fmt: skip
-    names = {re.sub(r"==.*", "", w).lower() for w in platform.wheels}
-    return sorted(w for w in folder.glob("*.whl") if w.name.split("-")[0].lower() in names)
+    # By name and version: the folder may hold the wheels of earlier pins too
+    wanted = tuple(pin.replace("==", "-").lower() + "-" for pin in platform.wheels)
+    return sorted(w for w in folder.glob("*.whl") if w.name.lower().startswith(wanted))
 
 
 def compile_kernels(python: str, cache_base: Path, level: str, stage: Path) -> Path:
