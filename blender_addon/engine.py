@@ -4,6 +4,7 @@ It only coordinates; the work is in `export` (Blender -> core.Scene) and in `cor
 """
 
 import time
+import traceback
 
 import bpy
 import numpy as np
@@ -38,6 +39,17 @@ class WhittedRenderEngine(bpy.types.RenderEngine):
             output = core.render(scene, settings, on_tile=stream, should_cancel=self._cancelled)
         except core.SceneError as error:
             self.report({"ERROR"}, f"Whitted: {error}")
+            return
+        except Exception as error:
+            # Anything else is Whitted's bug, or the machine's (a full disk, a damaged cache
+            # it could not heal). Reported as an error, so that `blender -b` exits 1 and writes
+            # no frame, which a farm sees; raised on, Blender would write a blank frame and
+            # exit 0. The traceback goes to the console for the bug report.
+            traceback.print_exc()
+            kind = type(error).__name__
+            self.report(
+                {"ERROR"}, f"Whitted: the render failed: {kind}: {error} (traceback on the console)"
+            )
             return
         for warning in output.warnings:
             self.report({"WARNING"}, f"Whitted: {warning}")

@@ -140,3 +140,17 @@ def test_a_checkout_link_loads_core_as_the_add_ons_own_and_keeps_kernels_in_the_
     line = next(line for line in run.stdout.splitlines() if line.startswith("CORE "))
     assert line.split() == ["CORE", str(ROOT / "core" / "__init__.py"), "False",
                             str(ROOT / ".cache" / "kernels")]  # fmt: skip
+
+
+def test_an_exception_in_the_engine_fails_the_render_loudly_and_writes_no_frame(tmp_path):
+    """Not a scene error but Whitted's own failure (here the export raises): a farm sees
+    only the exit status, so it must be non-zero, with no blank frame left behind."""
+    run = blender_34(
+        str(SAMPLE), "--addons", "whitted",
+        "--python-expr", "import sys; sys.modules['whitted.export'].convert = lambda d: 1 / 0",
+        "-E", "WHITTED", "-o", f"{tmp_path}/broken_####", "-F", "PNG", "-f", "1",
+    )  # fmt: skip
+    output = run.stdout + run.stderr
+    assert run.returncode != 0, output
+    assert "Whitted: the render failed: ZeroDivisionError: division by zero" in output
+    assert not list(tmp_path.glob("broken_*")), "a frame was written"
