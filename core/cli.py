@@ -56,6 +56,8 @@ def _render_script(script: Path, output: Path | None, threads: int) -> int:
         raise ScriptError(
             f"{script.name}: the script calls gr.render {len(calls)} times; -o names one file"
         )
+    if output is not None and output.suffix.lower() != ".png":
+        raise ScriptError(f"-o {output}: Whitted writes PNG images; name a file ending in .png")
     if not kernels_ready():
         # The first render on a machine: say what it is waiting for, step by step
         warm_kernels(lambda line: print(line, file=sys.stderr, flush=True))
@@ -107,6 +109,10 @@ def _write_whole(image, target: Path) -> None:
     os.close(handle)
     try:
         save_png(image, temporary)
+        # As a file made by open() would be (0644 under the usual umask), not mkstemp's 0600
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(temporary, 0o666 & ~umask)
         os.replace(temporary, target)
     finally:
         if os.path.exists(temporary):

@@ -118,3 +118,23 @@ def test_o_with_several_render_calls_is_refused_before_rendering(capsys):
     assert error.strip() == (
         "error: report_manual.lua: the script calls gr.render 2 times; -o names one file"
     )
+
+
+def test_o_must_name_a_png_and_nothing_is_rendered_otherwise(capsys, tmp_path):
+    status = main(["render", str(SCENES / "every_command.lua"), "-o", str(tmp_path / "out.jpg")])
+    assert status == 1
+    error = capsys.readouterr().err.strip()
+    assert error.endswith("out.jpg: Whitted writes PNG images; name a file ending in .png"), error
+    assert not list(tmp_path.iterdir())
+
+
+def test_the_png_is_readable_by_others_as_any_new_file_is(scenes):
+    """0644 under the usual umask 022, as Blender writes its images (not mkstemp's 0600)."""
+    folder, elsewhere = scenes
+    previous = os.umask(0o022)
+    try:
+        run = run_cli("render", folder / "every_command.lua", "-o", elsewhere / "x.png", cwd=folder)
+    finally:
+        os.umask(previous)
+    assert run.returncode == 0, run.stderr
+    assert (elsewhere / "x.png").stat().st_mode & 0o777 == 0o644
