@@ -17,6 +17,7 @@ out as one `ScriptError` whose message starts `scene.lua:LINE:`, the line of the
 made the failing call.
 """
 
+import re
 from collections.abc import Callable
 from pathlib import Path
 
@@ -102,7 +103,7 @@ def run_script(
     chunk, problem = loaded if isinstance(loaded, tuple) else (loaded, None)
     if chunk is None:
         raise ScriptError(str(problem))
-    _run(runtime, chunk)
+    _run(runtime, chunk, path.name)
 
 
 class _Bridge:
@@ -190,7 +191,7 @@ def _method_call(cls: type, method: str) -> Callable:
     return call
 
 
-def _run(runtime, chunk) -> None:
+def _run(runtime, chunk, script: str) -> None:
     """Call the chunk with the instruction cap in place. The cap is a count hook; once it
     fires every later instruction fails too, so a pcall in a loop cannot go on. Hooks are
     set and cleared from Python, so no Lua instruction of ours runs under them."""
@@ -211,9 +212,24 @@ def _run(runtime, chunk) -> None:
     except lua54.LuaMemoryError:
         raise ScriptError(f"the script used more than {MAX_MEMORY // 2**20} MiB") from None
     except lua54.LuaError as error:
-        raise ScriptError(str(error).split("\nstack traceback:")[0]) from None
+        raise ScriptError(_error_message(str(error), script)) from None
     finally:
         clear_hook()
+
+
+def _error_message(text: str, script: str) -> str:
+    """The script's error as `script.lua:LINE: message`. Lua adds the place only to a text
+    message; for error(42) or error() it is taken from the traceback, and a table given to
+    error() carries neither message nor traceback, so the file alone is named."""
+    message, _, traceback = text.partition("stack traceback:")
+    message = message.strip()
+    if message.startswith(f"{script}:"):
+        return message
+    place = re.search(rf"^\s*({re.escape(script)}:\d+):", traceback, re.M)
+    where = place[1] if place else script
+    if not message:
+        return f"{where}: error() was called with no message (a table or nil, not text)"
+    return f"{where}: {message}"
 
 
 def _no_attributes(obj, name, is_setting):

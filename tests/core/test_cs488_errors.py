@@ -100,6 +100,25 @@ def test_each_mistake_names_the_file_line_and_what_is_valid(folder, source, mess
     assert re.match(r"scene\.lua:3: " + re.escape(message), str(caught.value)), caught.value
 
 
+@pytest.mark.parametrize(
+    "source, message",
+    [
+        ("error('plain')", "scene.lua:3: plain"),
+        ("error(42)", "scene.lua:3: 42"),
+        ("error()", "scene.lua:3: error() was called with no message (a table or nil, not text)"),
+        # A table carries no message and Lua gives no traceback with it: the file alone
+        ("error({code = 1})", "scene.lua: error() was called with no message"),
+    ],
+)
+def test_the_scripts_own_error_names_the_place_whatever_it_raises(folder, source, message):
+    script = folder / "scene.lua"
+    script.write_text("root = gr.node('root')\n\n" + source + "\n")
+    with pytest.raises(ScriptError) as caught:
+        load_script(script, print_line=lambda line: None)
+    assert str(caught.value).startswith(message), caught.value
+    assert "stack traceback" not in str(caught.value)
+
+
 def test_an_error_after_gr_render_still_renders_nothing(folder):
     script = folder / "scene.lua"
     script.write_text("r = gr.node('r')\n" + RENDER + ")\ngr.sphere()\n")
