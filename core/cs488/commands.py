@@ -243,8 +243,16 @@ class Commands:
         reflectivity = number(args[3], "reflectivity", low=0) if len(args) > 3 else 0.0
         if reflectivity > 1:
             raise ArgumentError(f"reflectivity must be between 0 and 1; got {reflectivity:g}")
-        outer = number(args[4], "outer index of refraction", above=0) if len(args) > 4 else 1.0
-        inner = number(args[5], "inner index of refraction", above=0) if len(args) > 5 else 1.0
+        outer = number(args[4], "outer index of refraction", low=0) if len(args) > 4 else 1.0
+        inner = number(args[5], "inner index of refraction", low=0) if len(args) > 5 else 1.0
+        if outer == inner:
+            outer = inner = 1.0  # no refraction: the report's scripts write it `0, 0`
+        elif min(outer, inner) == 0:
+            raise ArgumentError(
+                f"indices of refraction {outer:g} (outer) and {inner:g} (inner): equal indices "
+                "(`0, 0` in the report's scripts) mean no refraction; to refract, both must "
+                "be above 0"
+            )
         self.material_count += 1
         kind = "texture" if texture else "material"
         core = Material(

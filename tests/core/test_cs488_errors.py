@@ -35,7 +35,10 @@ CASES = [
     ("gr.nh_box('b', {0, 0, 0}, 'big')", "gr.nh_box: size must be a number; got the string 'big'"),
     ("gr.nh_cone('c', {0, 0, 0}, 1, 0)", "gr.nh_cone: height must be above 0; got 0"),
     (M + ", 2)", "gr.material: reflectivity must be between 0 and 1; got 2"),
-    (M + ", 0, 0, 1.5)", "gr.material: outer index of refraction must be above 0; got 0"),
+    (M + ", 0, 0, 1.5)", "gr.material: indices of refraction 0 (outer) and 1.5 (inner): equal "
+     "indices (`0, 0` in the report's scripts) mean no refraction; to refract, both must be "
+     "above 0"),
+    (M + ", 0, -1, -1)", "gr.material: outer index of refraction must be"),
     ("gr.light({0, 0, 0}, {1, 1, 1}, {0, 0, 0})",
      "gr.light: falloff {c0, c1, c2} cannot be all 0; (1, 0, 0) is no falloff"),
     ("r = gr.node('r') r:rotate('w', 30)",
@@ -140,3 +143,20 @@ def test_scripts_cannot_reach_files_outside_their_folder(tmp_path, source):
     with pytest.raises(ScriptError, match=r"^scene\.lua:1: attempt to (index|call) a nil value"):
         load_script(folder / "scene.lua", print_line=lambda line: None)
     assert not (folder / "pwned").exists()
+
+
+def test_equal_indices_as_the_seeds_scripts_write_them_mean_no_refraction(folder):
+    """`gr.material(kd, ks, p, r, 0, 0)` is how the report's scripts say "not glass": the
+    same material as one given no indices at all."""
+    script = folder / "scene.lua"
+    lines = ["r = gr.node('r')"]
+    for name, tail in (("seed", ", 0.3, 0, 0"), ("equal", ", 0.3, 1.5, 1.5"), ("plain", ", 0.3")):
+        lines += [f"{name} = gr.sphere('{name}')", f"r:add_child({name})"]
+        lines += [f"{name}:set_material(gr.material({{1, 0, 0}}, {{0, 0, 0}}, 1{tail}))"]
+    script.write_text("\n".join(lines) + "\n" + RENDER + ")\n")
+    (call,) = load_script(script, print_line=lambda line: None)
+    materials = {shape.name: shape.material for shape in call.scene.shapes}
+    for name in ("seed", "equal"):
+        assert materials[name].transparency == 0.0
+        assert (materials[name].outer_ior, materials[name].inner_ior) == (1.0, 1.0)
+        assert materials[name].reflectivity == materials["plain"].reflectivity == 0.3
