@@ -28,10 +28,12 @@ def check_number(owner: str, name: str, value, low=None, high=None, low_open=Fal
     return float(value)
 
 
-def check_count(owner: str, name: str, value, low: int = 0) -> int:
-    """A whole number >= low."""
+def check_count(owner: str, name: str, value, low: int = 0, high: int | None = None) -> int:
+    """A whole number >= low, and <= high if given."""
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < low:
         raise SceneError(owner, name, f"got {value!r}; use a whole number >= {low}")
+    if high is not None and value > high:
+        raise SceneError(owner, name, f"got {value!r}; use a whole number from {low} to {high}")
     return int(value)
 
 

@@ -102,6 +102,10 @@ SHADOW_SAMPLINGS = tuple(SHADOW_PATTERNS)
 # anti-aliasing setting of the final scene up to 4 x 4 gained 3% in accuracy
 DEFAULT_PIXEL_SAMPLES = 3
 DEFAULT_SHADOW_SAMPLES = 4
+# Far beyond any that changes a picture (a million camera rays per pixel; 65536 shadow rays
+# per light), and below where the sample numbers overflow
+MAX_PIXEL_SAMPLES = 1024
+MAX_SHADOW_SAMPLES = 65536
 
 
 @dataclass
@@ -115,11 +119,11 @@ class RenderSettings:
                         render only this part (a render border); pixels are the same as in a
                         full render
     max_depth        -- reflection/refraction bounces after the camera ray, >= 0
-    pixel_samples    -- n: each pixel averages n x n camera rays (the report used 3)
+    pixel_samples    -- n: each pixel averages n x n camera rays (the report used 3), <= 1024
     pixel_sampling   -- "grid": at the centres of the n x n cells (the report's supersampling);
                         "jittered": one random point in each cell; "random": n x n
                         independent random points in the pixel
-    shadow_samples   -- shadow rays per area light per shading point, >= 1
+    shadow_samples   -- shadow rays per area light per shading point, 1 to 65536
     shadow_sampling  -- "stratified": one sample in each of as many equal-area cells of the
                         light; "uniform": independent random points (the report's way);
                         "halton": the Halton sequence, shifted at random per shading point
@@ -145,10 +149,14 @@ class RenderSettings:
 
     def validate(self) -> None:
         owner = "render settings"
-        for name in ("width", "height", "tile_size", "pixel_samples", "shadow_samples"):
+        for name in ("width", "height", "tile_size"):
             check_count(owner, name, getattr(self, name), low=1)
+        # Counts the kernels multiply into 64-bit sample numbers: beyond these they overflowed
+        # into black pixels, long after any picture would change
+        check_count(owner, "pixel_samples", self.pixel_samples, low=1, high=MAX_PIXEL_SAMPLES)
+        check_count(owner, "shadow_samples", self.shadow_samples, low=1, high=MAX_SHADOW_SAMPLES)
         check_count(owner, "max_depth", self.max_depth, low=0)
-        check_count(owner, "seed", self.seed, low=0)
+        check_count(owner, "seed", self.seed, low=0, high=2**63 - 1)
         check_count(owner, "threads", self.threads, low=0)
         check_choice(owner, "pixel_sampling", self.pixel_sampling, PIXEL_SAMPLINGS)
         check_choice(owner, "shadow_sampling", self.shadow_sampling, SHADOW_SAMPLINGS)

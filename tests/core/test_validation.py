@@ -27,6 +27,22 @@ def test_zero_resolution(field):
 
 
 @pytest.mark.parametrize(
+    "field, value, allowed",
+    [
+        # 2**32 overflowed the kernels' sample numbers into black pixels
+        ("pixel_samples", 2**32, "from 1 to 1024"),
+        ("shadow_samples", 2**32, "from 1 to 65536"),
+        ("seed", 2**64, "from 0 to 9223372036854775807"),
+    ],
+)
+def test_sample_counts_and_seed_past_what_the_kernels_count_are_refused(field, value, allowed):
+    settings = RenderSettings(4, 4)
+    setattr(settings, field, value)
+    with pytest.raises(SceneError, match=rf"render settings: {field}: got {value}; .*{allowed}"):
+        render_tiny(ball_on_ground(), settings)
+
+
+@pytest.mark.parametrize(
     "change, message",
     [
         (lambda s: setattr(s.camera, "fovy", 0.0), r"camera 'Camera': fovy: got 0.0"),
