@@ -58,6 +58,10 @@ def _render_script(script: Path, output: Path | None, threads: int) -> int:
         )
     if output is not None and output.suffix.lower() != ".png":
         raise ScriptError(f"-o {output}: Whitted writes PNG images; name a file ending in .png")
+    for call in calls:  # before any rendering: a folder cannot take the picture
+        target = output if output is not None else call.output
+        if target.is_dir():
+            raise ScriptError(f"{target} is a folder; name a .png file to write the image to")
     if not kernels_ready():
         # The first render on a machine: say what it is waiting for, step by step
         warm_kernels(lambda line: print(line, file=sys.stderr, flush=True))

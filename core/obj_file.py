@@ -143,6 +143,8 @@ def _face_corners(words: np.ndarray, source: str) -> np.ndarray:
         return np.array(parts).astype(np.int64).reshape(-1, 3)
     except ValueError:
         raise ObjError(f"{source}: a face corner is not made of whole numbers") from None
+    except OverflowError:  # beyond 64 bits: no file holds that many vertices
+        raise ObjError(f"{source}: a face corner's index is beyond any vertex count") from None
 
 
 def _fan(line_starts: np.ndarray, sizes: np.ndarray) -> np.ndarray:

@@ -116,6 +116,8 @@ class Commands:
 
     def file(self, value, what: str) -> Path:
         name = name_of(value, what)
+        if "\0" in name:
+            raise ArgumentError(f"{what} {name!r} holds a NUL byte, which no file name can")
         path = (self.folder / name).resolve()
         if not path.is_file():
             raise ArgumentError(f"{what} '{name}' not found (looked for {path})")

@@ -250,14 +250,22 @@ def _checked_material(node, material, textured: bool):
 
 
 def _path_up(node: Node, target: Node) -> list[Node] | None:
-    """The chain of parents from `node` up to `target` (target an ancestor of node, or node
-    itself), or None."""
-    if node is target:
-        return [node]
-    for parent in node.parents:
-        path = _path_up(parent, target)
-        if path is not None:
-            return [node, *path]
+    """A chain of parents from `node` up to `target` (target an ancestor of node, or node
+    itself), or None. A search over parents that visits each node once: a graph of shared
+    children has exponentially many paths, and a deep one would run out of Python's stack."""
+    came_from = {id(node): None}
+    pending = [node]
+    while pending:
+        current = pending.pop()
+        if current is target:
+            chain = [current]
+            while came_from[id(chain[-1])] is not None:
+                chain.append(came_from[id(chain[-1])])
+            return chain[::-1]
+        for parent in current.parents:
+            if id(parent) not in came_from:
+                came_from[id(parent)] = current
+                pending.append(parent)
     return None
 
 

@@ -116,16 +116,21 @@ class RenderCall:
 
 def _collect(node: Node, parent: np.ndarray, shapes: list, unset: list) -> None:
     """Every shape under `node` (placed by `parent`), once per path to it: a node under two
-    parents is drawn twice, as A4's instancing does."""
-    if isinstance(node, GeometryNode):
-        material = node.material.core if node.material is not None else None
-        if material is None:
-            unset += _unset_names(node)
-        shape = node.core_shape(material or UNSET_MATERIAL)
-        shape.world_from_object = parent @ shape.world_from_object
-        shapes.append(shape)
-    for child in node.children:
-        _collect(child, parent @ node.matrix, shapes, unset)
+    parents is drawn twice, as A4's instancing does. In the order of a depth-first walk,
+    kept on a list of its own rather than Python's stack, so that no depth of nesting runs
+    out of it."""
+    pending = [(node, parent)]
+    while pending:
+        node, parent = pending.pop()
+        if isinstance(node, GeometryNode):
+            material = node.material.core if node.material is not None else None
+            if material is None:
+                unset += _unset_names(node)
+            shape = node.core_shape(material or UNSET_MATERIAL)
+            shape.world_from_object = parent @ shape.world_from_object
+            shapes.append(shape)
+        placed = parent @ node.matrix
+        pending += [(child, placed) for child in reversed(node.children)]
 
 
 def _unset_names(node: GeometryNode) -> list[str]:

@@ -40,7 +40,16 @@ SAFE_GLOBALS = ("assert", "error", "getmetatable", "ipairs", "next", "pairs", "p
 # the calling line of the script in front of it.
 _SHIM = """
 local impl, name = ...
+local select, type, error, valid_utf8 = select, type, error, utf8.len
 return function(...)
+    -- Python takes strings as UTF-8 text: a Lua string of other bytes (a '\\255' escape) is
+    -- refused here, where the calling line is known
+    for i = 1, select("#", ...) do
+        local value = select(i, ...)
+        if type(value) == "string" and not valid_utf8(value) then
+            error(name .. ": argument " .. i .. " is not UTF-8 text", 2)
+        end
+    end
     local ok, result = impl(...)
     if not ok then error(name .. ": " .. result, 2) end
     return result
@@ -77,9 +86,17 @@ def run_script(
     """Run the script at `path` with `gr.<name>` calling api[name]. Raises ScriptError."""
     path = Path(path)
     try:
-        source = path.read_text()
+        data = path.read_bytes()
     except OSError as error:
         raise ScriptError(f"{path}: cannot read the scene script: {error.strerror}") from None
+    try:
+        source = data.decode("utf-8")
+    except UnicodeDecodeError as error:
+        line = data.count(b"\n", 0, error.start) + 1
+        raise ScriptError(
+            f"{path.name}:{line}: byte 0x{data[error.start]:02x} is not UTF-8 text; save the "
+            "script as UTF-8 (Latin-1 or another encoding will not do)"
+        ) from None
     runtime = lua54.LuaRuntime(
         register_eval=False,
         register_builtins=False,
@@ -213,6 +230,8 @@ def _run(runtime, chunk, script: str) -> None:
         raise ScriptError(f"the script used more than {MAX_MEMORY // 2**20} MiB") from None
     except lua54.LuaError as error:
         raise ScriptError(_error_message(str(error), script)) from None
+    except UnicodeDecodeError:  # a string inside a table argument: no line to name
+        raise ScriptError(f"{script}: a string given to gr is not UTF-8 text") from None
     finally:
         clear_hook()
 

@@ -1,0 +1,80 @@
+"""Hostile scene scripts and files, each run as a user runs it (`python -m core render`, in a
+process of its own, within a time limit): a clear `error: file.lua[:LINE]: ...` and exit 1,
+never a traceback, nothing written, and a normal script renders afterwards."""
+
+import os
+import subprocess
+import sys
+
+import pytest
+
+from tests.core.test_cli import ROOT
+
+RENDER = "gr.render(r, 'o.png', 8, 8, {0, 0, 5}, {0, 0, -1}, {0, 1, 0}, 50, {0, 0, 0}, {})"
+NORMAL = "r = gr.node('r')\nr:add_child(gr.sphere('s'))\n" + RENDER + "\n"
+
+
+def deep_chain(levels: int) -> str:
+    lines = ["r = gr.node('r')", "p = r"]
+    for i in range(levels):
+        lines += [f"n{i} = gr.node('n{i}')", f"p:add_child(n{i})", f"p = n{i}"]
+    return "\n".join([*lines, "p:add_child(gr.sphere('s'))", RENDER]) + "\n"
+
+
+# (what the case is, the script's bytes, files beside it, the start of the error)
+CASES = [
+    ("Latin-1 byte", b"r = gr.node('r')\n-- caf\xe9\n", {},
+     "error: scene.lua:2: byte 0xe9 is not UTF-8 text; save the script as UTF-8"),
+    ("invalid UTF-8 argument", b"r = gr.node('\\255')\n", {},
+     "error: scene.lua:1: gr.node: argument 1 is not UTF-8 text"),
+    ("invalid UTF-8 inside a table", b"gr.nh_sphere('s', {0, 0, '\\255'}, 1)\n", {},
+     "error: scene.lua: a string given to gr is not UTF-8 text"),
+    ("NUL byte in a path", b"gr.mesh('m', 'a\\0b.obj')\n", {},
+     "error: scene.lua:1: gr.mesh: mesh file 'a\\x00b.obj' holds a NUL byte"),
+    ("OBJ index beyond 64 bits", b"gr.mesh('m', 'big.obj')\n",
+     {"big.obj": b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999999999999\n"},
+     "error: scene.lua:1: gr.mesh: mesh file 'big.obj': a face corner's index is beyond"),
+    ("error with a table", b"error({code = 1})\n", {},
+     "error: scene.lua: error() was called with no message"),
+    ("output path a folder", NORMAL.replace("o.png", "taken.png").encode(), {"taken.png/": b""},
+     "error: "),
+]  # fmt: skip
+
+
+def run(folder, *args):
+    return subprocess.run(
+        [sys.executable, "-m", "core", "render", *map(str, args)],
+        cwd=folder, capture_output=True, text=True, timeout=300,
+        env={**os.environ, "PYTHONPATH": str(ROOT)},
+    )  # fmt: skip
+
+
+@pytest.mark.parametrize("case, source, files, message", CASES, ids=[c[0] for c in CASES])
+def test_a_hostile_script_is_a_clear_error_and_writes_nothing(tmp_path, case, source, files,
+                                                              message):  # fmt: skip
+    for name, data in files.items():
+        if name.endswith("/"):
+            (tmp_path / name).mkdir()
+        else:
+            (tmp_path / name).write_bytes(data)
+    (tmp_path / "scene.lua").write_bytes(source)
+    before = sorted(p.name for p in tmp_path.iterdir())
+    result = run(tmp_path, tmp_path / "scene.lua")
+    assert result.returncode == 1, result.stdout + result.stderr
+    assert "Traceback" not in result.stderr, result.stderr
+    assert result.stderr.strip().splitlines()[-1].startswith(message), result.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == before  # nothing written
+    if case == "output path a folder":
+        assert "taken.png is a folder; name a .png file" in result.stderr
+
+
+def test_a_deep_hierarchy_renders_and_a_normal_script_renders_after_the_hostile_ones(tmp_path):
+    """1,500 nested nodes ran out of Python's stack (RecursionError); now they render."""
+    (tmp_path / "deep.lua").write_text(deep_chain(1500))
+    result = run(tmp_path, tmp_path / "deep.lua")
+    assert result.returncode == 0, result.stderr[-2000:]
+    assert (tmp_path / "o.png").is_file()
+    (tmp_path / "o.png").unlink()
+    (tmp_path / "normal.lua").write_text(NORMAL)
+    assert run(tmp_path, tmp_path / "normal.lua").returncode == 0
+    assert (tmp_path / "o.png").is_file()
