@@ -13,6 +13,7 @@ from pathlib import Path
 import numpy as np
 from PIL import Image, UnidentifiedImageError
 
+from ..kernels.csg import MAX_OPERANDS
 from ..obj_file import ObjError, read_obj, summed_face_normals
 from ..scene import AreaLight, Material, PointLight, Texture, TriangleMesh
 from .graph import (
@@ -25,6 +26,7 @@ from .graph import (
     check_number,
     describe,
     object_matrix,
+    operand_count,
 )
 from .render_call import RenderCall
 from .sandbox import ArgumentError
@@ -219,6 +221,12 @@ class Commands:
         if operation not in CSG_OPERATIONS:
             raise ArgumentError(
                 f"unknown operation {_quoted(operation)}; use 'union', 'intersection' or 'diff'"
+            )
+        operands = operand_count(left) + operand_count(right)
+        if operands > MAX_OPERANDS:
+            raise ArgumentError(
+                f"this CSG node would hold {operands} shapes; at most {MAX_OPERANDS} fit one "
+                "CSG tree (the renderer combines them in one pass)"
             )
         return CsgNode(f"{left.name} {operation} {right.name}", left, right, operation)
 

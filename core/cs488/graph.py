@@ -188,6 +188,7 @@ class CsgNode(GeometryNode):
         super().__init__(name, "csg", np.eye(4))
         self.left, self.right, self.operation = left, right, operation
         left.used_by_csg = right.used_by_csg = self
+        self.operands = operand_count(left) + operand_count(right)
 
     def core_shape(self, material: Material):
         operands = []
@@ -247,6 +248,11 @@ def _checked_material(node, material, textured: bool):
         right = "set_texture" if material.textured else "set_material"
         raise ArgumentError(f"{node}: {material} goes on with {right}, not {method}")
     return material
+
+
+def operand_count(node: Node) -> int:
+    """The shapes a CSG tree rooted at `node` combines (1 for a shape)."""
+    return node.operands if isinstance(node, CsgNode) else 1
 
 
 def _path_up(node: Node, target: Node) -> list[Node] | None:

@@ -21,6 +21,12 @@ def deep_chain(levels: int) -> str:
     return "\n".join([*lines, "p:add_child(gr.sphere('s'))", RENDER]) + "\n"
 
 
+def deep_csg(operands: int) -> str:
+    lines = ["r = gr.node('r')", "c = gr.sphere('s0')"]
+    lines += [f"c = gr.csg(c, gr.sphere('s{i}'), 'union')" for i in range(1, operands)]
+    return "\n".join([*lines, "r:add_child(c)", RENDER]) + "\n"
+
+
 # (what the case is, the script's bytes, files beside it, the start of the error)
 CASES = [
     ("Latin-1 byte", b"r = gr.node('r')\n-- caf\xe9\n", {},
@@ -36,6 +42,9 @@ CASES = [
      "error: scene.lua:1: gr.mesh: mesh file 'big.obj': a face corner's index is beyond"),
     ("error with a table", b"error({code = 1})\n", {},
      "error: scene.lua: error() was called with no message"),
+    # 2,000 nested CSG nodes ran out of Python's stack; one tree holds at most 256 operands
+    ("CSG deeper than a tree holds", deep_csg(2000).encode(), {},
+     "error: scene.lua:258: gr.csg: this CSG node would hold 257 shapes; at most 256 fit"),
     ("output path a folder", NORMAL.replace("o.png", "taken.png").encode(), {"taken.png/": b""},
      "error: "),
 ]  # fmt: skip
@@ -69,12 +78,14 @@ def test_a_hostile_script_is_a_clear_error_and_writes_nothing(tmp_path, case, so
 
 
 def test_a_deep_hierarchy_renders_and_a_normal_script_renders_after_the_hostile_ones(tmp_path):
-    """1,500 nested nodes ran out of Python's stack (RecursionError); now they render."""
-    (tmp_path / "deep.lua").write_text(deep_chain(1500))
-    result = run(tmp_path, tmp_path / "deep.lua")
-    assert result.returncode == 0, result.stderr[-2000:]
-    assert (tmp_path / "o.png").is_file()
-    (tmp_path / "o.png").unlink()
+    """1,500 nested nodes ran out of Python's stack (RecursionError); now they render, as
+    does the deepest CSG chain a tree holds."""
+    for name, source in (("deep.lua", deep_chain(1500)), ("csg.lua", deep_csg(256))):
+        (tmp_path / name).write_text(source)
+        result = run(tmp_path, tmp_path / name)
+        assert result.returncode == 0, result.stderr[-2000:]
+        assert (tmp_path / "o.png").is_file()
+        (tmp_path / "o.png").unlink()
     (tmp_path / "normal.lua").write_text(NORMAL)
     assert run(tmp_path, tmp_path / "normal.lua").returncode == 0
     assert (tmp_path / "o.png").is_file()
