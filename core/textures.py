@@ -2,11 +2,39 @@
 
 from __future__ import annotations
 
+import contextlib
+import warnings
+
 import numpy as np
 from PIL import Image, UnidentifiedImageError
 
 from .errors import SceneError
 from .scene_parts import Texture
+
+# 8192 x 8192: 0.8 GB as the kernels' float32 RGB. A small PNG can hold far more pixels (a
+# 140 KB file of one colour unpacked to 5.2 GB), so the size is read before the pixels
+MAX_TEXTURE_PIXELS = 2**26
+
+
+@contextlib.contextmanager
+def open_image(path):
+    """Pillow's Image.open, without its warning past 89 M pixels: our own, smaller limit
+    (too_large) decides, with a message of its own."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", Image.DecompressionBombWarning)
+        with Image.open(path) as image:
+            yield image
+
+
+def too_large(size: tuple[int, int]) -> str | None:
+    """Why an image of (width, height) is refused as a texture, or None."""
+    width, height = size
+    if width * height <= MAX_TEXTURE_PIXELS:
+        return None
+    return (
+        f"is {width} x {height} pixels; textures of up to {MAX_TEXTURE_PIXELS:,} pixels "
+        "(8192 x 8192) are read: scale it down"
+    )
 
 
 def srgb_to_linear(c: np.ndarray) -> np.ndarray:
@@ -22,8 +50,14 @@ def load_texture(texture: Texture, owner: str) -> np.ndarray:
             raise SceneError(owner, "texture", "pixels contain NaN or infinity")
     else:
         try:
-            with Image.open(texture.path) as image:
+            with open_image(texture.path) as image:
+                if problem := too_large(image.size):
+                    raise SceneError(owner, "texture", f"'{texture.path}' {problem}")
                 rgb = np.asarray(image.convert("RGB"), np.float64) / 255.0
+        except Image.DecompressionBombError:  # past Pillow's own limit, which is larger
+            raise SceneError(
+                owner, "texture", f"'{texture.path}' has more pixels than any texture needs"
+            ) from None
         except (UnidentifiedImageError, OSError, ValueError) as error:
             raise SceneError(
                 owner,

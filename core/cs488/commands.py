@@ -16,6 +16,7 @@ from PIL import Image, UnidentifiedImageError
 from ..kernels.csg import MAX_OPERANDS
 from ..obj_file import ObjError, read_obj, summed_face_normals
 from ..scene import AreaLight, Material, PointLight, Texture, TriangleMesh
+from ..textures import open_image, too_large
 from .graph import (
     CSG_OPERATIONS,
     CsgNode,
@@ -240,10 +241,15 @@ class Commands:
         expect(args, (3, 4, 5, 6), TEXTURE_USAGE)
         path = self.file(args[0], "texture file")
         try:
-            with Image.open(path) as image:
+            with open_image(path) as image:
+                problem = too_large(image.size)
                 image.verify()
+        except Image.DecompressionBombError:
+            problem = too_large((2**31, 2**31))  # Pillow refuses to say: larger than ours
         except (UnidentifiedImageError, OSError) as error:
             raise ArgumentError(f"texture file '{args[0]}' is not an image ({error})") from None
+        if problem:
+            raise ArgumentError(f"texture file '{args[0]}' {problem}")
         # The report used the file's values as they are, with no sRGB decoding
         return self._material(args, (1.0, 1.0, 1.0), Texture(path=path, srgb=False))
 

@@ -3,8 +3,10 @@ process of its own, within a time limit): a clear `error: file.lua[:LINE]: ...` 
 never a traceback, nothing written, and a normal script renders afterwards."""
 
 import os
+import struct
 import subprocess
 import sys
+import zlib
 
 import pytest
 
@@ -27,6 +29,19 @@ def deep_csg(operands: int) -> str:
     return "\n".join([*lines, "r:add_child(c)", RENDER]) + "\n"
 
 
+def one_colour_png(width: int, height: int) -> bytes:
+    """A PNG of one grey, written by hand: 12000 x 12000 pixels in 140 KB."""
+
+    def chunk(kind: bytes, data: bytes) -> bytes:
+        crc = zlib.crc32(kind + data) & 0xFFFFFFFF
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", crc)
+
+    rows = zlib.compress(b"\0" * ((width + 1) * height), 9)
+    header = struct.pack(">IIBBBBB", width, height, 8, 0, 0, 0, 0)
+    png = chunk(b"IHDR", header) + chunk(b"IDAT", rows) + chunk(b"IEND", b"")
+    return b"\x89PNG\r\n\x1a\n" + png
+
+
 # (what the case is, the script's bytes, files beside it, the start of the error)
 CASES = [
     ("Latin-1 byte", b"r = gr.node('r')\n-- caf\xe9\n", {},
@@ -45,6 +60,11 @@ CASES = [
     # 2,000 nested CSG nodes ran out of Python's stack; one tree holds at most 256 operands
     ("CSG deeper than a tree holds", deep_csg(2000).encode(), {},
      "error: scene.lua:258: gr.csg: this CSG node would hold 257 shapes; at most 256 fit"),
+    # It would have unpacked to 3.5 GB of float texels
+    ("texture bomb", b"t = gr.texture('bomb.png', {0, 0, 0}, 1)\n",
+     {"bomb.png": one_colour_png(12000, 12000)},
+     "error: scene.lua:1: gr.texture: texture file 'bomb.png' is 12000 x 12000 pixels; "
+     "textures of up to 67,108,864 pixels"),
     ("output path a folder", NORMAL.replace("o.png", "taken.png").encode(), {"taken.png/": b""},
      "error: "),
 ]  # fmt: skip
@@ -89,3 +109,13 @@ def test_a_deep_hierarchy_renders_and_a_normal_script_renders_after_the_hostile_
     (tmp_path / "normal.lua").write_text(NORMAL)
     assert run(tmp_path, tmp_path / "normal.lua").returncode == 0
     assert (tmp_path / "o.png").is_file()
+
+
+def test_a_texture_file_too_large_is_refused_before_its_pixels_are_read(tmp_path):
+    """The same limit where a scene from elsewhere names an image file (core.textures)."""
+    from core import SceneError, Texture
+    from core.textures import load_texture
+
+    (tmp_path / "bomb.png").write_bytes(one_colour_png(12000, 12000))
+    with pytest.raises(SceneError, match=r"material 'M': texture: .*12000 x 12000 pixels"):
+        load_texture(Texture(path=tmp_path / "bomb.png"), "material 'M'")
