@@ -30,6 +30,9 @@ import lupa.lua54 as lua54
 lupa.LuaRuntime  # noqa: B018
 
 MAX_MEMORY = 512 * 2**20  # bytes the Lua state may hold
+# Lua aborts the whole process (a "PANIC") on some scripts of hundreds of MiB, before any
+# limit of its own applies; no scene needs a script this large, with meshes in OBJ files
+MAX_SCRIPT_BYTES = 64 * 2**20
 MAX_INSTRUCTIONS = 200_000_000  # a scene script builds a scene; loops past this are a bug
 SAFE_GLOBALS = ("assert", "error", "getmetatable", "ipairs", "next", "pairs", "pcall",
                 "rawequal", "rawget", "rawlen", "rawset", "select", "setmetatable", "tonumber",
@@ -86,6 +89,12 @@ def run_script(
     """Run the script at `path` with `gr.<name>` calling api[name]. Raises ScriptError."""
     path = Path(path)
     try:
+        size = path.stat().st_size
+        if size > MAX_SCRIPT_BYTES:
+            raise ScriptError(
+                f"{path.name}: the script is {size / 2**20:.0f} MiB; scene scripts of up to "
+                f"{MAX_SCRIPT_BYTES // 2**20} MiB are read (put large meshes in OBJ files)"
+            )
         data = path.read_bytes()
     except OSError as error:
         raise ScriptError(f"{path}: cannot read the scene script: {error.strerror}") from None

@@ -119,3 +119,14 @@ def test_a_texture_file_too_large_is_refused_before_its_pixels_are_read(tmp_path
     (tmp_path / "bomb.png").write_bytes(one_colour_png(12000, 12000))
     with pytest.raises(SceneError, match=r"material 'M': texture: .*12000 x 12000 pixels"):
         load_texture(Texture(path=tmp_path / "bomb.png"), "material 'M'")
+
+
+def test_a_script_larger_than_any_scene_needs_is_refused_before_lua_reads_it(tmp_path):
+    """Some scripts of hundreds of MiB made Lua abort the whole process (a PANIC)."""
+    (tmp_path / "scene.lua").write_bytes(b"-- " + b"x" * (65 * 2**20) + b"\n")
+    result = run(tmp_path, tmp_path / "scene.lua")
+    assert result.returncode == 1, result.stderr
+    assert result.stderr.strip() == (
+        "error: scene.lua: the script is 65 MiB; scene scripts of up to 64 MiB are read "
+        "(put large meshes in OBJ files)"
+    )
