@@ -24,6 +24,9 @@ from .scene import TriangleMesh
 _COMMENT = re.compile(rb"#[^\n]*")
 # Stands for a line break among the tokens: a byte no OBJ file holds, and not whitespace
 _LINE_BREAK = b"\x01"
+# Longer than any number or v/t/n corner in an OBJ file (64-bit indices are 20 digits)
+_LONGEST_TOKEN = 80
+_TOO_LONG = b"\x02"
 
 
 class ObjError(ValueError):
@@ -99,7 +102,13 @@ def _tokenize(data: bytes):
     """(tokens, each token's statement keyword, its position in the statement: 0 for the
     keyword itself); line breaks are dropped."""
     text = _COMMENT.sub(b"", data).replace(b"\r", b" ").replace(b"\\\n", b" ")
-    words = np.array([*text.replace(b"\n", b" \x01 ").split(), _LINE_BREAK])
+    words = [*text.replace(b"\n", b" \x01 ").split(), _LINE_BREAK]
+    # numpy sizes every token as the longest: one 2 MB name made 11.6 GiB of tokens. No
+    # number or face corner is that long, so a longer token (a name, which is not read)
+    # stands as one that reads as no number
+    if max(map(len, words)) > _LONGEST_TOKEN:
+        words = [w if len(w) <= _LONGEST_TOKEN else _TOO_LONG for w in words]
+    words = np.array(words)
     breaks = words == _LINE_BREAK
     first = np.concatenate(([True], breaks[:-1])) & ~breaks
     index = np.arange(len(words))

@@ -97,3 +97,14 @@ def test_the_committed_box_is_a_closed_solid():
 def test_bad_files_say_what_is_wrong(text, message):
     with pytest.raises(ObjError, match="^mesh\\.obj: " + re.escape(message)):
         parse_obj(text, source="mesh.obj")
+
+
+def test_a_long_name_does_not_size_every_token():
+    """numpy sizes an array of byte strings by its longest: a 2 MB object name asked for
+    11.6 GiB of tokens. The mesh still reads, and no token is stored longer than a number."""
+    from core.obj_file import _tokenize
+
+    data = b"o " + b"n" * 2_000_000 + b"\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"
+    tokens, _, _ = _tokenize(data)
+    assert tokens.dtype.itemsize <= 80
+    assert len(parse_obj(data).triangles) == 1
