@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import os
 
 import numpy as np
 
@@ -121,3 +122,11 @@ def _range_text(low, high, low_open) -> str:
     if low is None:
         return f"a number <= {high}"
     return f"a number {'above' if low_open else 'from'} {low} to {high}"
+
+
+def machine_memory() -> int | None:
+    """This machine's physical memory in bytes, or None where the OS does not say."""
+    try:
+        return os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    except (AttributeError, ValueError, OSError):  # Windows has no sysconf
+        return None

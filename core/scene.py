@@ -13,7 +13,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .checks import check_choice, check_count, check_flag, check_vec3, valid_affine
+from .checks import (
+    check_choice,
+    check_count,
+    check_flag,
+    check_vec3,
+    machine_memory,
+    valid_affine,
+)
 from .errors import SceneError
 from .kernels.options import PIXEL_PATTERNS, SHADOW_PATTERNS
 from .scene_parts import (
@@ -106,6 +113,7 @@ DEFAULT_SHADOW_SAMPLES = 4
 # per light), and below where the sample numbers overflow
 MAX_PIXEL_SAMPLES = 1024
 MAX_SHADOW_SAMPLES = 65536
+MAX_BOUNCES = 10_000
 
 
 @dataclass
@@ -155,12 +163,15 @@ class RenderSettings:
         # into black pixels, long after any picture would change
         check_count(owner, "pixel_samples", self.pixel_samples, low=1, high=MAX_PIXEL_SAMPLES)
         check_count(owner, "shadow_samples", self.shadow_samples, low=1, high=MAX_SHADOW_SAMPLES)
-        check_count(owner, "max_depth", self.max_depth, low=0)
+        # Each bounce's ray waits on a stack of max_depth + 2 (core.kernels.workspace): past
+        # this many, any light left is below what a pixel shows, and 1e12 asked for 21.8 TiB
+        check_count(owner, "max_depth", self.max_depth, low=0, high=MAX_BOUNCES)
         check_count(owner, "seed", self.seed, low=0, high=2**63 - 1)
         check_count(owner, "threads", self.threads, low=0)
         check_choice(owner, "pixel_sampling", self.pixel_sampling, PIXEL_SAMPLINGS)
         check_choice(owner, "shadow_sampling", self.shadow_sampling, SHADOW_SAMPLINGS)
         check_flag(owner, "shadow_culling", self.shadow_culling)
+        self._check_image_fits()
         if self.region is not None:
             x, y, w, h = self.region
             if w < 1 or h < 1 or x < 0 or y < 0 or x + w > self.width or y + h > self.height:
@@ -169,6 +180,21 @@ class RenderSettings:
                     "region",
                     f"got {self.region}; it must lie inside the {self.width}x{self.height} image",
                 )
+
+    def _check_image_fits(self) -> None:
+        """Refuse, before allocating it, an image of more than half this machine's memory
+        (float32 RGBA, 16 bytes a pixel; Blender keeps a copy of its own): a 65536 x 65536
+        frame started and would have needed 64 GiB."""
+        memory = machine_memory()
+        needed = self.width * self.height * 16
+        if memory is not None and needed > memory // 2:
+            raise SceneError(
+                "render settings",
+                "width, height",
+                f"a {self.width} x {self.height} image needs {needed / 2**30:.1f} GiB, more "
+                f"than half of this machine's {memory / 2**30:.1f} GiB; render it smaller, or "
+                "in parts, a render border each (README: on a render farm)",
+            )
 
     def pixel_region(self) -> tuple[int, int, int, int]:
         return self.region if self.region is not None else (0, 0, self.width, self.height)

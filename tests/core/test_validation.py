@@ -33,6 +33,8 @@ def test_zero_resolution(field):
         ("pixel_samples", 2**32, "from 1 to 1024"),
         ("shadow_samples", 2**32, "from 1 to 65536"),
         ("seed", 2**64, "from 0 to 9223372036854775807"),
+        # 1e12 bounces asked for 21.8 TiB of ray stack
+        ("max_depth", 10**12, "from 0 to 10000"),
     ],
 )
 def test_sample_counts_and_seed_past_what_the_kernels_count_are_refused(field, value, allowed):
@@ -98,3 +100,14 @@ def test_shadow_culling_must_be_a_flag():
 def test_region_outside_image():
     with pytest.raises(SceneError, match="render settings: region"):
         render_tiny(ball_on_ground(), RenderSettings(4, 4, region=(2, 2, 3, 3)))
+
+
+def test_an_image_larger_than_the_machine_is_refused_before_it_is_allocated(monkeypatch):
+    """A 65536 x 65536 frame started, and would have needed 64 GiB of float pixels."""
+    import core.scene
+
+    monkeypatch.setattr(core.scene, "machine_memory", lambda: 24 * 2**30)
+    settings = RenderSettings(65536, 65536)
+    with pytest.raises(SceneError, match=r"width, height: a 65536 x 65536 image needs 64.0 GiB"):
+        render_tiny(ball_on_ground(), settings)
+    RenderSettings(4096, 4096).validate()  # 0.25 GiB: fine
