@@ -31,3 +31,11 @@ def give_nodes(datablock) -> None:
     setting `use_nodes` is deprecated)."""
     if bpy.app.version < (5, 0, 0) or datablock.node_tree is None:
         datablock.use_nodes = True
+
+
+def auto_smooth(mesh) -> tuple:
+    """Blender before 4.1 keeps Auto Smooth on the mesh, and it changes the split normals
+    the export reads; from 4.1 it is a modifier, seen in the evaluated mesh's sharp edges."""
+    if not NEEDS_CALC_NORMALS_SPLIT:
+        return ()
+    return (mesh.use_auto_smooth, mesh.auto_smooth_angle)

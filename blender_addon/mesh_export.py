@@ -9,14 +9,14 @@ from __future__ import annotations
 import numpy as np
 
 from . import core
-from .compat import prepare_corner_normals
+from .compat import auto_smooth, prepare_corner_normals
 
 
 class MeshCache:
     """Converted meshes kept between renders (frames of an animation), keyed by the caller,
     and reused while everything the export reads is unchanged: vertex positions, face
-    count and smooth flags, sharp edges and UVs (a fraction of the export's cost). Meshes
-    with custom normals are always converted afresh."""
+    count and smooth flags, sharp edges, UVs and (before Blender 4.1) Auto Smooth, a
+    fraction of the export's cost. Meshes with custom normals are always converted afresh."""
 
     def __init__(self):
         self._entries: dict = {}
@@ -61,7 +61,7 @@ def _fingerprint(mesh) -> tuple:
         uvs = np.empty(len(mesh.loops) * 2, np.float32)
         uv_layer.data.foreach_get("uv", uvs)
         parts.append(hash(uvs.tobytes()))
-    return tuple(parts)
+    return (*parts, *auto_smooth(mesh))
 
 
 def triangle_mesh(mesh, name: str) -> core.TriangleMesh:

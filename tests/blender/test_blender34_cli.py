@@ -154,3 +154,46 @@ def test_an_exception_in_the_engine_fails_the_render_loudly_and_writes_no_frame(
     assert run.returncode != 0, output
     assert "Whitted: the render failed: ZeroDivisionError: division by zero" in output
     assert not list(tmp_path.glob("broken_*")), "a frame was written"
+
+
+AUTO_SMOOTH_RERENDER = """
+import sys, bpy
+out = sys.argv[-1]
+for obj in list(bpy.data.objects):
+    bpy.data.objects.remove(obj)
+scene = bpy.context.scene
+scene.render.engine = "WHITTED"
+scene.render.resolution_x = scene.render.resolution_y = 24
+bpy.ops.object.camera_add(location=(0, -5, 0), rotation=(1.5707963, 0, 0))
+scene.camera = bpy.context.active_object
+bpy.ops.mesh.primitive_uv_sphere_add(segments=8, ring_count=6)
+ball = bpy.context.active_object
+bpy.ops.object.shade_smooth()
+ball.data.use_auto_smooth = True
+ball.data.auto_smooth_angle = 0.1  # every edge sharp: faceted
+bpy.ops.object.light_add(type="POINT", location=(2, -4, 3))
+bpy.context.active_object.data.energy = 3000
+def render(name):
+    scene.render.filepath = f"{out}/{name}.png"
+    bpy.ops.render.render(write_still=True)
+if sys.argv[-2] == "twice":
+    render("faceted")
+ball.data.auto_smooth_angle = 3.14  # no edge sharp: smooth
+render("smooth")
+"""
+
+
+def test_a_re_render_sees_an_auto_smooth_change(tmp_path):
+    """Blender 3.4 keeps Auto Smooth on the mesh: a second render in one session changed
+    nothing, as the mesh cache did not know it. Now it makes the picture a new session
+    makes."""
+    for how, folder in (("twice", tmp_path / "session"), ("once", tmp_path / "fresh")):
+        folder.mkdir()
+        run = blender_34("--addons", "whitted", "--python-expr", AUTO_SMOOTH_RERENDER,
+                         "--", how, str(folder))  # fmt: skip
+        assert run.returncode == 0, run.stdout + run.stderr
+    faceted, smooth = (np.asarray(Image.open(tmp_path / "session" / f"{n}.png")) for n in
+                       ("faceted", "smooth"))  # fmt: skip
+    fresh = np.asarray(Image.open(tmp_path / "fresh" / "smooth.png"))
+    assert not np.array_equal(faceted, smooth)
+    np.testing.assert_array_equal(smooth, fresh)
