@@ -1,6 +1,6 @@
 """The command line: render a CS488 Lua scene script to the PNG it names.
 
-    python -m core render scene.lua [-o picture.png] [--threads N]
+    python -m core render scene.lua [-o picture.png] [--threads N] [--allow-outside-files]
 
 The script runs first, to the end; only then is anything rendered, so a script with an error
 anywhere writes nothing. Each image is written to a temporary file beside its target and
@@ -37,9 +37,13 @@ def main(argv: list[str] | None = None) -> int:
     render_command.add_argument(
         "--threads", type=int, default=0, help="worker threads (default: one per core)"
     )
+    render_command.add_argument(
+        "--allow-outside-files", action="store_true",
+        help="let the script read and write files outside its own folder",
+    )  # fmt: skip
     args = parser.parse_args(argv)
     try:
-        return _render_script(args.script, args.output, args.threads)
+        return _render_script(args.script, args.output, args.threads, args.allow_outside_files)
     except (ScriptError, SceneError) as error:
         print(f"error: {error}", file=sys.stderr)
         return 1
@@ -48,8 +52,8 @@ def main(argv: list[str] | None = None) -> int:
         return 130
 
 
-def _render_script(script: Path, output: Path | None, threads: int) -> int:
-    calls = load_script(script, print_line=print)
+def _render_script(script: Path, output: Path | None, threads: int, anywhere: bool) -> int:
+    calls = load_script(script, print_line=print, anywhere=anywhere)
     if not calls:
         raise ScriptError(f"{script.name}: the script never calls gr.render: nothing to render")
     if output is not None and len(calls) > 1:

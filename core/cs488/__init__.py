@@ -17,10 +17,11 @@ from .sandbox import ScriptError, run_script
 __all__ = ["RenderCall", "ScriptError", "load_script"]
 
 
-def load_script(path: str | Path, print_line=print) -> list[RenderCall]:
+def load_script(path: str | Path, print_line=print, anywhere: bool = False) -> list[RenderCall]:
     """Run the script at `path`; return its gr.render calls. Raises ScriptError, whose
-    message starts `scene.lua:LINE:`."""
+    message starts `scene.lua:LINE:`. Unless `anywhere`, the script reads and writes files in
+    its own folder tree only."""
     path = Path(path)
-    commands = Commands(path.resolve().parent, print_line)
+    commands = Commands(path.resolve().parent, print_line, anywhere)
     run_script(path, commands.api(), print_line)
     return commands.renders

@@ -94,9 +94,12 @@ class Commands:
     """The `gr` table of one script run: `api()` gives the functions; `renders` collects the
     gr.render calls, each holding the scene as it stood when called."""
 
-    def __init__(self, folder: Path, print_line):
+    def __init__(self, folder: Path, print_line, anywhere: bool = False):
         self.folder = Path(folder)
         self.print_line = print_line
+        # Files outside the script's folder tree (symbolic links resolved) are refused
+        # unless the user allows them: a script from elsewhere reads and writes only its own
+        self.anywhere = anywhere
         self.renders: list[RenderCall] = []
         self.meshes: dict[Path, TriangleMesh] = {}
         self.material_count = 0
@@ -121,9 +124,19 @@ class Commands:
         name = name_of(value, what)
         if "\0" in name:
             raise ArgumentError(f"{what} {name!r} holds a NUL byte, which no file name can")
-        path = (self.folder / name).resolve()
+        path = self.inside(name, f"{what} '{name}'", "reads")
         if not path.is_file():
             raise ArgumentError(f"{what} '{name}' not found (looked for {path})")
+        return path
+
+    def inside(self, name: str, what: str, does: str) -> Path:
+        """`name` relative to the script's folder, refused outside its tree."""
+        path = (self.folder / name).resolve()
+        if not self.anywhere and not path.is_relative_to(self.folder.resolve()):
+            raise ArgumentError(
+                f"{what} is outside the script's folder ({path}); a script {does} files in its "
+                "own folder and below only (the command line's --allow-outside-files lifts this)"
+            )
         return path
 
     # Nodes
@@ -322,7 +335,7 @@ class Commands:
                 )
         call = RenderCall(
             root=root,
-            output=(self.folder / output).resolve(),
+            output=self.inside(output, f"file '{output}'", "writes"),
             width=whole(args[2], "width", 1),
             height=whole(args[3], "height", 1),
             eye=numbers(args[4], "eye {x, y, z}"),

@@ -130,3 +130,31 @@ def test_a_script_larger_than_any_scene_needs_is_refused_before_lua_reads_it(tmp
         "error: scene.lua: the script is 65 MiB; scene scripts of up to 64 MiB are read "
         "(put large meshes in OBJ files)"
     )
+
+
+@pytest.mark.parametrize(
+    "source, refused",
+    [
+        ("gr.mesh('m', 'link.obj')", "mesh file 'link.obj' is outside the script's folder"),
+        ("gr.mesh('m', '../outside.obj')", "mesh file '../outside.obj' is outside"),
+        ("gr.texture('/etc/hostname', {0, 0, 0}, 1)", "texture file '/etc/hostname' is outside"),
+        ("r = gr.node('r') " + RENDER.replace("'o.png'", "'../escaped.png'"),
+         "file '../escaped.png' is outside the script's folder"),
+    ],
+)  # fmt: skip
+def test_a_script_reads_and_writes_only_in_its_own_folder(tmp_path, source, refused):
+    """A symbolic link out, a path up or an absolute one: refused at the script's line, and
+    allowed only when the user says so on the command line."""
+    (tmp_path / "outside.obj").write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    folder = tmp_path / "scene"
+    folder.mkdir()
+    (folder / "link.obj").symlink_to(tmp_path / "outside.obj")
+    (folder / "scene.lua").write_text(source + "\n")
+    result = run(folder, folder / "scene.lua")
+    assert result.returncode == 1 and refused in result.stderr, result.stderr
+    assert "--allow-outside-files lifts this" in result.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["outside.obj", "scene"]
+    if "escaped" in source:
+        allowed = run(folder, folder / "scene.lua", "--allow-outside-files")
+        assert allowed.returncode == 0, allowed.stderr
+        assert (tmp_path / "escaped.png").is_file()
