@@ -12,6 +12,7 @@ from gr.render, with the Raw view transform: the render then writes the same PNG
 from __future__ import annotations
 
 import math
+import traceback
 from pathlib import Path
 
 import bpy
@@ -151,6 +152,15 @@ class WHITTED_OT_import_lua(bpy.types.Operator, ImportHelper):
             scenes = import_script(context, self.filepath)
         except ScriptError as error:
             self.report({"ERROR"}, f"Whitted: {error}")
+            return {"CANCELLED"}
+        except Exception as error:
+            # Whitted's own failure, not the script's: reported like the engine's, with the
+            # traceback on the console for the bug report, never raised into Blender's UI
+            traceback.print_exc()
+            kind = type(error).__name__
+            self.report(
+                {"ERROR"}, f"Whitted: the import failed: {kind}: {error} (traceback on the console)"
+            )
             return {"CANCELLED"}
         names = ", ".join(f"'{scene.name}'" for scene in scenes)
         self.report({"INFO"}, f"Whitted: imported {Path(self.filepath).name} into {names}")

@@ -5,6 +5,7 @@ The pixel comparisons check that the two front ends build the same scene; the ac
 what they render is checked against closed forms in tests/core/test_cs488_scenes.py."""
 
 import math
+import sys
 
 import numpy as np
 import pytest
@@ -123,6 +124,19 @@ def test_a_bad_script_imports_nothing_and_names_its_line(imported, bpy_with_whit
     with pytest.raises(RuntimeError, match=r"scene\.lua: the script never calls gr\.render"):
         bpy.ops.import_scene.cs488_lua(filepath=str(script))
     assert len(bpy.data.objects) == before
+
+
+def test_an_internal_failure_is_reported_not_raised(imported, bpy_with_whitted, tmp_path,
+                                                    monkeypatch):  # fmt: skip
+    """Whitted's own bug (here the build raises) reaches the user as the operator's error
+    report, like a script's mistake, not as a traceback out of Blender's UI."""
+    bpy = bpy_with_whitted
+    lua_import = sys.modules["whitted.lua_import"]  # the operator's module
+    monkeypatch.setattr(lua_import, "import_script", lambda context, path: 1 / 0)
+    script = tmp_path / "scene.lua"
+    script.write_text("root = gr.node('root')\n")
+    with pytest.raises(RuntimeError, match=r"Whitted: the import failed: ZeroDivisionError"):
+        bpy.ops.import_scene.cs488_lua(filepath=str(script))
 
 
 @pytest.mark.blender34
