@@ -4,13 +4,13 @@ It only coordinates; the work is in `export` (Blender -> core.Scene) and in `cor
 """
 
 import time
-import traceback
 
 import bpy
 import numpy as np
 
 from . import core, export
 from .core.warmup_process import shared_warmup
+from .reporting import report_internal_failure
 
 
 class WhittedRenderEngine(bpy.types.RenderEngine):
@@ -42,14 +42,9 @@ class WhittedRenderEngine(bpy.types.RenderEngine):
             return
         except Exception as error:
             # Anything else is Whitted's bug, or the machine's (a full disk, a damaged cache
-            # it could not heal). Reported as an error, so that `blender -b` exits 1 and writes
-            # no frame, which a farm sees; raised on, Blender would write a blank frame and
-            # exit 0. The traceback goes to the console for the bug report.
-            traceback.print_exc()
-            kind = type(error).__name__
-            self.report(
-                {"ERROR"}, f"Whitted: the render failed: {kind}: {error} (traceback on the console)"
-            )
+            # it could not heal): reported, so that `blender -b` exits 1 and writes no frame,
+            # which a farm sees; raised on, Blender would write a blank frame and exit 0
+            report_internal_failure(self, "render", error)
             return
         for warning in output.warnings:
             self.report({"WARNING"}, f"Whitted: {warning}")

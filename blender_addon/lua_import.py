@@ -12,7 +12,6 @@ from gr.render, with the Raw view transform: the render then writes the same PNG
 from __future__ import annotations
 
 import math
-import traceback
 from pathlib import Path
 
 import bpy
@@ -24,6 +23,7 @@ from .compat import give_nodes
 from .core.cs488 import ScriptError, load_script
 from .export import WATTS_TO_INTENSITY
 from .lua_build import Y_UP_TO_Z_UP, Builder, place
+from .reporting import report_internal_failure
 
 
 def import_script(context, path: str | Path) -> list:
@@ -153,14 +153,8 @@ class WHITTED_OT_import_lua(bpy.types.Operator, ImportHelper):
         except ScriptError as error:
             self.report({"ERROR"}, f"Whitted: {error}")
             return {"CANCELLED"}
-        except Exception as error:
-            # Whitted's own failure, not the script's: reported like the engine's, with the
-            # traceback on the console for the bug report, never raised into Blender's UI
-            traceback.print_exc()
-            kind = type(error).__name__
-            self.report(
-                {"ERROR"}, f"Whitted: the import failed: {kind}: {error} (traceback on the console)"
-            )
+        except Exception as error:  # Whitted's own failure, not the script's
+            report_internal_failure(self, "import", error)
             return {"CANCELLED"}
         names = ", ".join(f"'{scene.name}'" for scene in scenes)
         self.report({"INFO"}, f"Whitted: imported {Path(self.filepath).name} into {names}")

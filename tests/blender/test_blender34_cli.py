@@ -45,18 +45,6 @@ def test_headless_command_renders_the_sample(sample_scene, tmp_path):
     np.testing.assert_allclose(got, expected, atol=1.6)
 
 
-def test_bad_input_is_a_clear_message_not_a_traceback(tmp_path):
-    run = blender_34(
-        str(SAMPLE), "--addons", "whitted",
-        "--python-expr", "import bpy; bpy.data.objects['Blue'].scale = (0, 1, 1)",
-        "-E", "WHITTED", "-o", f"{tmp_path}/bad_####", "-F", "PNG", "-f", "1",
-    )  # fmt: skip
-    output = run.stdout + run.stderr
-    assert "Error: Whitted: sphere 'Blue': world_from_object: is singular" in output
-    assert "non-zero scale" in output
-    assert "Traceback" not in output
-
-
 def test_meshes_tagged_shapes_booleans_and_area_lights_render_in_blender_34(tmp_path):
     script = ROOT / "tests" / "blender" / "scripts" / "bored_cube.py"
     out = tmp_path / "bored.png"
@@ -142,17 +130,30 @@ def test_a_checkout_link_loads_core_as_the_add_ons_own_and_keeps_kernels_in_the_
                             str(ROOT / ".cache" / "kernels")]  # fmt: skip
 
 
-def test_an_exception_in_the_engine_fails_the_render_loudly_and_writes_no_frame(tmp_path):
-    """Not a scene error but Whitted's own failure (here the export raises): a farm sees
-    only the exit status, so it must be non-zero, with no blank frame left behind."""
+@pytest.mark.parametrize(
+    "breakage, messages",
+    [
+        # The user's mistake: a clear message naming the object and the field
+        ("import bpy; bpy.data.objects['Blue'].scale = (0, 1, 1)",
+         ["Error: Whitted: sphere 'Blue': world_from_object: is singular", "non-zero scale"]),
+        # Whitted's own failure (here the export raises), not a scene error
+        ("import sys; sys.modules['whitted.export'].convert = lambda d: 1 / 0",
+         ["Whitted: the render failed: ZeroDivisionError: division by zero"]),
+    ],
+    ids=["scene error", "engine exception"],
+)  # fmt: skip
+def test_a_failed_render_exits_non_zero_and_writes_no_frame(tmp_path, breakage, messages):
+    """A farm sees only the exit status: it must be non-zero, with no blank frame left
+    behind (an engine exception used to give exit 0 and a blank frame)."""
     run = blender_34(
-        str(SAMPLE), "--addons", "whitted",
-        "--python-expr", "import sys; sys.modules['whitted.export'].convert = lambda d: 1 / 0",
+        str(SAMPLE), "--addons", "whitted", "--python-expr", breakage,
         "-E", "WHITTED", "-o", f"{tmp_path}/broken_####", "-F", "PNG", "-f", "1",
     )  # fmt: skip
     output = run.stdout + run.stderr
     assert run.returncode != 0, output
-    assert "Whitted: the render failed: ZeroDivisionError: division by zero" in output
+    for message in messages:
+        assert message in output
+    assert "Traceback" not in run.stdout
     assert not list(tmp_path.glob("broken_*")), "a frame was written"
 
 
