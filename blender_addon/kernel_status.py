@@ -12,7 +12,8 @@ import contextlib
 
 import bpy
 
-from .core.warmup_process import CHILD_PROGRAM, child_arguments, shared_warmup
+from .core import child_process
+from .core.warmup_process import shared_warmup
 
 POLL_S = 0.5
 
@@ -57,20 +58,19 @@ def _start_in_window():
     return None
 
 
-def warmup_command() -> list[str] | None:
-    """Blender's own binary in background mode, running the warm-up of this add-on's `core`
-    under its name here, with this process's module path; None for `bpy` as a Python module,
-    whose interpreter is sys.executable."""
+def blender_launcher() -> list[str] | None:
+    """Blender's own binary in background mode, to run core's child processes (the kernel
+    warm-up, scene scripts) with this process's module path; None for `bpy` as a Python
+    module, whose interpreter is sys.executable."""
     binary = bpy.app.binary_path
     if not binary:
         return None
     return [binary, "-b", "--factory-startup", "--python-use-system-env",
-            "--python-exit-code", "1", "--python-expr", CHILD_PROGRAM,
-            "--", *child_arguments()]  # fmt: skip
+            "--python-exit-code", "1", "--python-expr", child_process.PROGRAM, "--"]  # fmt: skip
 
 
 def register():
-    shared_warmup(warmup_command())
+    child_process.use_launcher(blender_launcher())
     # Not during register itself: Blender may still be loading its start-up file; persistent,
     # or loading a .blend given on the command line would drop it
     bpy.app.timers.register(_start_in_window, first_interval=1.0, persistent=True)

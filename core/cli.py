@@ -1,8 +1,10 @@
 """The command line: render a CS488 Lua scene script to the PNG it names.
 
     python -m core render scene.lua [-o picture.png] [--threads N] [--allow-outside-files]
+                                    [--script-seconds S] [--script-memory MIB]
 
-The script runs first, to the end; only then is anything rendered, so a script with an error
+The script runs first, to the end, in a child process within its time and memory limits;
+only then is anything rendered, so a script with an error
 anywhere writes nothing. Each image is written to a temporary file beside its target and
 renamed into place when complete: an error or Ctrl-C never leaves a partial PNG. Exit status:
 0 done, 1 bad script or scene, 2 bad command line, 130 interrupted.
@@ -17,7 +19,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from .cs488 import ScriptError, load_script
+from .cs488 import ScriptError, ScriptLimits, load_script
 from .errors import SceneError
 from .image_io import save_png
 from .kernel_warmup import kernels_ready, warm_kernels
@@ -41,9 +43,21 @@ def main(argv: list[str] | None = None) -> int:
         "--allow-outside-files", action="store_true",
         help="let the script read and write files outside its own folder",
     )  # fmt: skip
+    default = ScriptLimits()
+    render_command.add_argument(
+        "--script-seconds", type=_positive(float), default=default.seconds, metavar="S",
+        help=f"stop the scene script after S seconds (default {default.seconds:g})",
+    )  # fmt: skip
+    render_command.add_argument(
+        "--script-memory", type=_positive(int), default=default.memory_mib, metavar="MIB",
+        help=f"memory the scene script may take, in MiB (default {default.memory_mib})",
+    )  # fmt: skip
     args = parser.parse_args(argv)
+    limits = ScriptLimits(seconds=args.script_seconds, memory_mib=args.script_memory)
     try:
-        return _render_script(args.script, args.output, args.threads, args.allow_outside_files)
+        return _render_script(
+            args.script, args.output, args.threads, args.allow_outside_files, limits
+        )
     except (ScriptError, SceneError) as error:
         print(f"error: {error}", file=sys.stderr)
         return 1
@@ -52,8 +66,23 @@ def main(argv: list[str] | None = None) -> int:
         return 130
 
 
-def _render_script(script: Path, output: Path | None, threads: int, anywhere: bool) -> int:
-    calls = load_script(script, print_line=print, anywhere=anywhere)
+def _positive(kind):
+    def parse(text: str):
+        try:
+            value = kind(text)
+        except ValueError:
+            value = None
+        if value is None or not 0 < value < float("inf"):
+            raise argparse.ArgumentTypeError(f"got {text!r}; use a number above 0")
+        return value
+
+    parse.__name__ = kind.__name__  # argparse names the type in its messages
+    return parse
+
+
+def _render_script(script: Path, output: Path | None, threads: int, anywhere: bool,
+                   limits: ScriptLimits) -> int:  # fmt: skip
+    calls = load_script(script, print_line=print, anywhere=anywhere, limits=limits)
     if not calls:
         raise ScriptError(f"{script.name}: the script never calls gr.render: nothing to render")
     if output is not None and len(calls) > 1:

@@ -87,7 +87,7 @@ def compile_kernels(python: str, cache_base: Path, level: str, stage: Path) -> P
     CPU level given, whatever this machine's (which must be able to run it); returns the
     folder of its kernels. A complete cache there only loads."""
     from core.kernel_warmup import CACHE_LINE
-    from core.warmup_process import CHILD_PROGRAM
+    from core.child_process import PROGRAM, program_arguments
 
     core = stage.joinpath(*INSTALLED_AS.split("."))
     if not core.is_dir():
@@ -96,7 +96,7 @@ def compile_kernels(python: str, cache_base: Path, level: str, stage: Path) -> P
     env.update(NUMBA_CPU_NAME=level, NUMBA_CPU_FEATURES="")
     env.pop("PYTHONPATH", None)  # nothing but the staged copy may answer to its name
     lines = subprocess.run(
-        [python, "-c", CHILD_PROGRAM, INSTALLED_AS, str(core)],
+        [python, "-c", PROGRAM, *program_arguments("kernel_warmup", INSTALLED_AS, core)],
         cwd=stage, env=env, check=True, capture_output=True, text=True,
     ).stdout.splitlines()  # fmt: skip
     print(f"{python} {level}: {lines[-1]}", flush=True)

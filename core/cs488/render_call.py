@@ -12,6 +12,11 @@ from ..scene import Camera, Material, RenderSettings, Scene
 from .graph import CsgNode, GeometryNode, Node, vec3
 from .sandbox import ArgumentError
 
+# The most shapes one gr.render call may draw. A node under several parents is drawn once per
+# path to it, and a few levels of shared nodes make billions of paths: counted first, they
+# are refused before any is made (each drawn shape costs about a kilobyte here)
+MAX_SHAPES = 1_000_000
+
 # A shape with no material renders in this, with a warning (A4 would have crashed)
 UNSET_MATERIAL = Material(diffuse=(0.7, 0.7, 0.7), specular=(0.0, 0.0, 0.0), name="(none set)")
 
@@ -43,6 +48,12 @@ class RenderCall:
 
     def build(self) -> None:
         """Make `scene` and `settings` from the nodes as they are now, and check them."""
+        drawn = shape_count(self.root)
+        if drawn > MAX_SHAPES:
+            raise ArgumentError(
+                f"{self.root} draws {drawn:,} shapes (a node under several parents is drawn "
+                f"once per path to it); at most {MAX_SHAPES:,} are rendered"
+            )
         shapes: list = []
         unset: list[str] = []
         _collect(self.root, np.eye(4), shapes, unset)
@@ -131,6 +142,24 @@ def _collect(node: Node, parent: np.ndarray, shapes: list, unset: list) -> None:
             shapes.append(shape)
         placed = parent @ node.matrix
         pending += [(child, placed) for child in reversed(node.children)]
+
+
+def shape_count(root: Node) -> int:
+    """How many shapes `_collect` would make under `root`, in time linear in the nodes: each
+    node's count once, from its children's (a walk that finishes children first)."""
+    counts: dict[int, int] = {}
+    pending = [(root, False)]
+    while pending:
+        node, children_done = pending.pop()
+        if id(node) in counts:
+            continue
+        if children_done:
+            own = 1 if isinstance(node, GeometryNode) else 0
+            counts[id(node)] = own + sum(counts[id(child)] for child in node.children)
+        else:
+            pending.append((node, True))
+            pending += [(c, False) for c in node.children if id(c) not in counts]
+    return counts[id(root)]
 
 
 def _unset_names(node: GeometryNode) -> list[str]:

@@ -4,8 +4,10 @@ A script sees Lua's pure functions (string, table, math, pairs, print...) and th
 the caller provides. It gets no `os`, `io`, `require`, `dofile`, `loadfile`, `load`,
 `package` or `debug`, and no Python objects' attributes, so it can touch no file: meshes and
 textures are read by the Python behind `gr`, which resolves their names against the script's
-own folder. Memory and instruction counts are capped, so a runaway script ends with an error
-instead of taking the machine.
+own folder. The Lua state's memory and the script's time are capped (`ScriptLimits`), so a
+runaway script ends with an error at its line; what Lua cannot interrupt (a loop in a `__gc`
+finalizer, a backtracking `string.find`) is stopped by the process that runs scripts
+(`script_process`), which kills its child.
 
 Python objects a `gr` function returns (nodes, materials, lights) reach the script as Lua
 tables wrapping them, whose methods are the object's `lua_methods`: `node:translate(0, 1, 0)`
@@ -18,7 +20,9 @@ made the failing call.
 """
 
 import re
+import time
 from collections.abc import Callable
+from dataclasses import dataclass
 from pathlib import Path
 
 import lupa
@@ -29,11 +33,17 @@ import lupa.lua54 as lua54
 # attribute while iterating it, and an import then fails with "dictionary changed size".
 lupa.LuaRuntime  # noqa: B018
 
-MAX_MEMORY = 512 * 2**20  # bytes the Lua state may hold
 # Lua aborts the whole process (a "PANIC") on some scripts of hundreds of MiB, before any
 # limit of its own applies; no scene needs a script this large, with meshes in OBJ files
 MAX_SCRIPT_BYTES = 64 * 2**20
-MAX_INSTRUCTIONS = 200_000_000  # a scene script builds a scene; loops past this are a bug
+# How often (in Lua instructions) the time limit is looked at: about a millisecond's work
+CHECK_EVERY = 1_000_000
+# The longest string a gr function takes (a name, a file name): each crosses into Python as a
+# copy, and 30 of 20 MiB stalled the process
+MAX_STRING_BYTES = 64 * 2**10
+# The most values one gr call's table arguments may hold, counting a table shared by several
+# others once per use: {t, t, t...} nested eight deep is billions
+MAX_TABLE_VALUES = 1_000_000
 SAFE_GLOBALS = ("assert", "error", "getmetatable", "ipairs", "next", "pairs", "pcall",
                 "rawequal", "rawget", "rawlen", "rawset", "select", "setmetatable", "tonumber",
                 "tostring", "type", "xpcall", "math", "string", "table", "utf8")  # fmt: skip
@@ -42,15 +52,21 @@ SAFE_GLOBALS = ("assert", "error", "getmetatable", "ipairs", "next", "pairs", "p
 # (true, result) or (false, message): the shim raises the message at level 2, so Lua puts
 # the calling line of the script in front of it.
 _SHIM = """
-local impl, name = ...
+local impl, name, max_bytes = ...
 local select, type, error, valid_utf8 = select, type, error, utf8.len
 return function(...)
     -- Python takes strings as UTF-8 text: a Lua string of other bytes (a '\\255' escape) is
-    -- refused here, where the calling line is known
+    -- refused here, where the calling line is known; so is one longer than any name or path
     for i = 1, select("#", ...) do
         local value = select(i, ...)
-        if type(value) == "string" and not valid_utf8(value) then
-            error(name .. ": argument " .. i .. " is not UTF-8 text", 2)
+        if type(value) == "string" then
+            if #value > max_bytes then
+                error(name .. ": argument " .. i .. " is a string of " .. #value ..
+                      " bytes; names and file names of up to " .. max_bytes .. " bytes", 2)
+            end
+            if not valid_utf8(value) then
+                error(name .. ": argument " .. i .. " is not UTF-8 text", 2)
+            end
         end
     end
     local ok, result = impl(...)
@@ -64,6 +80,32 @@ end
 _HANDLE = "__object"
 # How deeply nested a table argument may be ({{1, 2}, {3, 4}} is 2 deep)
 _MAX_NESTING = 8
+
+
+@dataclass(frozen=True)
+class ScriptLimits:
+    """How long a script may run and how much memory it may take, and how the user raises
+    each (named in messages: a command-line option, an import setting)."""
+
+    seconds: float = 120.0
+    memory_mib: int = 4096
+    seconds_setting: str = "--script-seconds"
+    memory_setting: str = "--script-memory"
+
+    def time_message(self) -> str:
+        return (
+            f"the script ran past its time limit of {self.seconds:g} s (is there an endless "
+            f"loop?); raise the limit with {self.seconds_setting}"
+        )
+
+    def memory_message(self) -> str:
+        return (
+            f"the script needed more than its memory limit of {self.memory_mib} MiB; raise "
+            f"the limit with {self.memory_setting}"
+        )
+
+
+DEFAULT_LIMITS = ScriptLimits()
 
 
 class ScriptObject:
@@ -84,10 +126,15 @@ class ArgumentError(Exception):
 
 
 def run_script(
-    path: Path, api: dict[str, Callable], print_line: Callable[[str], None] = print
+    path: Path,
+    api: dict[str, Callable],
+    print_line: Callable[[str], None] = print,
+    limits: ScriptLimits = DEFAULT_LIMITS,
 ) -> None:
-    """Run the script at `path` with `gr.<name>` calling api[name]. Raises ScriptError."""
+    """Run the script at `path` with `gr.<name>` calling api[name], here, in this process
+    (`script_process` runs it in a child). Raises ScriptError."""
     path = Path(path)
+    deadline = time.monotonic() + limits.seconds
     try:
         size = path.stat().st_size
         if size > MAX_SCRIPT_BYTES:
@@ -111,7 +158,7 @@ def run_script(
         register_builtins=False,
         unpack_returned_tuples=True,
         attribute_filter=_no_attributes,
-        max_memory=MAX_MEMORY,
+        max_memory=limits.memory_mib * 2**20,
     )
     lua_globals = runtime.globals()
     env = runtime.table()
@@ -129,7 +176,7 @@ def run_script(
     chunk, problem = loaded if isinstance(loaded, tuple) else (loaded, None)
     if chunk is None:
         raise ScriptError(str(problem))
-    _run(runtime, chunk, path.name)
+    _run(runtime, chunk, path.name, limits, deadline)
 
 
 class _Bridge:
@@ -151,7 +198,7 @@ class _Bridge:
                 return False, str(error)
             return True, self.to_lua(result)
 
-        return self.make_shim(call, name)
+        return self.make_shim(call, name, MAX_STRING_BYTES)
 
     def to_lua(self, value):
         if not isinstance(value, ScriptObject):
@@ -170,7 +217,25 @@ class _Bridge:
             self.tables[id(value)] = table
         return table
 
-    def to_python(self, value, depth=0):
+    def to_python(self, value):
+        return _TableReader().read(value, 0)
+
+
+class _TableReader:
+    """One argument's tables as Python lists and dicts, within the limits of nesting, count
+    and string length (a string at the top level is the shim's to check)."""
+
+    def __init__(self):
+        self.values = 0
+
+    def read(self, value, depth):
+        if isinstance(value, str) and len(value) * 4 > MAX_STRING_BYTES:  # cheap test first
+            size = len(value.encode("utf-8", "surrogatepass"))
+            if size > MAX_STRING_BYTES:
+                raise ArgumentError(
+                    f"a table holds a string of {size} bytes; names and file names of up to "
+                    f"{MAX_STRING_BYTES} bytes"
+                )
         if lua54.lua_type(value) != "table":
             return value
         handle = value[_HANDLE]
@@ -179,9 +244,15 @@ class _Bridge:
         if depth >= _MAX_NESTING:
             raise ArgumentError(f"a table nested more than {_MAX_NESTING} deep")
         keys = list(value.keys())
+        self.values += len(keys)
+        if self.values > MAX_TABLE_VALUES:
+            raise ArgumentError(
+                f"the tables given hold more than {MAX_TABLE_VALUES:,} values (a table used "
+                "in several places counts each time)"
+            )
         if keys == list(range(1, len(keys) + 1)):
-            return [self.to_python(value[k], depth + 1) for k in keys]
-        return {k: self.to_python(value[k], depth + 1) for k in keys}
+            return [self.read(value[k], depth + 1) for k in keys]
+        return {k: self.read(value[k], depth + 1) for k in keys}
 
 
 # A wrapping table: the object under _HANDLE, methods through __index, nothing settable
@@ -217,26 +288,38 @@ def _method_call(cls: type, method: str) -> Callable:
     return call
 
 
-def _run(runtime, chunk, script: str) -> None:
-    """Call the chunk with the instruction cap in place. The cap is a count hook; once it
-    fires every later instruction fails too, so a pcall in a loop cannot go on. Hooks are
-    set and cleared from Python, so no Lua instruction of ours runs under them."""
-    start_cap = runtime.execute(
-        "local limit = ...\n"
-        "local function stop()\n"
-        "  debug.sethook(stop, '', 1)\n"
-        "  error('the script ran past ' .. limit .. ' Lua instructions: is there an endless "
-        "loop?', 2)\n"
-        "end\n"
-        "return function() debug.sethook(stop, '', limit) end",
-        MAX_INSTRUCTIONS,
+# The time limit as a count hook: every CHECK_EVERY instructions it reads the clock; once past
+# the deadline it fails, and from then on fails at every instruction, so that a pcall in a
+# loop cannot go on
+_TIME_HOOK = """
+local deadline, clock, every, message = ...
+local sethook, error = debug.sethook, error
+local function stop()
+    sethook(stop, '', 1)
+    error(message, 2)
+end
+local function check()
+    if clock() > deadline then
+        sethook(stop, '', 1)
+        error(message, 2)
+    end
+end
+return function() sethook(check, '', every) end
+"""
+
+
+def _run(runtime, chunk, script: str, limits: ScriptLimits, deadline: float) -> None:
+    """Call the chunk with the time limit in place. Hooks are set and cleared from Python,
+    so no Lua instruction of ours runs under them."""
+    start_hook = runtime.execute(
+        _TIME_HOOK, deadline, time.monotonic, CHECK_EVERY, limits.time_message()
     )
     clear_hook = runtime.globals().debug.sethook
-    start_cap()
+    start_hook()
     try:
         chunk()
     except lua54.LuaMemoryError:
-        raise ScriptError(f"the script used more than {MAX_MEMORY // 2**20} MiB") from None
+        raise ScriptError(f"{script}: {limits.memory_message()}") from None
     except lua54.LuaError as error:
         raise ScriptError(_error_message(str(error), script)) from None
     except UnicodeDecodeError:  # a string inside a table argument: no line to name

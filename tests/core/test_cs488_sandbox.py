@@ -3,7 +3,7 @@
 import pytest
 
 from core.cs488 import sandbox
-from core.cs488.sandbox import ArgumentError, ScriptError, run_script
+from core.cs488.sandbox import ArgumentError, ScriptError, ScriptLimits, run_script
 
 
 def sized(name, size):
@@ -12,11 +12,11 @@ def sized(name, size):
     return f"{name} of {size}"
 
 
-def run(tmp_path, source, **api):
+def run(tmp_path, source, limits=sandbox.DEFAULT_LIMITS, **api):
     script = tmp_path / "scene.lua"
     script.write_text(source)
     printed = []
-    run_script(script, api or {"sized": sized}, print_line=printed.append)
+    run_script(script, api or {"sized": sized}, print_line=printed.append, limits=limits)
     return printed
 
 
@@ -65,17 +65,53 @@ def test_python_objects_show_no_attributes(tmp_path):
         run(tmp_path, "local f = gr.sized.__globals__", sized=sized)
 
 
-def test_endless_loops_end_even_under_pcall(tmp_path, monkeypatch):
-    monkeypatch.setattr(sandbox, "MAX_INSTRUCTIONS", 100_000)
+def test_endless_loops_end_at_their_line_even_under_pcall(tmp_path):
+    limits = ScriptLimits(seconds=0.2)
     for source in ("while true do end", "while true do pcall(function() while 1 do end end) end"):
-        with pytest.raises(ScriptError, match=r"^scene\.lua:1: the script ran past 100000 Lua"):
-            run(tmp_path, source)
+        with pytest.raises(ScriptError) as caught:
+            run(tmp_path, source, limits)
+        assert str(caught.value) == (
+            "scene.lua:1: the script ran past its time limit of 0.2 s (is there an endless "
+            "loop?); raise the limit with --script-seconds"
+        )
 
 
-def test_runaway_memory_is_an_error(tmp_path, monkeypatch):
-    monkeypatch.setattr(sandbox, "MAX_MEMORY", 32 * 2**20)
-    with pytest.raises(ScriptError, match="more than 32 MiB"):
-        run(tmp_path, "local t = {} for i = 1, 1e8 do t[i] = string.rep('x', 64) .. i end")
+def test_runaway_memory_is_an_error_naming_the_limit(tmp_path):
+    limits = ScriptLimits(memory_mib=32, memory_setting="Memory Limit")
+    with pytest.raises(ScriptError) as caught:
+        run(tmp_path, "local t = {} for i = 1, 1e8 do t[i] = string.rep('x', 64) .. i end", limits)
+    assert str(caught.value) == (
+        "scene.lua: the script needed more than its memory limit of 32 MiB; raise the limit "
+        "with Memory Limit"
+    )
+
+
+def test_a_string_longer_than_any_name_is_refused_at_its_line(tmp_path):
+    """30 names of 20 MiB each stalled the process converting them; a name or file name is
+    never a fraction of that."""
+    source = "local big = string.rep('x', 70000)\ngr.take('ok')\ngr.take(big)\n"
+    with pytest.raises(ScriptError) as caught:
+        run(tmp_path, source, take=lambda *a: None)
+    assert str(caught.value) == (
+        "scene.lua:3: gr.take: argument 1 is a string of 70000 bytes; names and file names "
+        "of up to 65536 bytes"
+    )
+    with pytest.raises(ScriptError, match=r"^scene\.lua:1: gr\.take: a table holds a string"):
+        run(tmp_path, "gr.take({string.rep('x', 70000)})", take=lambda *a: None)
+
+
+def test_a_table_shared_many_times_over_is_refused_not_expanded(tmp_path):
+    """Each level holds the one below 100 times: 100^6 values, were it copied out."""
+    source = (
+        "local t = {1}\nfor level = 1, 6 do\n  local u = {}\n"
+        "  for i = 1, 100 do u[i] = t end\n  t = u\nend\ngr.take(t)\n"
+    )
+    with pytest.raises(ScriptError) as caught:
+        run(tmp_path, source, take=lambda *a: None)
+    assert str(caught.value) == (
+        "scene.lua:7: gr.take: the tables given hold more than 1,000,000 values (a table "
+        "used in several places counts each time)"
+    )
 
 
 def test_a_missing_script_is_named(tmp_path):

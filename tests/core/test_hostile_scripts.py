@@ -3,13 +3,17 @@ process of its own, within a time limit): a clear `error: file.lua[:LINE]: ...` 
 never a traceback, nothing written, and a normal script renders afterwards."""
 
 import os
+import signal
 import struct
 import subprocess
 import sys
+import time
 import zlib
+from pathlib import Path
 
 import pytest
 
+from core.cs488.script_process import GRACE_S
 from tests.core.test_cli import ROOT
 
 RENDER = "gr.render(r, 'o.png', 8, 8, {0, 0, 5}, {0, 0, -1}, {0, 1, 0}, 50, {0, 0, 0}, {})"
@@ -158,3 +162,85 @@ def test_a_script_reads_and_writes_only_in_its_own_folder(tmp_path, source, refu
         allowed = run(folder, folder / "scene.lua", "--allow-outside-files")
         assert allowed.returncode == 0, allowed.stderr
         assert (tmp_path / "escaped.png").is_file()
+
+
+# (what the case is, the script, the limits given, the error). Each ran past both of the
+# sandbox's caps before scripts ran in a child process: the first two hung the process for
+# good (Lua runs finalizers with hooks off; string.find is C), the memory case took the
+# machine's memory, the 2^40-path graph would have made 2^40 shapes
+LIMIT_CASES = [
+    ("__gc finalizer that loops",
+     "setmetatable({}, {__gc = function() while true do end end})\ncollectgarbage()\n",
+     ["--script-seconds", "1.5"],
+     "error: scene.lua: the script ran past its time limit of 1.5 s (is there an endless "
+     "loop?); raise the limit with --script-seconds"),
+    ("backtracking string.find",
+     "local s = string.rep('a', 40)\n"
+     "string.find(s, string.rep('a?', 40) .. string.rep('a', 40) .. 'b')\n",
+     ["--script-seconds", "1.5"],
+     "error: scene.lua: the script ran past its time limit of 1.5 s"),
+    ("endless Lua loop", "local n = 0\nwhile true do n = n + 1 end\n",
+     ["--script-seconds", "1"],
+     "error: scene.lua:2: the script ran past its time limit of 1 s"),
+    ("Lua memory", "local t = {}\nfor i = 1, 1e9 do t[i] = string.rep('x', 64) .. i end\n",
+     ["--script-memory", "200"],
+     "error: scene.lua: the script needed more than its memory limit of 200 MiB; raise the "
+     "limit with --script-memory"),
+    ("names of 20 MiB", "local s = string.rep('x', 20 * 2^20)\nfor i = 1, 30 do gr.node(s) end\n",
+     [], "error: scene.lua:2: gr.node: argument 1 is a string of 20971520 bytes"),
+    ("2^40 paths to one sphere",
+     "local n = gr.sphere('s')\nfor i = 1, 40 do\n  local m = gr.node('m' .. i)\n"
+     "  local a, b = gr.node('a' .. i), gr.node('b' .. i)\n  a:add_child(n)\n  b:add_child(n)\n"
+     "  m:add_child(a)\n  m:add_child(b)\n  n = m\nend\n" + RENDER.replace("(r,", "(n,") + "\n",
+     [], "error: scene.lua:11: gr.render: node 'm40' draws 1,099,511,627,776 shapes"),
+]  # fmt: skip
+
+
+@pytest.mark.parametrize("case, source, limits, message", LIMIT_CASES,
+                         ids=[c[0] for c in LIMIT_CASES])  # fmt: skip
+def test_a_script_past_a_limit_is_stopped_with_the_limit_named(tmp_path, case, source, limits,
+                                                               message):  # fmt: skip
+    (tmp_path / "scene.lua").write_text(source)
+    started = time.monotonic()
+    result = run(tmp_path, tmp_path / "scene.lua", *limits)
+    took = time.monotonic() - started
+    assert result.returncode == 1, result.stdout + result.stderr
+    assert result.stderr.strip().splitlines()[-1].startswith(message), result.stderr
+    assert "Traceback" not in result.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["scene.lua"]
+    # The time limit, the parent's grace for the sandbox's own message, starting up
+    assert took < 1.5 + GRACE_S + 15.0, took
+
+
+def test_ctrl_c_stops_a_script_that_no_hook_can_interrupt(tmp_path):
+    """The command line's Ctrl-C reaches the parent only (the child runs in a session of its
+    own), which kills the child: exit 130 at once, no child left behind."""
+    (tmp_path / "scene.lua").write_text(
+        "setmetatable({}, {__gc = function() while true do end end})\ncollectgarbage()\n"
+    )
+    process = subprocess.Popen(
+        [sys.executable, "-m", "core", "render", "scene.lua"], cwd=tmp_path,
+        env={**os.environ, "PYTHONPATH": str(ROOT)}, stderr=subprocess.PIPE, text=True,
+    )  # fmt: skip
+    time.sleep(3.0)  # the child is in its finalizer by now
+    children = _children_of(process.pid)
+    assert children, "no child process runs the script"
+    sent = time.monotonic()
+    process.send_signal(signal.SIGINT)
+    assert process.wait(timeout=10) == 130
+    assert time.monotonic() - sent < 2.0
+    assert "interrupted: no image written" in process.stderr.read()
+    time.sleep(0.2)
+    assert not [pid for pid in children if Path(f"/proc/{pid}").exists()]
+
+
+def _children_of(pid: int) -> list[int]:
+    found = []
+    for status in Path("/proc").glob("[0-9]*/status"):
+        try:
+            fields = dict(line.split(":\t", 1) for line in status.read_text().splitlines())
+        except (OSError, ValueError):
+            continue
+        if fields.get("PPid", "").strip() == str(pid):
+            found.append(int(status.parent.name))
+    return found

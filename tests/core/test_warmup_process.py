@@ -16,8 +16,9 @@ import pytest
 
 import core
 from core import kernel_warmup
+from core.child_process import PROGRAM, program_arguments
 from core.jit import kernel_cache_dir
-from core.warmup_process import CHILD_PROGRAM, WarmupProcess
+from core.warmup_process import WarmupProcess
 
 OWN_CORE = kernel_warmup.own_core()
 ROOT = Path(core.__file__).resolve().parent.parent
@@ -152,7 +153,7 @@ def test_the_child_imports_core_under_the_parents_name_without_running_its_paren
     (folder / kernel_warmup.MARKER).write_text("compiled\n")
     env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
     run = subprocess.run(
-        [sys.executable, "-c", CHILD_PROGRAM, name, str(staged)],
+        [sys.executable, "-c", PROGRAM, *program_arguments("kernel_warmup", name, staged)],
         cwd=tmp_path, env=env, capture_output=True, text=True, timeout=120,
     )  # fmt: skip
     assert run.returncode == 0, run.stdout + run.stderr

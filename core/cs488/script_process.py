@@ -1,0 +1,240 @@
+"""Scene scripts run in a child process, so that no script can take its host down.
+
+The sandbox (`sandbox`) stops what Lua can interrupt, at the script's line. Some work it
+cannot: a loop in a `__gc` finalizer (Lua runs finalizers with hooks off), a backtracking
+`string.find` (C code), Python working for the script while holding the GIL. So a script
+runs in a child process with limits the operating system enforces, and the parent — Blender
+or the command line — watches it, stays responsive, and kills it when the time limit passes
+or the user cancels:
+
+- time: the sandbox stops the script at its line once the limit passes; the parent kills the
+  child a moment later if it has not ended (a C loop), and the child's CPU time is capped a
+  little above the limit too (RLIMIT_CPU), should the parent itself be gone;
+- memory: the Lua state holds at most the limit, and the child's address space may grow by
+  at most the limit past what it held on starting (RLIMIT_AS), so Python's share counts too.
+
+Where the operating system has no such limits (Windows) the time limit is still the parent's
+to enforce and the Lua state's memory is still capped. The child prints the script's print()
+lines on its stdout, marked, and leaves its outcome — the gr.render calls or the error — in
+a pickle file the parent reads once the child is gone.
+"""
+
+from __future__ import annotations
+
+import json
+import pickle
+import queue
+import shutil
+import subprocess
+import tempfile
+import threading
+import time
+from collections import deque
+from collections.abc import Callable
+from dataclasses import asdict
+from pathlib import Path
+
+from .. import child_process
+from .sandbox import DEFAULT_LIMITS, ScriptError, ScriptLimits
+
+# A line of the child's stdout that carries one print() of the script, as JSON text
+PRINT_MARK = "Whitted-print: "
+# How long past the time limit the parent waits for the sandbox's own message (which names
+# the script's line) before it kills the child
+GRACE_S = 2.0
+POLL_S = 0.05
+
+
+class ScriptRun:
+    """One script in its child process. Call `poll()` now and then (from a timer, say) until
+    it returns True, then `result()`; `cancel()` at any time kills the child."""
+
+    def __init__(
+        self,
+        path: Path,
+        anywhere: bool = False,
+        limits: ScriptLimits = DEFAULT_LIMITS,
+        print_line: Callable[[str], None] = print,
+    ):
+        self.path = Path(path)
+        self.limits = limits
+        self.print_line = print_line
+        self._folder = Path(tempfile.mkdtemp(prefix="whitted-script-"))
+        self._outcome_file = self._folder / "outcome.pickle"
+        options = json.dumps({"anywhere": anywhere, "limits": asdict(limits)})
+        command = child_process.command(
+            "cs488.script_child", str(self.path.absolute()), str(self._outcome_file), options
+        )
+        self._lines: queue.Queue[str] = queue.Queue()
+        self._chatter: deque[str] = deque(maxlen=20)  # the child's other output, for errors
+        self._started = time.monotonic()
+        self._stopped_for: str | None = None  # why the parent killed the child
+        self._done = False
+        self._calls = None
+        self._error: str | None = None
+        try:
+            self._process = subprocess.Popen(
+                command,
+                env=child_process.environment(OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1"),
+                stdin=subprocess.DEVNULL,
+                stdout=subprocess.PIPE,
+                stderr=subprocess.STDOUT,
+                text=True,
+                encoding="utf-8",
+                errors="replace",
+                **child_process.separate_session(),
+            )
+        except OSError as error:
+            shutil.rmtree(self._folder, ignore_errors=True)
+            raise ScriptError(f"{self.path.name}: cannot start {command[0]}: {error}") from None
+        self._reader = threading.Thread(target=self._read, daemon=True)
+        self._reader.start()
+
+    def _read(self) -> None:
+        for line in self._process.stdout:
+            line = line.rstrip("\n")
+            if line.startswith(PRINT_MARK):
+                self._lines.put(json.loads(line[len(PRINT_MARK) :]))
+            else:
+                self._chatter.append(line)
+
+    def poll(self) -> bool:
+        """Pass on the script's printed lines; stop the child if it ran out of time. True
+        once the script has ended, one way or another."""
+        if self._done:
+            return True
+        self._pass_lines()
+        if self._process.poll() is None:
+            if time.monotonic() - self._started > self.limits.seconds + GRACE_S:
+                self._stop(f"{self.path.name}: {self.limits.time_message()}")
+            return False
+        self._reader.join()
+        self._pass_lines()
+        self._finish()
+        return True
+
+    def _pass_lines(self) -> None:
+        while True:
+            try:
+                line = self._lines.get_nowait()
+            except queue.Empty:
+                return
+            self.print_line(line)
+
+    def cancel(self) -> None:
+        """Kill the child now; result() then raises ScriptError saying it was cancelled."""
+        if not self._done:
+            self._stop(f"{self.path.name}: cancelled")
+            self._process.wait()
+            self._reader.join()
+            self._finish()
+
+    def _stop(self, why: str) -> None:
+        self._stopped_for = self._stopped_for or why
+        if self._process.poll() is None:
+            self._process.kill()
+
+    def _finish(self) -> None:
+        self._done = True
+        try:
+            if self._stopped_for:
+                self._error = self._stopped_for
+            elif self._outcome_file.is_file():
+                kind, value = pickle.loads(self._outcome_file.read_bytes())
+                if kind == "calls":
+                    self._calls = unpacked(*value)
+                else:
+                    self._error = value
+            else:
+                self._error = self._death_message(self._process.returncode)
+        finally:
+            shutil.rmtree(self._folder, ignore_errors=True)
+
+    def _death_message(self, status: int) -> str:
+        """Why a child that left no outcome is gone, in the user's terms where known."""
+        name = self.path.name
+        signals = {"SIGXCPU": "time", "SIGKILL": "memory"}
+        for signal_name, limit in signals.items():
+            number = getattr(__import__("signal"), signal_name, None)
+            if number is not None and status == -number:
+                if limit == "time":
+                    return f"{name}: {self.limits.time_message()}"
+                return (
+                    f"{name}: the process running the script was killed, probably by the "
+                    "system for want of memory; "
+                    f"lower the script's memory limit with {self.limits.memory_setting}"
+                )
+        # Whitted's own failure, not the script's: its traceback's last line says what
+        said = [line.strip() for line in self._chatter if line.strip()]
+        last = said[-1][:300] if said else "no output"
+        return (
+            f"{name}: the process running the script failed (status {status}): {last}; "
+            "this is Whitted's fault, not the script's: please report it"
+        )
+
+    def result(self) -> list:
+        """The script's gr.render calls. Raises ScriptError."""
+        if not self._done:
+            raise RuntimeError("the script is still running: poll() until it returns True")
+        if self._error is not None:
+            raise ScriptError(self._error)
+        return self._calls
+
+    def wait(self, should_cancel: Callable[[], bool] | None = None) -> list:
+        """Poll until the script ends (Ctrl-C or should_cancel() kills it); its result."""
+        try:
+            while not self.poll():
+                if should_cancel is not None and should_cancel():
+                    self.cancel()
+                    break
+                time.sleep(POLL_S)
+        except BaseException:  # KeyboardInterrupt: the child goes with us
+            self.cancel()
+            raise
+        return self.result()
+
+
+def packed(calls: list) -> tuple:
+    """The calls made picklable at any depth of nesting: every node's links to other nodes
+    become indices into one flat list, so that pickling never recurses along a chain of
+    nodes. The nodes are unusable until `unpacked`; only the child, about to exit, packs."""
+    from .graph import Node
+
+    nodes: list[Node] = []
+    index: dict[int, int] = {}
+    pending = [call.root for call in calls]
+    while pending:
+        node = pending.pop()
+        if id(node) in index:
+            continue
+        index[id(node)] = len(nodes)
+        nodes.append(node)
+        pending += [linked for _, linked in _links(node) if linked is not None]
+    for node in nodes:
+        for field in ("children", "parents"):
+            setattr(node, field, [index[id(n)] for n in getattr(node, field)])
+        for field in ("used_by_csg", "left", "right"):
+            if hasattr(node, field):
+                linked = getattr(node, field)
+                setattr(node, field, None if linked is None else index[id(linked)])
+    return calls, nodes
+
+
+def unpacked(calls: list, nodes: list) -> list:
+    for node in nodes:
+        for field in ("children", "parents"):
+            setattr(node, field, [nodes[i] for i in getattr(node, field)])
+        for field in ("used_by_csg", "left", "right"):
+            if hasattr(node, field):
+                linked = getattr(node, field)
+                setattr(node, field, None if linked is None else nodes[linked])
+    return calls
+
+
+def _links(node):
+    for field in ("children", "parents"):
+        for linked in getattr(node, field):
+            yield field, linked
+    for field in ("used_by_csg", "left", "right"):
+        if hasattr(node, field):
+            yield field, getattr(node, field)
