@@ -27,7 +27,7 @@ BLENDER_RUN := PYTHONPATH=$(CURDIR):$(CURDIR)/$(SITE) blender -b --python-use-sy
 BPY_VERSIONS := 4.2 4.5 5.2
 BPY_VENVS := $(foreach v,$(BPY_VERSIONS),.venvs/bpy-$(v)/.installed)
 
-setup: $(VENV)/.installed $(BUILD)/blender.ok $(BLENDER_USER_SCRIPTS)/addons/whitted
+setup: $(VENV)/.installed $(BUILD)/blender.ok $(BUILD)/xvfb.ok $(BLENDER_USER_SCRIPTS)/addons/whitted
 
 .venvs/bpy-%/.installed: tests/blender/versions.py pyproject.toml | $(VENV)/.installed
 	$(VENV)/bin/python -m tests.blender.versions venv $*
@@ -59,6 +59,12 @@ $(BUILD)/blender.ok:
 	$(call debian_package,blender,blender,Whitted needs Blender 3.4 or newer as 'blender' on PATH: \
 	  install it (Debian/Ubuntu: sudo apt-get install blender) and run make again)
 	@mkdir -p $(BUILD) && blender --version | head -n 1 && touch $@
+
+# An X server without a screen, for the tests of Blender's window (tests/blender/test_window_*)
+$(BUILD)/xvfb.ok:
+	$(call debian_package,Xvfb,xvfb,The window tests need Xvfb on PATH: install it \
+	  (Debian/Ubuntu: sudo apt-get install xvfb) and run make again)
+	@mkdir -p $(BUILD) && touch $@
 
 $(BLENDER_USER_SCRIPTS)/addons/whitted:
 	mkdir -p $(BLENDER_USER_SCRIPTS)/addons

@@ -1,17 +1,24 @@
 """File > Import > CS488 Lua Scene: a report or A4 scene script as Blender data.
 
-The script runs in core's sandbox with every call checked (a mistake is reported with its
-line, and nothing is imported). Each gr.render call becomes a scene: the first call's into
-the current scene, any later one's into a new scene named after its image. A scene gets the
-objects under the call's node (`lua_build`), the camera from eye/view/up/fovy and the
-depth of field, the lights, the world colour from the ambient term, and the render settings
-from gr.render, with the Raw view transform: the render then writes the same PNG as
-`python -m core render`, which writes the renderer's values as the report's program did.
+The script runs in core's sandbox, in a child process within the import's time and memory
+limits, with every call checked (a mistake is reported with its line, and nothing is
+imported). From Blender's window the import is modal: Blender stays usable while the script
+runs, the status bar shows it, and Esc stops it at once (the child is killed); from a
+script or under `blender -b` it runs to the end before the operator returns.
+
+Each gr.render call becomes a scene: the first call's into the current scene, any later
+one's into a new scene named after its image. A scene gets the objects under the call's node
+(`lua_build`), the camera from eye/view/up/fovy and the depth of field, the lights, the world
+colour from the ambient term, and the render settings from gr.render, with the Raw view
+transform: the render then writes the same PNG as `python -m core render`, which writes the
+renderer's values as the report's program did.
 """
 
 from __future__ import annotations
 
+import contextlib
 import math
+import time
 from pathlib import Path
 
 import bpy
@@ -20,16 +27,24 @@ from bpy_extras.io_utils import ImportHelper
 from mathutils import Matrix
 
 from .compat import give_nodes
-from .core.cs488 import ScriptError, load_script
+from .core.cs488 import ScriptError, ScriptLimits, ScriptRun, load_script
+from .core.cs488.sandbox import DEFAULT_LIMITS
 from .export import WATTS_TO_INTENSITY
 from .lua_build import Y_UP_TO_Z_UP, Builder, place
 from .reporting import report_internal_failure
 
+POLL_S = 0.1
 
-def import_script(context, path: str | Path) -> list:
-    """Build every gr.render call of the script; returns the scenes. Raises ScriptError."""
-    path = Path(path)
-    calls = load_script(path, print_line=print)
+
+def import_script(context, path: str | Path, limits=DEFAULT_LIMITS, anywhere=False) -> list:
+    """Run the script, then build every gr.render call of it; returns the scenes. Raises
+    ScriptError."""
+    calls = load_script(path, print_line=print, anywhere=anywhere, limits=limits)
+    return build_scenes(context, Path(path), calls)
+
+
+def build_scenes(context, path: Path, calls: list) -> list:
+    """A scene for each gr.render call (the first into the current scene)."""
     if not calls:
         raise ScriptError(f"{path.name}: the script never calls gr.render: nothing to import")
     scenes, shared = [], {}
@@ -146,16 +161,98 @@ class WHITTED_OT_import_lua(bpy.types.Operator, ImportHelper):
 
     filename_ext = ".lua"
     filter_glob: bpy.props.StringProperty(default="*.lua", options={"HIDDEN"})
+    time_limit: bpy.props.FloatProperty(
+        name="Time Limit (s)",
+        description="Stop the script after this many seconds (Esc stops it sooner)",
+        default=DEFAULT_LIMITS.seconds, min=0.1, soft_max=3600.0,
+    )  # fmt: skip
+    memory_limit: bpy.props.IntProperty(
+        name="Memory Limit (MiB)",
+        description="The memory the script may take while it builds the scene",
+        default=DEFAULT_LIMITS.memory_mib, min=16, soft_max=65536,
+    )  # fmt: skip
+    allow_outside_files: bpy.props.BoolProperty(
+        name="Files Outside Its Folder",
+        description="Let the script read meshes and textures outside its own folder tree",
+        default=False,
+    )
+
+    def limits(self) -> ScriptLimits:
+        return ScriptLimits(
+            seconds=self.time_limit,
+            memory_mib=self.memory_limit,
+            seconds_setting="the import's Time Limit",
+            memory_setting="the import's Memory Limit",
+            outside_setting="the import's Files Outside Its Folder option",
+        )
 
     def execute(self, context):
+        if bpy.app.background or context.window is None:
+            try:  # nothing to keep responsive: run the script to its end here
+                scenes = import_script(
+                    context, self.filepath, self.limits(), self.allow_outside_files
+                )
+            except ScriptError as error:
+                self.report({"ERROR"}, f"Whitted: {error}")
+                return {"CANCELLED"}
+            except Exception as error:  # Whitted's own failure, not the script's
+                report_internal_failure(self, "import", error)
+                return {"CANCELLED"}
+            return self._imported(scenes)
         try:
-            scenes = import_script(context, self.filepath)
+            self._run = ScriptRun(Path(self.filepath), self.allow_outside_files, self.limits())
         except ScriptError as error:
             self.report({"ERROR"}, f"Whitted: {error}")
             return {"CANCELLED"}
-        except Exception as error:  # Whitted's own failure, not the script's
+        manager = context.window_manager
+        self._timer = manager.event_timer_add(POLL_S, window=context.window)
+        manager.modal_handler_add(self)
+        self._show(context, "starting")
+        return {"RUNNING_MODAL"}
+
+    def modal(self, context, event):
+        try:
+            return self._step(context, event)
+        except Exception as error:  # Whitted's own failure: the child must not outlive it
+            self._run.cancel()
+            self._stop(context)
             report_internal_failure(self, "import", error)
             return {"CANCELLED"}
+
+    def _step(self, context, event):
+        if event.type == "ESC":
+            self._run.cancel()
+            self._stop(context)
+            self.report({"INFO"}, f"Whitted: import of {Path(self.filepath).name} cancelled")
+            return {"CANCELLED"}
+        if event.type != "TIMER":
+            return {"PASS_THROUGH"}  # Blender stays usable while the script runs
+        if not self._run.poll():
+            self._show(context, f"{time.monotonic() - self._started:.0f} s")
+            return {"PASS_THROUGH"}
+        self._stop(context)
+        try:
+            scenes = build_scenes(context, Path(self.filepath), self._run.result())
+        except ScriptError as error:
+            self.report({"ERROR"}, f"Whitted: {error}")
+            return {"CANCELLED"}
+        return self._imported(scenes)
+
+    def _show(self, context, how_long: str) -> None:
+        if how_long == "starting":
+            self._started = time.monotonic()
+        text = f"Whitted: running {Path(self.filepath).name}, {how_long} (Esc stops it)"
+        with contextlib.suppress(AttributeError, RuntimeError, ReferenceError):
+            context.workspace.status_text_set(text)
+
+    def _stop(self, context) -> None:
+        if self._timer is not None:
+            context.window_manager.event_timer_remove(self._timer)
+            self._timer = None
+        with contextlib.suppress(AttributeError, RuntimeError, ReferenceError):
+            context.workspace.status_text_set(None)
+
+    def _imported(self, scenes):
         names = ", ".join(f"'{scene.name}'" for scene in scenes)
         self.report({"INFO"}, f"Whitted: imported {Path(self.filepath).name} into {names}")
         return {"FINISHED"}

@@ -86,8 +86,8 @@ def compile_kernels(python: str, cache_base: Path, level: str, stage: Path) -> P
     cache_base and `core` imported under INSTALLED_AS from a copy in stage, for the portable
     CPU level given, whatever this machine's (which must be able to run it); returns the
     folder of its kernels. A complete cache there only loads."""
-    from core.kernel_warmup import CACHE_LINE
     from core.child_process import PROGRAM, program_arguments
+    from core.kernel_warmup import CACHE_LINE
 
     core = stage.joinpath(*INSTALLED_AS.split("."))
     if not core.is_dir():

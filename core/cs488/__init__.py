@@ -40,6 +40,6 @@ def load_script_here(
 ) -> list[RenderCall]:
     """`load_script` in this very process: what the child runs."""
     path = Path(path)
-    commands = Commands(path.resolve().parent, print_line, anywhere)
+    commands = Commands(path.resolve().parent, print_line, anywhere, limits.outside_setting)
     run_script(path, commands.api(), print_line, limits)
     return commands.renders

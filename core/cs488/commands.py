@@ -94,12 +94,14 @@ class Commands:
     """The `gr` table of one script run: `api()` gives the functions; `renders` collects the
     gr.render calls, each holding the scene as it stood when called."""
 
-    def __init__(self, folder: Path, print_line, anywhere: bool = False):
+    def __init__(self, folder: Path, print_line, anywhere: bool = False,
+                 outside_setting: str = "the command line's --allow-outside-files"):  # fmt: skip
         self.folder = Path(folder)
         self.print_line = print_line
         # Files outside the script's folder tree (symbolic links resolved) are refused
         # unless the user allows them: a script from elsewhere reads and writes only its own
         self.anywhere = anywhere
+        self.outside_setting = outside_setting
         self.renders: list[RenderCall] = []
         self.meshes: dict[Path, TriangleMesh] = {}
         self.material_count = 0
@@ -135,7 +137,7 @@ class Commands:
         if not self.anywhere and not path.is_relative_to(self.folder.resolve()):
             raise ArgumentError(
                 f"{what} is outside the script's folder ({path}); a script {does} files in its "
-                "own folder and below only (the command line's --allow-outside-files lifts this)"
+                f"own folder and below only ({self.outside_setting} lifts this)"
             )
         return path
 

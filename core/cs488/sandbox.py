@@ -84,13 +84,16 @@ _MAX_NESTING = 8
 
 @dataclass(frozen=True)
 class ScriptLimits:
-    """How long a script may run and how much memory it may take, and how the user raises
-    each (named in messages: a command-line option, an import setting)."""
+    """How long a script may run and how much memory it may take, and what the user calls
+    the setting that raises each (named in messages: a command-line option, an import
+    option)."""
 
     seconds: float = 120.0
     memory_mib: int = 4096
     seconds_setting: str = "--script-seconds"
     memory_setting: str = "--script-memory"
+    # What lets a script reach files outside its folder tree (not a limit, but named so too)
+    outside_setting: str = "the command line's --allow-outside-files"
 
     def time_message(self) -> str:
         return (

@@ -132,7 +132,7 @@ def test_an_internal_failure_is_reported_not_raised(imported, bpy_with_whitted, 
     report, like a script's mistake, not as a traceback out of Blender's UI."""
     bpy = bpy_with_whitted
     lua_import = sys.modules["whitted.lua_import"]  # the operator's module
-    monkeypatch.setattr(lua_import, "import_script", lambda context, path: 1 / 0)
+    monkeypatch.setattr(lua_import, "import_script", lambda *args: 1 / 0)
     script = tmp_path / "scene.lua"
     script.write_text("root = gr.node('root')\n")
     with pytest.raises(RuntimeError, match=r"Whitted: the import failed: ZeroDivisionError"):
