@@ -4,8 +4,9 @@ Threads rather than numba's `prange`: each worker calls the GIL-free tile kernel
 truly in parallel, yet the calling thread gets every tile the moment it is done (Blender
 streams it into the Image Editor), checks for cancellation between tiles, and never launches
 two parallel numba regions at once (which the default threading layer does not survive).
-Only as many tiles as there are threads are ever in flight, so a cancel is obeyed within one
-tile per thread.
+Only as many tiles as there are threads are ever in flight, and a cancel (or Ctrl-C, or any
+exception here) also sets a flag the tile kernel reads at every pixel: the tiles in flight
+stop within a pixel's rays, not at their end.
 """
 
 from __future__ import annotations
@@ -128,10 +129,11 @@ def render(
     threads = settings.threads or available_threads()
     tiles = split_into_tiles(settings.pixel_region(), settings.tile_size)
     image = np.zeros((settings.height, settings.width, 4), np.float32)
+    stop_tiles = np.zeros(1, np.int64)  # the kernels' cancel flag (Workspace.cancel)
 
     def render_one(tile: Tile) -> tuple[np.ndarray, int, np.ndarray]:
         pixels = np.empty((tile.height, tile.width, 4), np.float32)
-        workspace = new_workspace(settings.max_depth, settings.shadow_samples)
+        workspace = new_workspace(settings.max_depth, settings.shadow_samples, stop_tiles)
         render_tile(
             packed,
             settings.width,
@@ -160,23 +162,28 @@ def render(
             if tile is not None:
                 running[pool.submit(render_one, tile)] = tile
 
-        for _ in range(threads):
-            start_next()
-        while running and not cancelled:
-            finished, _ = wait(running, timeout=_CANCEL_POLL_S, return_when=FIRST_COMPLETED)
-            for future in finished:
-                tile = running.pop(future)
-                pixels, overflows, counts = future.result()
-                csg_overflows += overflows
-                ray_counts += counts
-                image[tile.y : tile.y + tile.height, tile.x : tile.x + tile.width] = pixels
-                tiles_done += 1
-                if on_tile is not None:
-                    on_tile(tile, pixels, tiles_done, len(tiles))
-            cancelled = should_cancel is not None and should_cancel()
-            if not cancelled:
-                for _ in finished:
-                    start_next()
+        try:
+            for _ in range(threads):
+                start_next()
+            while running and not cancelled:
+                finished, _ = wait(running, timeout=_CANCEL_POLL_S, return_when=FIRST_COMPLETED)
+                for future in finished:
+                    tile = running.pop(future)
+                    pixels, overflows, counts = future.result()
+                    csg_overflows += overflows
+                    ray_counts += counts
+                    image[tile.y : tile.y + tile.height, tile.x : tile.x + tile.width] = pixels
+                    tiles_done += 1
+                    if on_tile is not None:
+                        on_tile(tile, pixels, tiles_done, len(tiles))
+                cancelled = should_cancel is not None and should_cancel()
+                if not cancelled:
+                    for _ in finished:
+                        start_next()
+        finally:
+            # Tiles still in flight stop at their next pixel (their pixels are dropped), so
+            # leaving the pool, which waits for them, takes no longer than that
+            stop_tiles[0] = 1
     stats = RenderStats(
         kernel_s=kernel_s,
         kernel_source=kernel_source,

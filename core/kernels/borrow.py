@@ -164,4 +164,5 @@ def borrow_workspace(ws):
             borrowed(rays.weight),
             borrowed(rays.depth),
         ),
+        borrowed(ws.cancel),
     )

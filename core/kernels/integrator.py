@@ -64,7 +64,7 @@ def _push(rays, top, o, d, w, depth):
 def trace_ray(ps, o, d, key, ws):
     """Linear RGB colour seen along unit direction d from o, with every bounce."""
     frame, geo, surf, mats, lights = ps
-    stacks, rays = ws
+    stacks, rays = ws.stacks, ws.rays
     max_depth = frame.options[OPTION_MAX_DEPTH]
     colour = (0.0, 0.0, 0.0)
     top = _push(rays, 0, o, d, (1.0, 1.0, 1.0), 0)

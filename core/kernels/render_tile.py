@@ -81,14 +81,19 @@ def render_tile(ps, image_width, image_height, x0, y0, width, height, out, ws):
     Pixels depend only on their image coordinates, never on the tile, so any tiling of the
     image gives the same picture. The entry point the driver calls: it borrows its arrays
     for the tile's duration (see core.kernels.borrow), so no reference counting runs below.
+    Once ws.cancel[0] is set (by the driver, from another thread) it returns at the next
+    pixel, leaving the rest of `out` as it was: a cancel is obeyed within one pixel's rays.
     """
     ps, ws, out = borrow_scene(ps), borrow_workspace(ws), borrowed(out)
+    cancel = ws.cancel
     frame = ps.frame
     n = frame.options[OPTION_PIXEL_SAMPLES]
     samples = n * n
     seed = frame.options[OPTION_SEED]
     for j in range(height):
         for i in range(width):
+            if cancel[0] != 0:
+                return
             px, py = x0 + i, y0 + j
             r = g = b = 0.0
             for s in range(samples):

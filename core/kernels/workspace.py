@@ -65,9 +65,12 @@ class RayStack(NamedTuple):
 class Workspace(NamedTuple):
     stacks: Stacks
     rays: RayStack
+    # int64 (1,), shared by every tile of a render: non-zero once the render is cancelled,
+    # which the tile kernel reads at every pixel and stops
+    cancel: np.ndarray
 
 
-def new_workspace(max_depth: int, shadow_samples: int = 1) -> Workspace:
+def new_workspace(max_depth: int, shadow_samples: int = 1, cancel=None) -> Workspace:
     # Depth-first, each shading point pops one ray and pushes at most two, so no more than
     # max_depth + 2 rays ever wait
     rays = max_depth + 2
@@ -96,4 +99,5 @@ def new_workspace(max_depth: int, shadow_samples: int = 1) -> Workspace:
         RayStack(
             np.empty((rays, 3)), np.empty((rays, 3)), np.empty((rays, 3)), np.empty(rays, np.int64)
         ),
+        np.zeros(1, np.int64) if cancel is None else cancel,
     )
