@@ -40,6 +40,7 @@ from .kernels.shapes import (
     SHAPE_TORUS,
 )
 from .kernels.triangles import LEAF_WIDTH
+from .memory_estimate import check_fits, estimate
 from .mesh_packing import MeshTables, add_mesh, concatenated
 from .scene import (
     AreaLight,
@@ -103,6 +104,7 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
     world_from_object = np.array(
         [s.world_from_object for s in scene.shapes] + [w for _, w in csg_tables.operands], float
     ).reshape(len(shapes), 4, 4)
+    check_fits(estimate(shapes, settings))  # before the textures and meshes are unpacked
 
     materials, material_index = [], {}
     for shape in shapes:

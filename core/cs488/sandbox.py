@@ -19,6 +19,7 @@ out as one `ScriptError` whose message starts `scene.lua:LINE:`, the line of the
 made the failing call.
 """
 
+import inspect
 import re
 import time
 from collections.abc import Callable
@@ -286,7 +287,16 @@ def _method_call(cls: type, method: str) -> Callable:
             raise ArgumentError(
                 f"call it on a {cls.lua_kind} with a colon, as {cls.lua_kind}:{method}(...)"
             )
-        return getattr(owner, method)(*args)
+        bound = getattr(owner, method)
+        try:  # the count of arguments, checked before the method runs
+            inspect.signature(bound).bind(*args)
+        except TypeError:
+            wanted = [p.name for p in inspect.signature(bound).parameters.values()]
+            raise ArgumentError(
+                f"takes {len(wanted)} argument{'s' if len(wanted) != 1 else ''} "
+                f"({', '.join(wanted)}); got {len(args)}"
+            ) from None
+        return bound(*args)
 
     return call
 

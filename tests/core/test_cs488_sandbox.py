@@ -174,6 +174,9 @@ def test_tables_arrive_as_lists_and_dicts(tmp_path):
         ),
         ("c:add('x')", "scene.lua:2: counter:add: amount: got 'x'; use a whole number"),
         ("c:fly()", "scene.lua:2: counter has no method 'fly'"),
+        # found by the script fuzzer: a TypeError, reported as Whitted's own failure
+        ("c:add()", "scene.lua:2: counter:add: takes 1 argument (amount); got 0"),
+        ("c:add(1, 2)", "scene.lua:2: counter:add: takes 1 argument (amount); got 2"),
         ("c.count = 3", "scene.lua:2: cannot set fields of a counter"),
         ("setmetatable(c, {})", "scene.lua:2: cannot change a protected metatable"),
     ],
