@@ -207,7 +207,8 @@ class WHITTED_OT_import_lua(bpy.types.Operator, ImportHelper):
         manager = context.window_manager
         self._timer = manager.event_timer_add(POLL_S, window=context.window)
         manager.modal_handler_add(self)
-        self._show(context, "starting")
+        self._started = time.monotonic()
+        self._show(context)
         return {"RUNNING_MODAL"}
 
     def modal(self, context, event):
@@ -228,7 +229,7 @@ class WHITTED_OT_import_lua(bpy.types.Operator, ImportHelper):
         if event.type != "TIMER":
             return {"PASS_THROUGH"}  # Blender stays usable while the script runs
         if not self._run.poll():
-            self._show(context, f"{time.monotonic() - self._started:.0f} s")
+            self._show(context)
             return {"PASS_THROUGH"}
         self._stop(context)
         try:
@@ -238,10 +239,14 @@ class WHITTED_OT_import_lua(bpy.types.Operator, ImportHelper):
             return {"CANCELLED"}
         return self._imported(scenes)
 
-    def _show(self, context, how_long: str) -> None:
-        if how_long == "starting":
-            self._started = time.monotonic()
-        text = f"Whitted: running {Path(self.filepath).name}, {how_long} (Esc stops it)"
+    def cancel(self, context):
+        """Blender ends the operator (a file opened, Blender quitting): the child goes too."""
+        self._run.cancel()
+        self._stop(context)
+
+    def _show(self, context) -> None:
+        seconds = time.monotonic() - self._started
+        text = f"Whitted: running {Path(self.filepath).name}, {seconds:.0f} s (Esc stops it)"
         with contextlib.suppress(AttributeError, RuntimeError, ReferenceError):
             context.workspace.status_text_set(text)
 

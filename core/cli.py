@@ -4,9 +4,9 @@
                                     [--script-seconds S] [--script-memory MIB]
 
 The script runs first, to the end, in a child process within its time and memory limits;
-only then is anything rendered, so a script with an error
-anywhere writes nothing. Each image is written to a temporary file beside its target and
-renamed into place when complete: an error or Ctrl-C never leaves a partial PNG. Exit status:
+only then is anything rendered, so a script with an error anywhere writes nothing. Each
+image is written to a temporary file beside its target and renamed into place when complete:
+an error or Ctrl-C never leaves a partial PNG. Exit status:
 0 done, 1 bad script or scene, 2 bad command line, 130 interrupted.
 """
 
@@ -20,6 +20,7 @@ import time
 from pathlib import Path
 
 from .cs488 import ScriptError, ScriptLimits, load_script
+from .cs488.sandbox import DEFAULT_LIMITS
 from .errors import SceneError
 from .image_io import save_png
 from .kernel_warmup import kernels_ready, warm_kernels
@@ -43,7 +44,7 @@ def main(argv: list[str] | None = None) -> int:
         "--allow-outside-files", action="store_true",
         help="let the script read and write files outside its own folder",
     )  # fmt: skip
-    default = ScriptLimits()
+    default = DEFAULT_LIMITS
     render_command.add_argument(
         "--script-seconds", type=_positive(float), default=default.seconds, metavar="S",
         help=f"stop the scene script after S seconds (default {default.seconds:g})",

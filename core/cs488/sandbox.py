@@ -42,8 +42,8 @@ CHECK_EVERY = 1_000_000
 # The longest string a gr function takes (a name, a file name): each crosses into Python as a
 # copy, and 30 of 20 MiB stalled the process
 MAX_STRING_BYTES = 64 * 2**10
-# The most values one gr call's table arguments may hold, counting a table shared by several
-# others once per use: {t, t, t...} nested eight deep is billions
+# The most values one table argument of a gr call may hold, counting a table shared by
+# several others once per use: {t, t, t...} nested eight deep is billions
 MAX_TABLE_VALUES = 1_000_000
 SAFE_GLOBALS = ("assert", "error", "getmetatable", "ipairs", "next", "pairs", "pcall",
                 "rawequal", "rawget", "rawlen", "rawset", "select", "setmetatable", "tonumber",
@@ -251,7 +251,7 @@ class _TableReader:
         self.values += len(keys)
         if self.values > MAX_TABLE_VALUES:
             raise ArgumentError(
-                f"the tables given hold more than {MAX_TABLE_VALUES:,} values (a table used "
+                f"a table given holds more than {MAX_TABLE_VALUES:,} values (a table used "
                 "in several places counts each time)"
             )
         if keys == list(range(1, len(keys) + 1)):

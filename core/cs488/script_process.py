@@ -25,6 +25,7 @@ import json
 import pickle
 import queue
 import shutil
+import signal
 import subprocess
 import tempfile
 import threading
@@ -153,17 +154,15 @@ class ScriptRun:
     def _death_message(self, status: int) -> str:
         """Why a child that left no outcome is gone, in the user's terms where known."""
         name = self.path.name
-        signals = {"SIGXCPU": "time", "SIGKILL": "memory"}
-        for signal_name, limit in signals.items():
-            number = getattr(__import__("signal"), signal_name, None)
-            if number is not None and status == -number:
-                if limit == "time":
-                    return f"{name}: {self.limits.time_message()}"
-                return (
-                    f"{name}: the process running the script was killed, probably by the "
-                    "system for want of memory; "
-                    f"lower the script's memory limit with {self.limits.memory_setting}"
-                )
+        # The CPU-time limit (POSIX only), and a kill not ours: the system's, out of memory
+        if status == -getattr(signal, "SIGXCPU", 0):
+            return f"{name}: {self.limits.time_message()}"
+        if status == -getattr(signal, "SIGKILL", 0):
+            return (
+                f"{name}: the process running the script was killed, probably by the system "
+                f"for want of memory; lower the script's memory limit with "
+                f"{self.limits.memory_setting}"
+            )
         # Whitted's own failure, not the script's: its traceback's last line says what
         said = [line.strip() for line in self._chatter if line.strip()]
         last = said[-1][:300] if said else "no output"
@@ -194,47 +193,45 @@ class ScriptRun:
         return self.result()
 
 
+# A node's links to other nodes: lists of them, and single ones (left and right: CSG nodes)
+_LIST_LINKS = ("children", "parents")
+_SINGLE_LINKS = ("used_by_csg", "left", "right")
+
+
 def packed(calls: list) -> tuple:
     """The calls made picklable at any depth of nesting: every node's links to other nodes
     become indices into one flat list, so that pickling never recurses along a chain of
     nodes. The nodes are unusable until `unpacked`; only the child, about to exit, packs."""
-    from .graph import Node
-
-    nodes: list[Node] = []
+    nodes: list = []
     index: dict[int, int] = {}
     pending = [call.root for call in calls]
     while pending:
         node = pending.pop()
-        if id(node) in index:
-            continue
-        index[id(node)] = len(nodes)
-        nodes.append(node)
-        pending += [linked for _, linked in _links(node) if linked is not None]
+        if id(node) not in index:
+            index[id(node)] = len(nodes)
+            nodes.append(node)
+            pending += _linked(node)
     for node in nodes:
-        for field in ("children", "parents"):
-            setattr(node, field, [index[id(n)] for n in getattr(node, field)])
-        for field in ("used_by_csg", "left", "right"):
-            if hasattr(node, field):
-                linked = getattr(node, field)
-                setattr(node, field, None if linked is None else index[id(linked)])
+        _relink(node, lambda linked: index[id(linked)])
     return calls, nodes
 
 
 def unpacked(calls: list, nodes: list) -> list:
+    """The calls as they were before `packed`."""
     for node in nodes:
-        for field in ("children", "parents"):
-            setattr(node, field, [nodes[i] for i in getattr(node, field)])
-        for field in ("used_by_csg", "left", "right"):
-            if hasattr(node, field):
-                linked = getattr(node, field)
-                setattr(node, field, None if linked is None else nodes[linked])
+        _relink(node, nodes.__getitem__)
     return calls
 
 
-def _links(node):
-    for field in ("children", "parents"):
-        for linked in getattr(node, field):
-            yield field, linked
-    for field in ("used_by_csg", "left", "right"):
+def _linked(node) -> list:
+    lists = [n for field in _LIST_LINKS for n in getattr(node, field)]
+    return lists + [getattr(node, f) for f in _SINGLE_LINKS if getattr(node, f, None) is not None]
+
+
+def _relink(node, convert) -> None:
+    for field in _LIST_LINKS:
+        setattr(node, field, [convert(n) for n in getattr(node, field)])
+    for field in _SINGLE_LINKS:
         if hasattr(node, field):
-            yield field, getattr(node, field)
+            linked = getattr(node, field)
+            setattr(node, field, None if linked is None else convert(linked))

@@ -109,8 +109,8 @@ def test_a_table_shared_many_times_over_is_refused_not_expanded(tmp_path):
     with pytest.raises(ScriptError) as caught:
         run(tmp_path, source, take=lambda *a: None)
     assert str(caught.value) == (
-        "scene.lua:7: gr.take: the tables given hold more than 1,000,000 values (a table "
-        "used in several places counts each time)"
+        "scene.lua:7: gr.take: a table given holds more than 1,000,000 values (a table used "
+        "in several places counts each time)"
     )
 
 
