@@ -7,7 +7,7 @@ only loads the cache. The command line runs the same steps in-process.
 
 Each step compiles one group of kernels for a scene that holds one of every kind of thing
 (shapes, a mesh, CSG, a texture, both kinds of light). Since every scene packs into the same
-array types (`core.packing.kernel_ready`), kernels compiled for it serve every scene; the
+array types (`core.compile.kernel_ready`), kernels compiled for it serve every scene; the
 kernels the render kernel calls are compiled first, each on its own, so that the steps show
 where a compile is, and the render kernel finds them done.
 
@@ -83,10 +83,10 @@ def warmup_scene():
 def warmup_steps() -> list[tuple[str, Callable[[], None]]]:
     """(what it compiles, how) for each step, in order."""
     from . import RenderSettings
+    from .compile import compile_scene
     from .kernels.light_pyramid import TRAVERSE_ALL
     from .kernels.trace import closest_hit, transmittance
     from .kernels.workspace import new_workspace
-    from .packing import compile_scene
     from .render import prepare_kernels
 
     packed = []

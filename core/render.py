@@ -19,8 +19,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .compile import compile_scene
 from .kernel_cache import load_or_rebuild, note_use
 from .kernels.csg import CROSSING_CAPACITY, SPAN_CAPACITY
+from .kernels.layout import PackedScene
 from .kernels.render_tile import render_tile
 from .kernels.workspace import (
     RAY_COUNT_SLOTS,
@@ -29,7 +31,6 @@ from .kernels.workspace import (
     SHADOW_RAYS_UNOBSTRUCTED,
     new_workspace,
 )
-from .packing import PackedScene, compile_scene
 from .scene import RenderSettings, Scene
 
 # How often the driver asks "cancelled?" while tiles are still running.

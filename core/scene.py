@@ -1,7 +1,7 @@
 """The scene model: small dataclasses a person can read, and their validation.
 
 Everything here is plain Python and numpy; nothing is Blender-specific. Exporters (the
-Blender add-on, the Lua loader) build these objects; `core.packing` turns them into the flat
+Blender add-on, the Lua loader) build these objects; `core.compile` turns them into the flat
 arrays the kernels read. Validation lives with the classes, so every front end gets the same
 `SceneError` naming the object and the field. The shapes live in `core.shapes`, cameras,
 lights and materials in `core.scene_parts`; both are re-exported here.

@@ -1,7 +1,7 @@
 """The layout of the packed scene the kernels read: flat arrays in five groups.
 
-`core.packing` fills these from a `Scene`. Every array has a fixed dtype and rank whatever
-the scene, and `core.packing.kernel_ready` makes every one C-contiguous, aligned and writable,
+`core.compile` fills these from a `Scene`. Every array has a fixed dtype and rank whatever
+the scene, and `core.compile.kernel_ready` makes every one C-contiguous, aligned and writable,
 so the kernels compile once and load from the cache for every scene after.
 """
 

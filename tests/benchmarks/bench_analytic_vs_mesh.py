@@ -46,9 +46,9 @@ from core import (  # noqa: E402
     Torus,
     render,
 )  # fmt: skip
+from core.compile import compile_scene  # noqa: E402
 from core.kernels.batch import closest_normals  # noqa: E402
 from core.kernels.workspace import new_workspace  # noqa: E402
-from core.packing import compile_scene  # noqa: E402
 from tests.benchmarks.bench_sampling import timed_render  # noqa: E402
 from tests.benchmarks.tessellation import TORUS_MAJOR, TORUS_MINOR, tessellate  # noqa: E402
 

@@ -14,9 +14,9 @@ from pathlib import Path
 import numpy as np
 
 from core import Mesh, RenderSettings, Scene, TriangleMesh
+from core.compile import compile_scene
 from core.kernels.batch import closest_hits, shadow_rays
 from core.kernels.workspace import new_workspace
-from core.packing import compile_scene
 from core.render import available_threads
 from tests.meshes import bumpy_cube_sphere
 

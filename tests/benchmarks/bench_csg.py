@@ -24,9 +24,9 @@ from core import (
     Texture,
     render,
 )
+from core.compile import pack_scene
 from core.kernels.batch import closest_hits
 from core.kernels.workspace import new_workspace
-from core.packing import pack_scene
 from tests.csg_examples import EXAMPLES, analytic_tree, scaled
 
 RESULTS = Path(__file__).resolve().parent / "results"

@@ -23,7 +23,7 @@ from core import (
     TriangleMesh,
     render,
 )
-from core.packing import compile_scene
+from core.compile import compile_scene
 from tests.meshes import icosphere
 
 

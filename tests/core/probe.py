@@ -4,12 +4,12 @@ import math
 
 import numpy as np
 
+from core.compile import pack_scene
 from core.kernels.batch import closest_hits
 from core.kernels.light_pyramid import TRAVERSE_ALL
 from core.kernels.surface import surface_at
 from core.kernels.trace import closest_hit, transmittance
 from core.kernels.workspace import new_workspace
-from core.packing import pack_scene
 from core.scene import RenderSettings, Scene
 
 WORKSPACE = new_workspace(8)

@@ -6,13 +6,13 @@ import numpy as np
 import pytest
 
 from core import Box, Mesh, RenderSettings, Scene, Sphere, Torus, TriangleMesh, render
+from core.compile import compile_scene
 from core.kernels.bvh_build import build_bvh
 from core.kernels.bvh_collapse import collapse_to_wide
 from core.kernels.bvh_wide import WIDTH, leaf_range
 from core.kernels.shapes import NO_HIT, SHAPE_MESH, intersect_analytic
 from core.kernels.triangles import LEAF_WIDTH, intersect_triangle, permuted, shear_setup
 from core.kernels.vec import affine_point, affine_vector
-from core.packing import compile_scene
 from tests.core.probe import hits, surface
 from tests.core.test_shapes import random_affine
 from tests.meshes import icosphere

@@ -13,8 +13,8 @@ import pytest
 from PIL import Image
 
 import core
+from core.compile import pack_scene
 from core.cs488 import load_script
-from core.packing import pack_scene
 from tests.core.probe import hits
 
 SCENES = Path(__file__).resolve().parent.parent / "cs488_scenes"

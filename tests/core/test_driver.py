@@ -95,9 +95,9 @@ def test_cancel_stops_a_tile_in_flight_at_its_next_pixel():
 
 
 def test_the_tile_kernel_returns_at_once_when_the_flag_is_set():
+    from core.compile import compile_scene
     from core.kernels.render_tile import render_tile
     from core.kernels.workspace import new_workspace
-    from core.packing import compile_scene
 
     settings = RenderSettings(16, 16)
     packed = compile_scene(ball_on_ground(), settings).packed

@@ -28,7 +28,7 @@ from core import (
     Torus,
     TriangleMesh,
 )
-from core.packing import compile_scene
+from core.compile import compile_scene
 from tests.meshes import icosphere
 
 ROOT = Path(__file__).resolve().parents[2]

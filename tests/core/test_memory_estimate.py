@@ -11,8 +11,8 @@ import pytest
 
 import core
 from core import memory_estimate
+from core.compile import compile_scene
 from core.memory_estimate import check_fits, estimate
-from core.packing import compile_scene
 from tests.core.test_cli import ROOT
 from tests.core.test_hostile_scripts import one_colour_png
 
@@ -65,7 +65,7 @@ def test_a_texture_file_is_sized_from_its_header_and_refused_before_it_is_read(
     material = core.Material(texture=core.Texture(path=tmp_path / "big.png"))
     monkeypatch.setattr(memory_estimate, "machine_memory", lambda: 4 * 2**30)
     decoded = []
-    monkeypatch.setattr("core.packing.load_texture", lambda *a: decoded.append(a))
+    monkeypatch.setattr("core.compile.materials.load_texture", lambda *a: decoded.append(a))
     with pytest.raises(core.SceneError, match=r"^scene: textures: the render needs about 7\.9 GiB"):
         compile_scene(scene_of([core.Sphere(material=material)]), core.RenderSettings(8, 8))
     assert not decoded
@@ -78,7 +78,7 @@ import sys
 import numpy as np
 import core
 from core.memory_estimate import estimate
-from core.packing import compile_scene
+from core.compile import compile_scene
 from tests.core.test_memory_estimate import random_mesh, scene_of
 kind = sys.argv[1]
 small = scene_of([core.Sphere()])

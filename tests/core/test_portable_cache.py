@@ -170,7 +170,7 @@ import numba
 import numpy as np
 from core import Mesh, RenderSettings, Scene, TriangleMesh
 from core.kernels.mesh_trace import mesh_line_crossings
-from core.packing import compile_scene
+from core.compile import compile_scene
 from tests.meshes import icosphere
 v, t = icosphere(2)
 scene = Scene(shapes=[Mesh(mesh=TriangleMesh(v, t))])

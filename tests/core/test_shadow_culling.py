@@ -10,8 +10,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import core
+from core.compile.frame import SHADOW_CULLING_MIN_SAMPLES
 from core.kernels.light_pyramid import PYRAMID_ROWS, box_meets_pyramid, build_pyramid
-from core.packing import SHADOW_CULLING_MIN_SAMPLES
 from tests.core.test_fuzz import FUZZ, lights, materials, open_meshes, render_or_refuse, solids
 from tests.core.test_lighting import GROUND_KD, ground, look_down
 

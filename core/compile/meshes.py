@@ -13,11 +13,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .kernels.bvh_build import build_bvh
-from .kernels.bvh_collapse import collapse_to_wide
-from .kernels.bvh_wide import LEAF_COUNT_BITS, number_leaf_blocks, offset_links
-from .kernels.triangles import LEAF_WIDTH
-from .shapes import TriangleMesh
+from ..kernels.bvh_build import build_bvh
+from ..kernels.bvh_collapse import collapse_to_wide
+from ..kernels.bvh_wide import LEAF_COUNT_BITS, number_leaf_blocks, offset_links
+from ..kernels.triangles import LEAF_WIDTH
+from ..shapes import Mesh, TriangleMesh
 
 # Leaves of up to MESH_MAX_LEAF triangles; a node visit costs about as much as this many
 # triangle tests. Chosen on the million-triangle benchmark mesh with the four-wide BVH, all
@@ -161,7 +161,17 @@ def _add_uvs(tables, mesh, triangles, source) -> int:
     return offset
 
 
-def concatenated(parts: list, shape: tuple, dtype) -> np.ndarray:
-    if not parts:
-        return np.zeros(shape, dtype)
-    return np.ascontiguousarray(np.concatenate(parts), dtype)
+def pack_meshes(shapes: list) -> tuple[MeshTables, dict[int, int]]:
+    """Every distinct `TriangleMesh` of these shapes, once; each one's index by id()."""
+    tables, index = MeshTables(), {}
+    for shape in shapes:
+        if isinstance(shape, Mesh) and id(shape.mesh) not in index:
+            index[id(shape.mesh)] = add_mesh(tables, shape.mesh)
+    return tables, index
+
+
+def has_triangles(tables: MeshTables, mesh: int) -> bool:
+    """Whether packed mesh `mesh` kept any triangle (degenerate ones are dropped)."""
+    following = mesh + 1 < len(tables.tri_offset)
+    end = tables.tri_offset[mesh + 1] if following else tables.counts["slots"]
+    return end > tables.tri_offset[mesh]

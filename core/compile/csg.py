@@ -13,10 +13,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .checks import valid_affine
-from .errors import SceneError
-from .kernels.csg import CSG_DIFFERENCE, CSG_INTERSECTION, CSG_UNION, MAX_OPERANDS
-from .shapes import Csg, Shape
+from ..checks import valid_affine
+from ..errors import SceneError
+from ..kernels.csg import CSG_DIFFERENCE, CSG_INTERSECTION, CSG_UNION, MAX_OPERANDS
+from ..shapes import Csg, Shape
 
 OPERATION_CODES = {
     "union": CSG_UNION,
@@ -30,6 +30,15 @@ class CsgTables:
     operands: list = field(default_factory=list)  # (shape, world_from_object) per row
     ranges: list = field(default_factory=list)  # (first, end) program steps per tree
     program: list = field(default_factory=list)
+
+
+def pack_csg(scene_shapes: list) -> tuple[CsgTables, dict[int, int]]:
+    """Every CSG tree among the scene's shapes; for each one's row, its tree's index."""
+    tables, tree_of_row = CsgTables(), {}
+    for row, shape in enumerate(scene_shapes):
+        if isinstance(shape, Csg):
+            tree_of_row[row] = add_csg(tables, shape, len(scene_shapes))
+    return tables, tree_of_row
 
 
 def add_csg(tables: CsgTables, root: Csg, first_row: int) -> int:

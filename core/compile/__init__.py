@@ -1,0 +1,101 @@
+"""Compile a `Scene` into `PackedScene`: the flat arrays that are all the kernels ever see.
+
+    from .compile import compile_scene
+    compiled = compile_scene(scene, settings)   # validates; raises SceneError
+    compiled.packed                             # PackedScene: frame, geometry, surfaces, ...
+
+One module a table, called in this order, each for a reason:
+1. validate the scene and the settings: nothing is packed from bad input;
+2. `frame`: camera, lens, ambient, background, options (needs only the settings);
+3. `csg`: each CSG tree's operands become rows after the scene's shapes, so the rows of the
+   shape table are known from here on;
+4. the memory estimate over those rows (`core.memory_estimate`): a render that cannot fit
+   is refused before the textures and meshes below are unpacked;
+5. `materials`: the rows' materials and textures (the shape table refers to them by index);
+6. `meshes`: each `TriangleMesh` once, with its BVH (the shape table needs their bounds);
+7. `shapes`: the shape table and the top-level BVH (`Geometry`);
+8. `surfaces`: per row, its material; per triangle, its normals and UVs;
+9. `lights`.
+Every array has a fixed dtype and rank whatever the scene, so the kernels compile once and
+load from the cache for every scene after. Scenes without some feature get empty arrays, and
+the kernels do no work for it.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+from ..kernels.layout import PackedScene
+from ..memory_estimate import check_fits, estimate
+from ..scene import RenderSettings, Scene
+from .csg import pack_csg
+from .frame import pack_frame
+from .lights import pack_lights
+from .materials import pack_materials
+from .meshes import pack_meshes
+from .shapes import pack_geometry
+from .surfaces import pack_surfaces
+
+# The mesh arrays, in whichever group each lives (for CompiledScene.mesh_bytes)
+MESH_FIELDS = ("node_boxes", "node_links", "tri_corners", "tri_smooth", "tri_normal_index",
+               "normals", "tri_uv_index", "uvs")  # fmt: skip
+
+
+class CompiledScene(NamedTuple):
+    packed: PackedScene
+    warnings: list[str]
+    triangles: int  # triangles packed, each mesh counted once
+    mesh_bytes: int  # bytes of all mesh arrays (BVH nodes, corners, normals, UVs)
+
+
+def pack_scene(scene: Scene, settings: RenderSettings) -> PackedScene:
+    """Validate `scene` and `settings`, then pack them. Raises `SceneError` on bad input."""
+    return compile_scene(scene, settings).packed
+
+
+def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
+    """Validate and pack, returning the warnings (such as degenerate triangles dropped)."""
+    scene.validate()
+    settings.validate()
+    frame = pack_frame(scene, settings)
+    csg, tree_of_row = pack_csg(scene.shapes)
+    shapes = list(scene.shapes) + [operand for operand, _ in csg.operands]
+    world_from_object = np.array(
+        [s.world_from_object for s in scene.shapes] + [w for _, w in csg.operands], float
+    ).reshape(len(shapes), 4, 4)
+    check_fits(estimate(shapes, settings))
+    materials, material_of = pack_materials(shapes)
+    meshes, mesh_of = pack_meshes(shapes)
+    geometry = pack_geometry(scene.shapes, shapes, world_from_object, csg, tree_of_row,
+                             meshes, mesh_of)  # fmt: skip
+    surfaces = pack_surfaces(shapes, material_of, meshes)
+    lights = pack_lights(scene.lights)
+    packed = kernel_ready(PackedScene(frame, geometry, surfaces, materials, lights))
+    warnings = [
+        f"mesh '{name}': dropped {count} degenerate (zero-area) triangle"
+        + ("s" if count != 1 else "")
+        for name, count in meshes.dropped.items()
+    ]
+    mesh_bytes = sum(
+        getattr(group, name).nbytes
+        for group in (geometry, surfaces)
+        for name in MESH_FIELDS
+        if name in group._fields
+    )
+    return CompiledScene(packed, warnings, meshes.counts["tris"], mesh_bytes)
+
+
+def kernel_ready(packed: PackedScene) -> PackedScene:
+    """Every array of the packed scene C-contiguous, aligned and writable, made so here and
+    nowhere else. numba compiles an entry kernel anew for each array layout or read-only flag
+    it is handed, and each compile costs the user a minute or more: a slice of the inverse
+    transforms, say, is C-contiguous for one shape and strided for several. (dtypes and ranks
+    are fixed where each array is built; `tests/core/test_kernel_signature.py` checks all.)"""
+    return PackedScene(
+        *(
+            type(group)(*(np.require(a, requirements=["C", "A", "W"]) for a in group))
+            for group in packed
+        )
+    )
