@@ -14,8 +14,11 @@ from __future__ import annotations
 import numpy as np
 
 from . import core
+from .core.vocabulary import CSG_OPERATIONS
 
+# Blender's Boolean operations onto core's (core.vocabulary, which lists them)
 OPERATIONS = {"UNION": "union", "INTERSECT": "intersection", "DIFFERENCE": "difference"}
+assert set(OPERATIONS.values()) == set(CSG_OPERATIONS)
 SOLID_TYPES = {"MESH"}
 
 

@@ -21,6 +21,7 @@ from . import core
 from .csg_export import boolean_modifiers, solid
 from .material_export import convert_material, find_node
 from .mesh_export import MeshCache
+from .shape_tags import BY_TAG
 
 WATTS_TO_INTENSITY = 1.0 / (4.0 * math.pi**2)
 
@@ -29,13 +30,6 @@ WATTS_TO_INTENSITY = 1.0 / (4.0 * math.pi**2)
 GEOMETRY_TYPES = {"MESH"}
 # Meshes converted for earlier renders in this Blender session (frames of an animation)
 MESH_CACHE = MeshCache()
-ANALYTIC = {
-    "SPHERE": core.Sphere,
-    "CUBE": core.Box,
-    "CYLINDER": core.Cylinder,
-    "CONE": core.Cone,
-    "TORUS": core.Torus,
-}
 
 
 class Exporter:
@@ -84,8 +78,8 @@ class Exporter:
         if settings.shape == "TORUS":
             return core.Torus(obj.name, material, major_radius=settings.major_radius,
                               minor_radius=settings.minor_radius)  # fmt: skip
-        if settings.shape in ANALYTIC:
-            return ANALYTIC[settings.shape](obj.name, material)
+        if settings.shape in BY_TAG:
+            return BY_TAG[settings.shape].shape(obj.name, material)
         mesh = obj.original.data
         key = ("original", mesh.name_full)
         if key not in self.meshes:

@@ -2,13 +2,7 @@
 
 import bpy
 
-PRIMITIVES = (
-    ("SPHERE", "Sphere", "MESH_UVSPHERE", "primitive_uv_sphere_add"),
-    ("CUBE", "Cube", "MESH_CUBE", "primitive_cube_add"),
-    ("CYLINDER", "Cylinder", "MESH_CYLINDER", "primitive_cylinder_add"),
-    ("CONE", "Cone", "MESH_CONE", "primitive_cone_add"),
-    ("TORUS", "Torus", "MESH_TORUS", "primitive_torus_add"),
-)
+from .shape_tags import BY_TAG, EXACT
 
 
 class WHITTED_OT_add_shape(bpy.types.Operator):
@@ -19,12 +13,11 @@ class WHITTED_OT_add_shape(bpy.types.Operator):
     bl_options = {"REGISTER", "UNDO"}
 
     shape: bpy.props.EnumProperty(
-        name="Shape", items=[(key, label, "") for key, label, _, _ in PRIMITIVES]
+        name="Shape", items=[(tag.tag, tag.label, tag.description) for tag in EXACT]
     )
 
     def execute(self, context):
-        operator = next(op for key, _, _, op in PRIMITIVES if key == self.shape)
-        getattr(bpy.ops.mesh, operator)()
+        getattr(bpy.ops.mesh, BY_TAG[self.shape].add_primitive)()
         obj = context.active_object
         obj.whitted.shape = self.shape
         obj.name = f"Whitted {self.shape.title()}"
@@ -36,8 +29,10 @@ class WHITTED_MT_add(bpy.types.Menu):
     bl_label = "Whitted"
 
     def draw(self, context):
-        for key, label, icon, _ in PRIMITIVES:
-            self.layout.operator(WHITTED_OT_add_shape.bl_idname, text=label, icon=icon).shape = key
+        for tag in EXACT:
+            entry = self.layout.operator(WHITTED_OT_add_shape.bl_idname, text=tag.label,
+                                         icon=tag.icon)  # fmt: skip
+            entry.shape = tag.tag
 
 
 def _add_menu_entry(self, context):

@@ -14,18 +14,8 @@ from bpy.props import (
     PointerProperty,
 )
 
+from . import shape_tags
 from .core.scene import DEFAULT_PIXEL_SAMPLES, DEFAULT_SHADOW_SAMPLES
-
-# Each analytic shape matches the Blender primitive added with default settings, so tagging
-# that primitive renders the exact shape where its mesh sits
-SHAPE_ITEMS = [
-    ("MESH", "Mesh", "Render the object's mesh triangles (smooth or flat per face, UVs)"),
-    ("SPHERE", "Sphere", "Exact sphere of radius 1 (Blender's UV sphere)"),
-    ("CUBE", "Cube", "Exact cube from -1 to 1 on each axis (Blender's cube)"),
-    ("CYLINDER", "Cylinder", "Exact capped cylinder, radius 1, z from -1 to 1 (Blender's)"),
-    ("CONE", "Cone", "Exact cone, base radius 1 at z = -1, apex at z = 1 (Blender's)"),
-    ("TORUS", "Torus", "Exact torus around the z axis (Blender's torus: radii 1 and 0.25)"),
-]
 
 
 class WhittedObjectSettings(bpy.types.PropertyGroup):
@@ -35,7 +25,7 @@ class WhittedObjectSettings(bpy.types.PropertyGroup):
             "What Whitted renders for this mesh object: its triangles, or an exact shape under "
             "the object's transform (the mesh then only stands in for it in the viewport)"
         ),
-        items=SHAPE_ITEMS,
+        items=shape_tags.MENU_ITEMS,
         default="MESH",
     )
     major_radius: FloatProperty(

@@ -22,7 +22,6 @@ from .checks import (
     valid_affine,
 )
 from .errors import SceneError
-from .kernels.options import PIXEL_PATTERNS, SHADOW_PATTERNS
 from .scene_parts import (
     AreaLight,
     Camera,
@@ -33,6 +32,7 @@ from .scene_parts import (
     Vec3,
 )
 from .shapes import Box, Cone, Csg, Cylinder, Mesh, Shape, Sphere, Torus, TriangleMesh
+from .vocabulary import PIXEL_PATTERNS, SHADOW_PATTERNS
 
 __all__ = [
     "AreaLight",

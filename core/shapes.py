@@ -24,6 +24,16 @@ import numpy as np
 from .checks import check_affine, check_array, check_choice, check_flag, check_number
 from .errors import SceneError
 from .scene_parts import Material
+from .vocabulary import (
+    CSG_OPERATIONS,
+    SHAPE_BOX,
+    SHAPE_CONE,
+    SHAPE_CSG,
+    SHAPE_CYLINDER,
+    SHAPE_MESH,
+    SHAPE_SPHERE,
+    SHAPE_TORUS,
+)
 
 
 def _identity() -> np.ndarray:
@@ -40,7 +50,8 @@ class Shape:
     world_from_object: np.ndarray = field(default_factory=_identity)
     casts_shadows: bool = field(default=True, kw_only=True)
 
-    kind_name = "shape"
+    kind_name = "shape"  # how messages name the kind
+    kernel_kind = -1  # its code in the shape table (core.kernels.shapes)
 
     @property
     def owner(self) -> str:
@@ -66,21 +77,25 @@ class Shape:
 @dataclass(eq=False)
 class Sphere(Shape):
     kind_name = "sphere"
+    kernel_kind = SHAPE_SPHERE
 
 
 @dataclass(eq=False)
 class Box(Shape):
     kind_name = "box"
+    kernel_kind = SHAPE_BOX
 
 
 @dataclass(eq=False)
 class Cylinder(Shape):
     kind_name = "cylinder"
+    kernel_kind = SHAPE_CYLINDER
 
 
 @dataclass(eq=False)
 class Cone(Shape):
     kind_name = "cone"
+    kernel_kind = SHAPE_CONE
 
 
 @dataclass(eq=False)
@@ -89,6 +104,7 @@ class Torus(Shape):
     minor_radius: float = 0.25
 
     kind_name = "torus"
+    kernel_kind = SHAPE_TORUS
 
     def validate(self, checked: set | None = None) -> None:
         super().validate(checked)
@@ -172,6 +188,7 @@ class Mesh(Shape):
     mesh: TriangleMesh | None = None
 
     kind_name = "mesh"
+    kernel_kind = SHAPE_MESH
 
     def validate(self, checked: set | None = None) -> None:
         super().validate(checked)
@@ -186,9 +203,6 @@ class Mesh(Shape):
 
 
 ANALYTIC_SHAPES = (Sphere, Box, Cylinder, Cone, Torus)
-
-
-CSG_OPERATIONS = ("union", "intersection", "difference")
 
 
 @dataclass(eq=False)
@@ -209,6 +223,7 @@ class Csg(Shape):
     right: Shape | None = None
 
     kind_name = "CSG"
+    kernel_kind = SHAPE_CSG
 
     def validate(self, checked: set | None = None) -> None:
         checked = checked if checked is not None else set()
@@ -218,7 +233,7 @@ class Csg(Shape):
         if id(self) in checked:
             return
         super().validate(checked)
-        check_choice(self.owner, "operation", self.operation, CSG_OPERATIONS)
+        check_choice(self.owner, "operation", self.operation, tuple(CSG_OPERATIONS))
         path = [*path, self]
         for field_name in ("left", "right"):
             operand = getattr(self, field_name)

@@ -15,14 +15,9 @@ import numpy as np
 
 from ..checks import valid_affine
 from ..errors import SceneError
-from ..kernels.csg import CSG_DIFFERENCE, CSG_INTERSECTION, CSG_UNION, MAX_OPERANDS
+from ..kernels.csg import MAX_OPERANDS
 from ..shapes import Csg, Shape
-
-OPERATION_CODES = {
-    "union": CSG_UNION,
-    "intersection": CSG_INTERSECTION,
-    "difference": CSG_DIFFERENCE,
-}
+from ..vocabulary import CSG_INTERSECTION, CSG_OPERATIONS, CSG_UNION
 
 
 @dataclass
@@ -74,7 +69,7 @@ def _emit(tables: CsgTables, node: Shape, world: np.ndarray, first_row: int) -> 
         return
     for operand in (node.left, node.right):
         _emit(tables, operand, world @ np.asarray(operand.world_from_object, float), first_row)
-    tables.program.append(OPERATION_CODES[node.operation])
+    tables.program.append(CSG_OPERATIONS[node.operation])
 
 
 def csg_world_box(program: list, first: int, end: int, lo: np.ndarray, hi: np.ndarray):

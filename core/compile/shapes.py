@@ -13,30 +13,11 @@ import numpy as np
 from ..kernels.bvh_build import build_bvh
 from ..kernels.bvh_wide import WIDTH
 from ..kernels.layout import Geometry
-from ..kernels.shapes import (
-    SHAPE_BOX,
-    SHAPE_CONE,
-    SHAPE_CSG,
-    SHAPE_CYLINDER,
-    SHAPE_MESH,
-    SHAPE_SPHERE,
-    SHAPE_TORUS,
-)
 from ..kernels.triangles import LEAF_WIDTH
-from ..scene import Box, Cone, Csg, Cylinder, Mesh, Sphere, Torus
+from ..scene import Csg, Mesh, Torus
 from .arrays import concatenated
 from .csg import CsgTables, csg_world_box
 from .meshes import MeshTables, has_triangles
-
-SHAPE_KIND_OF_CLASS = {
-    Sphere: SHAPE_SPHERE,
-    Box: SHAPE_BOX,
-    Cylinder: SHAPE_CYLINDER,
-    Cone: SHAPE_CONE,
-    Torus: SHAPE_TORUS,
-    Mesh: SHAPE_MESH,
-    Csg: SHAPE_CSG,
-}
 
 # Top-level leaves: shapes per leaf, and the node-visit cost relative to one shape test
 _TOP_MAX_LEAF = 2
@@ -87,7 +68,7 @@ def pack_geometry(scene_shapes: list, shapes: list, world_from_object: np.ndarra
         top_bounds=np.ascontiguousarray(np.hstack([top_lo, top_hi])),
         top_info=np.ascontiguousarray(top_info, np.int32),
         top_order=np.ascontiguousarray(top_order, np.int32),
-        shape_kind=np.array([SHAPE_KIND_OF_CLASS[type(s)] for s in shapes], np.int32),
+        shape_kind=np.array([s.kernel_kind for s in shapes], np.int32),
         shape_object_from_world=object_from_world,
         shape_param=param,
         shape_index=shape_index,

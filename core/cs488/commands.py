@@ -18,7 +18,7 @@ from ..obj_file import ObjError, read_obj, summed_face_normals
 from ..scene import AreaLight, Material, PointLight, Texture, TriangleMesh
 from ..textures import open_image, too_large
 from .graph import (
-    CSG_OPERATIONS,
+    A4_OPERATIONS,
     CsgNode,
     GeometryNode,
     LightSpec,
@@ -218,7 +218,7 @@ class Commands:
         return GeometryNode(name, "mesh", object_matrix("mesh"), mesh=mesh)
 
     def csg(self, *args):
-        expect(args, (3,), "node, node, 'union' | 'intersection' | 'diff'")
+        expect(args, (3,), "node, node, " + " | ".join(map(repr, A4_OPERATIONS)))
         left, right, operation = args
         for which, operand in (("first", left), ("second", right)):
             if not isinstance(operand, GeometryNode):
@@ -234,9 +234,10 @@ class Commands:
                 raise ArgumentError(f"{operand} is already an operand of {operand.used_by_csg}")
         if left is right:
             raise ArgumentError(f"both operands are {left}; use two different nodes")
-        if operation not in CSG_OPERATIONS:
+        if operation not in A4_OPERATIONS:
+            *names, last = map(repr, A4_OPERATIONS)
             raise ArgumentError(
-                f"unknown operation {_quoted(operation)}; use 'union', 'intersection' or 'diff'"
+                f"unknown operation {_quoted(operation)}; use {', '.join(names)} or {last}"
             )
         operands = operand_count(left) + operand_count(right)
         if operands > MAX_OPERANDS:

@@ -19,10 +19,13 @@ from __future__ import annotations
 import numpy as np
 
 from ..scene import Box, Cone, Csg, Cylinder, Material, Mesh, Sphere, Torus, TriangleMesh
+from ..vocabulary import CSG_OPERATIONS
 from .sandbox import ArgumentError, ScriptObject
 
 AXES = {"x": 0, "y": 1, "z": 2}
-CSG_OPERATIONS = {"union": "union", "intersection": "intersection", "diff": "difference"}
+# The A4 language's names for the CSG operations (core.vocabulary's), in the manual's order
+A4_OPERATIONS = {"union": "union", "intersection": "intersection", "diff": "difference"}
+assert set(A4_OPERATIONS.values()) == set(CSG_OPERATIONS)
 
 
 def translation(offset) -> np.ndarray:
@@ -199,7 +202,7 @@ class CsgNode(GeometryNode):
             self.name,
             material,
             self.matrix,
-            operation=CSG_OPERATIONS[self.operation],
+            operation=A4_OPERATIONS[self.operation],
             left=operands[0],
             right=operands[1],
         )

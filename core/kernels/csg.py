@@ -24,14 +24,11 @@ sliver of skin, on every pixel alike, and on equal footing the left operand's la
 import math
 
 from ..jit import inlined_kernel, kernel
+from ..vocabulary import CSG_DIFFERENCE, CSG_INTERSECTION, CSG_UNION
 from .mesh_trace import mesh_line_crossings
 from .shapes import SHAPE_MESH, SHAPE_TORUS, convex_interval
 from .torus import torus_roots
 from .vec import affine_point, affine_vector
-
-CSG_UNION = -1
-CSG_INTERSECTION = -2
-CSG_DIFFERENCE = -3
 
 # Boundaries of two operands nearer than this, relative to the distances involved, are one
 # event (the same relative size as the spawn offset in `trace`)

@@ -18,16 +18,17 @@ passed around as a value would miss numba's cache in every new process.
 import math
 
 from ..jit import kernel
+from ..vocabulary import (  # noqa: F401  (the kinds, listed in core.vocabulary)
+    SHAPE_BOX,
+    SHAPE_CONE,
+    SHAPE_CSG,
+    SHAPE_CYLINDER,
+    SHAPE_MESH,
+    SHAPE_SPHERE,
+    SHAPE_TORUS,
+)
 from .torus import torus_roots
 from .vec import dot
-
-SHAPE_SPHERE = 0
-SHAPE_BOX = 1
-SHAPE_CYLINDER = 2
-SHAPE_CONE = 3
-SHAPE_TORUS = 4
-SHAPE_MESH = 5
-SHAPE_CSG = 6  # a CSG tree: its operands are rows of their own (core.kernels.csg)
 
 # Surface parts: which piece of a shape a hit lies on
 PART_SIDE = 0

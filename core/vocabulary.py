@@ -1,0 +1,29 @@
+"""The vocabularies every layer shares, each listed once: the kinds of shape, the CSG
+operations and the sampling patterns, by the name the scene model uses and by the code the
+kernels read. No imports: the scene model, the kernels, the Lua language and the add-on all
+take these from here (mapping their own spellings onto them where they read them).
+"""
+
+# Kinds of shape-table row (the kernels' switch, `core.kernels.shapes`)
+SHAPE_SPHERE = 0
+SHAPE_BOX = 1
+SHAPE_CYLINDER = 2
+SHAPE_CONE = 3
+SHAPE_TORUS = 4
+SHAPE_MESH = 5
+SHAPE_CSG = 6  # a CSG tree: its operands are rows of their own (core.kernels.csg)
+
+# CSG operations: steps < 0 of a CSG program (`core.kernels.csg`), by the model's names
+CSG_UNION, CSG_INTERSECTION, CSG_DIFFERENCE = -1, -2, -3
+CSG_OPERATIONS = {"union": CSG_UNION, "intersection": CSG_INTERSECTION,
+                  "difference": CSG_DIFFERENCE}  # fmt: skip
+
+# Where a pixel's n x n camera rays pass: cell centres, a random point per cell, or n x n
+# independent random points anywhere in the pixel
+PIXEL_GRID, PIXEL_JITTERED, PIXEL_RANDOM = 0, 1, 2
+PIXEL_PATTERNS = {"grid": PIXEL_GRID, "jittered": PIXEL_JITTERED, "random": PIXEL_RANDOM}
+# Where an area light's N shadow rays end: independent random points, one per equal-area
+# cell, or the first N points of the Halton sequence (bases 2, 3), randomly shifted
+SHADOW_UNIFORM, SHADOW_STRATIFIED, SHADOW_HALTON = 0, 1, 2
+SHADOW_PATTERNS = {"uniform": SHADOW_UNIFORM, "stratified": SHADOW_STRATIFIED,
+                   "halton": SHADOW_HALTON}  # fmt: skip

@@ -1,0 +1,23 @@
+"""Each vocabulary is listed once (core.vocabulary) and everything else is derived from it:
+every shape class names a distinct kernel kind, the model's CSG operations and sampling
+patterns are the vocabulary's, and the A4 language's CSG names map onto all of them."""
+
+from core import shapes, vocabulary
+from core.cs488.graph import A4_OPERATIONS
+from core.scene import PIXEL_SAMPLINGS, SHADOW_SAMPLINGS, RenderSettings
+
+
+def test_every_shape_class_has_its_own_kernel_kind():
+    classes = [*shapes.ANALYTIC_SHAPES, shapes.Mesh, shapes.Csg]
+    kinds = [cls.kernel_kind for cls in classes]
+    listed = {v for k, v in vars(vocabulary).items() if k.startswith("SHAPE_")}
+    assert sorted(kinds) == sorted(listed) and len(set(kinds)) == len(kinds)
+
+
+def test_the_models_names_are_the_vocabularys():
+    assert set(A4_OPERATIONS.values()) == set(vocabulary.CSG_OPERATIONS)
+    assert PIXEL_SAMPLINGS == tuple(vocabulary.PIXEL_PATTERNS)
+    assert SHADOW_SAMPLINGS == tuple(vocabulary.SHADOW_PATTERNS)
+    defaults = RenderSettings()
+    assert defaults.pixel_sampling in PIXEL_SAMPLINGS
+    assert defaults.shadow_sampling in SHADOW_SAMPLINGS
