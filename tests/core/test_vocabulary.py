@@ -16,8 +16,8 @@ def test_every_shape_class_has_its_own_kernel_kind():
 
 def test_the_models_names_are_the_vocabularys():
     assert set(A4_OPERATIONS.values()) == set(vocabulary.CSG_OPERATIONS)
-    assert PIXEL_SAMPLINGS == tuple(vocabulary.PIXEL_PATTERNS)
-    assert SHADOW_SAMPLINGS == tuple(vocabulary.SHADOW_PATTERNS)
+    assert tuple(vocabulary.PIXEL_PATTERNS) == PIXEL_SAMPLINGS
+    assert tuple(vocabulary.SHADOW_PATTERNS) == SHADOW_SAMPLINGS
     defaults = RenderSettings()
     assert defaults.pixel_sampling in PIXEL_SAMPLINGS
     assert defaults.shadow_sampling in SHADOW_SAMPLINGS
