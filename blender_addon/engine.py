@@ -49,14 +49,10 @@ class WhittedRenderEngine(bpy.types.RenderEngine):
         for warning in output.warnings:
             self.report({"WARNING"}, f"Whitted: {warning}")
         stats = output.stats
-        rate = stats.rays_cast / stats.render_s / 1e6 if stats.render_s > 0 else 0.0
         summary = (
             f"Whitted | {settings.width}x{settings.height} | export {export_s:.2f} s | "
-            f"kernels {stats.kernel_source} "
-            f"{stats.kernel_s:.2f} s | render {stats.render_s:.2f} s | "
-            f"{stats.rays_cast / 1e6:.1f} M rays ({stats.shadow_rays / 1e6:.1f} M shadow), "
-            f"{rate:.2f} M rays/s | {stats.tiles_done}/{stats.tiles_total} tiles | "
-            f"{stats.threads} threads" + (" | cancelled" if output.cancelled else "")
+            f"{stats.summary()} | {stats.tiles_done}/{stats.tiles_total} tiles"
+            + (" | cancelled" if output.cancelled else "")
         )
         self.update_stats("", summary)
         print(summary)

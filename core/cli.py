@@ -105,7 +105,7 @@ def _render_script(script: Path, output: Path | None, threads: int, anywhere: bo
         call.settings.threads = threads
         target = output if output is not None else call.output
         result = render(call.scene, call.settings, on_tile=_progress_bar())
-        _print_stats(result.stats)
+        print(result.stats.summary())
         for warning in result.warnings:
             print(f"warning: {warning}", file=sys.stderr)
         _write_whole(result.image, target)
@@ -129,15 +129,6 @@ def _progress_bar():
               file=sys.stderr)  # fmt: skip
 
     return on_tile
-
-
-def _print_stats(stats) -> None:
-    rate = stats.rays_cast / stats.render_s / 1e6 if stats.render_s > 0 else 0.0
-    print(
-        f"kernels {stats.kernel_source} {stats.kernel_s:.2f} s | render {stats.render_s:.2f} s"
-        f" | {stats.rays_cast / 1e6:.1f} M rays ({stats.shadow_rays / 1e6:.1f} M shadow), "
-        f"{rate:.2f} M rays/s | {stats.threads} threads"
-    )
 
 
 def _write_whole(image, target: Path) -> None:
