@@ -92,7 +92,8 @@ def kernel_ready(packed: PackedScene) -> PackedScene:
     nowhere else. numba compiles an entry kernel anew for each array layout or read-only flag
     it is handed, and each compile costs the user a minute or more: a slice of the inverse
     transforms, say, is C-contiguous for one shape and strided for several. (dtypes and ranks
-    are fixed where each array is built; `tests/core/test_kernel_signature.py` checks all.)"""
+    are fixed where each array is built; tests/core/kernels/test_kernel_signature.py checks
+    all.)"""
     return PackedScene(
         *(
             type(group)(*(np.require(a, requirements=["C", "A", "W"]) for a in group))

@@ -2,7 +2,7 @@
 `python -m core render` (bpy 5.0 in this process, Debian's Blender 3.4 as `blender -b`).
 
 The pixel comparisons check that the two front ends build the same scene; the accuracy of
-what they render is checked against closed forms in tests/core/test_cs488_scenes.py."""
+what they render is checked against closed forms in tests/core/cs488/test_scenes.py."""
 
 import math
 import sys
@@ -16,7 +16,7 @@ from core.cs488 import load_script
 from core.image_io import to_bytes
 from tests.blender.conftest import ROOT, clear_scene
 from tests.blender.test_blender34_cli import blender_34
-from tests.core.test_cs488_scenes import SCENES
+from tests.core.cs488.test_scenes import SCENES
 
 EVERY_COMMAND = SCENES / "every_command.lua"
 

@@ -15,7 +15,7 @@ import core
 from core.cli import main
 from core.cs488 import load_script
 from core.image_io import to_bytes
-from tests.core.test_cs488_scenes import SCENES
+from tests.core.cs488.test_scenes import SCENES
 
 ROOT = SCENES.parent.parent
 
@@ -52,7 +52,7 @@ def test_a_script_renders_to_its_png_from_any_folder(scenes):
     assert list(elsewhere.iterdir()) == []
     pixels = np.asarray(Image.open(written))
     # The same bytes as rendering in this process: a check of the command line's writing,
-    # not of accuracy (test_cs488_scenes checks that against closed forms)
+    # not of accuracy (cs488/test_scenes.py checks that against closed forms)
     (call,) = load_script(folder / "every_command.lua", print_line=lambda line: None)
     here = core.render(call.scene, call.settings).image
     expected = to_bytes(here)

@@ -13,8 +13,8 @@ import core
 from core import memory_estimate
 from core.compile import compile_scene
 from core.memory_estimate import check_fits, estimate
+from tests.core.cs488.test_hostile_scripts import one_colour_png
 from tests.core.test_cli import ROOT
-from tests.core.test_hostile_scripts import one_colour_png
 
 
 def scene_of(shapes):

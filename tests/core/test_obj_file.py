@@ -72,7 +72,7 @@ def test_vertex_normals_are_the_reports_sum_of_face_normals():
 
 
 def test_the_committed_box_is_a_closed_solid():
-    from tests.core.test_cs488_scenes import SCENES
+    from tests.core.cs488.test_scenes import SCENES
 
     mesh = read_obj(SCENES / "box.obj")
     assert mesh.open_edge_count() == 0 and len(mesh.triangles) == 12

@@ -31,7 +31,7 @@ from core import (
 from core.compile import compile_scene
 from tests.meshes import icosphere
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[3]
 LIGHT = PointLight((0.0, -4.0, 4.0), (1.0, 1.0, 1.0))
 AREA = AreaLight((0.0, 0.0, 4.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (5.0, 5.0, 5.0))
 
@@ -128,7 +128,7 @@ def test_the_warmup_compiles_what_every_scene_needs_once(tmp_path):
     for name in scenes():
         child = (
             "from core import RenderSettings, render\n"
-            "from tests.core.test_kernel_signature import scenes\n"
+            "from tests.core.kernels.test_kernel_signature import scenes\n"
             f"out = render(scenes()[{name!r}], RenderSettings(4, 4, pixel_samples=1))\n"
             "print(out.stats.kernel_source)\n"
         )

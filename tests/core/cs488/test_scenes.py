@@ -17,7 +17,7 @@ from core.compile import pack_scene
 from core.cs488 import load_script
 from tests.core.probe import hits
 
-SCENES = Path(__file__).resolve().parent.parent / "cs488_scenes"
+SCENES = Path(__file__).resolve().parents[2] / "cs488_scenes"
 
 
 def load(tmp_path, source, name="scene.lua"):

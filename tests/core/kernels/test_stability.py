@@ -155,7 +155,7 @@ def test_renders_started_from_two_non_main_threads_at_once_do_not_abort(tmp_path
         """
         import threading, numpy as np
         from core import RenderSettings, render
-        from tests.core.test_stability import scaled_scene
+        from tests.core.kernels.test_stability import scaled_scene
         out = {}
         def run(name):
             settings = RenderSettings(40, 30, threads=2, pixel_samples=1, shadow_samples=16)

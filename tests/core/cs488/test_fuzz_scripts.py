@@ -26,7 +26,7 @@ from core.cs488.script_process import GRACE_S
 EXAMPLES = int(os.environ.get("WHITTED_FUZZ_EXAMPLES", "25"))
 DERANDOMIZE = "WHITTED_FUZZ_EXAMPLES" not in os.environ
 LIMITS = ScriptLimits(seconds=10.0, memory_mib=1024)
-SCENES = Path(__file__).resolve().parent.parent / "cs488_scenes"
+SCENES = Path(__file__).resolve().parents[2] / "cs488_scenes"
 CLEAR_ERROR = re.compile(r"^scene\.lua(:\d+)?: \S")
 
 FUZZ = settings(

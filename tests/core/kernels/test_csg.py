@@ -22,8 +22,8 @@ from core import (
     TriangleMesh,
     render,
 )
+from tests.core.kernels.test_shapes import random_affine
 from tests.core.probe import hits, light_through, packed_shapes, surface
-from tests.core.test_shapes import random_affine
 from tests.reference_shapes import constraint_normal, inside_intervals, world_constraints
 
 RNG = np.random.default_rng(4)
