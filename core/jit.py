@@ -62,6 +62,8 @@ def _one_signature_for_constants(dispatcher):
     compiles the callee once more for it; measured on the render kernel, such copies of
     the shadow-ray kernel alone added 34 s to a cold compile. None of our kernels needs a
     constant to be known at compile time, so one compiled copy serves all callers."""
+    if numba.config.DISABLE_JIT:
+        return dispatcher  # the plain Python function: nothing is typed
     get_call_template = dispatcher.get_call_template
 
     def unliteral_call_template(args, kws):

@@ -7,7 +7,7 @@ the packed scene's `geometry` group (and its `surfaces` group for normals).
 """
 
 from ..jit import kernel
-from .borrow import borrow_geometry, borrow_stacks, borrow_surfaces
+from .borrow import borrowed
 from .light_pyramid import TRAVERSE_ALL
 from .surface import surface_at
 from .trace import closest_hit, transmittance
@@ -16,7 +16,7 @@ from .trace import closest_hit, transmittance
 @kernel
 def closest_hits(geo, origins, directions, t_max, out_t, out_shape, out_part, stacks):
     """Nearest hit of each ray: out_t (NO_HIT on a miss), out_shape (-1), out_part."""
-    geo, stacks = borrow_geometry(geo), borrow_stacks(stacks)
+    geo, stacks = borrowed(geo), borrowed(stacks)
     for i in range(origins.shape[0]):
         o = (origins[i, 0], origins[i, 1], origins[i, 2])
         d = (directions[i, 0], directions[i, 1], directions[i, 2])
@@ -30,7 +30,7 @@ def closest_hits(geo, origins, directions, t_max, out_t, out_shape, out_part, st
 def closest_normals(geo, surf, origins, directions, t_max, out_t, out_shape, out_normal, stacks):
     """`closest_hits` with the shading normal at each hit (unit, outward; zero on a miss):
     what the renderer shades with, interpolated across smooth mesh faces."""
-    geo, surf, stacks = borrow_geometry(geo), borrow_surfaces(surf), borrow_stacks(stacks)
+    geo, surf, stacks = borrowed(geo), borrowed(surf), borrowed(stacks)
     for i in range(origins.shape[0]):
         o = (origins[i, 0], origins[i, 1], origins[i, 2])
         d = (directions[i, 0], directions[i, 1], directions[i, 2])
@@ -48,7 +48,7 @@ def closest_normals(geo, surf, origins, directions, t_max, out_t, out_shape, out
 @kernel
 def shadow_rays(geo, origins, directions, t_max, out_light, stacks):
     """Transmittance of each segment origin + t direction, 0 < t < t_max[i]."""
-    geo, stacks = borrow_geometry(geo), borrow_stacks(stacks)
+    geo, stacks = borrowed(geo), borrowed(stacks)
     for i in range(origins.shape[0]):
         o = (origins[i, 0], origins[i, 1], origins[i, 2])
         d = (directions[i, 0], directions[i, 1], directions[i, 2])

@@ -31,6 +31,7 @@ from typing import NamedTuple
 import numpy as np
 
 from ..jit import inlined_kernel, ir_inlined_kernel
+from .vec import inverse
 
 WIDTH = 8
 LEAF_COUNT_BITS = 3  # so a leaf holds at most 7 triangles
@@ -138,7 +139,7 @@ class SlabRay(NamedTuple):
 @inlined_kernel
 def slab_ray(o, d):
     """The `SlabRay` of o + t d (float64)."""
-    ix, iy, iz = 1.0 / d[0], 1.0 / d[1], 1.0 / d[2]
+    ix, iy, iz = inverse(d)
     # A direction component below 1 / float32's range has an inverse beyond it: held finite
     # for near planes, the entry distances only drop; left to overflow for far planes, the
     # exit distances only grow (to inf, where the exact one is finite but huge)

@@ -28,7 +28,7 @@ from ..vocabulary import CSG_DIFFERENCE, CSG_INTERSECTION, CSG_UNION
 from .mesh_trace import mesh_line_crossings
 from .shapes import SHAPE_MESH, SHAPE_TORUS, convex_interval
 from .torus import torus_roots
-from .vec import affine_point, affine_vector
+from .vec import affine_point, affine_vector, inverse
 
 # Boundaries of two operands nearer than this, relative to the distances involved, are one
 # event (the same relative size as the spawn offset in `trace`)
@@ -250,7 +250,7 @@ def csg_spans(geo, csg, o, d, scratch):
     scale = max(abs(o[0]), abs(o[1]), abs(o[2])) / math.sqrt(
         d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
     )
-    inverse_d = (1.0 / d[0], 1.0 / d[1], 1.0 / d[2])
+    inverse_d = inverse(d)
     pending = 0
     end = 0
     for k in range(first, last):

@@ -33,11 +33,6 @@ from .triangles import (
 ZERO32 = np.float32(0.0)
 
 
-@kernel
-def inverse(d):
-    return (1.0 / d[0], 1.0 / d[1], 1.0 / d[2])
-
-
 @inlined_kernel
 def _ray_constants(o, d):
     """What a traversal computes once per ray: the float32 slab test's `SlabRay`, the

@@ -11,7 +11,7 @@ focus. With aperture 0 the lens code does not run: the pinhole picture, exactly.
 import math
 
 from ..jit import kernel
-from .borrow import borrow_scene, borrow_workspace, borrowed
+from .borrow import borrowed
 from .integrator import trace_ray
 from .options import (
     OPTION_PIXEL_PATTERN,
@@ -84,7 +84,7 @@ def render_tile(ps, image_width, image_height, x0, y0, width, height, out, ws):
     Once ws.cancel[0] is set (by the driver, from another thread) it returns at the next
     pixel, leaving the rest of `out` as it was: a cancel is obeyed within one pixel's rays.
     """
-    ps, ws, out = borrow_scene(ps), borrow_workspace(ws), borrowed(out)
+    ps, ws, out = borrowed(ps), borrowed(ws), borrowed(out)
     cancel = ws.cancel
     frame = ps.frame
     n = frame.options[OPTION_PIXEL_SAMPLES]

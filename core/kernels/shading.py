@@ -18,7 +18,7 @@ tested (OPTION_SHADOW_CULLING off, kept to show that).
 import math
 
 from ..jit import inlined_kernel, kernel
-from .borrow import borrow_frame, borrow_geometry, borrow_lights, borrow_stacks
+from .borrow import borrowed
 from .light_pyramid import TRAVERSE_ALL, build_pyramid, pyramid_candidates
 from .options import (
     OPTION_SHADOW_CULLING,
@@ -62,7 +62,7 @@ def shadow_visibility(geo, stacks, listed, origin, n, count):
     A call of its own, apart from the shading that uses its results: with a shadow ray's
     call inside the loop over samples, the loop kept its values in memory across the call,
     and shading an unobstructed sample cost 2.3 times as much (210 ns against 91)."""
-    geo, stacks = borrow_geometry(geo), borrow_stacks(stacks)
+    geo, stacks = borrowed(geo), borrowed(stacks)
     targets, visibility = stacks.light_targets, stacks.visibility
     for j in range(count):
         distance = targets[j, 3]
@@ -115,7 +115,7 @@ def _phong_lit(light_dir, radiance, visible, n, to_viewer, kd, ks, shininess):
 def light_candidates(geo, stacks, origin, centre, edge_u, edge_v):
     """List in stacks.candidates the shapes that may stand between `origin` and the area
     light; returns their count or TRAVERSE_ALL. Finds the cached occluder in the list."""
-    geo, stacks = borrow_geometry(geo), borrow_stacks(stacks)
+    geo, stacks = borrowed(geo), borrowed(stacks)
     build_pyramid(stacks.pyramid, origin, centre, edge_u, edge_v)
     count = pyramid_candidates(geo, stacks.pyramid, stacks.candidates, stacks.top)
     occluder = stacks.occluder
@@ -175,8 +175,8 @@ def local_colour(frame, lights, geo, stacks, origin, n, d, kd, ks, shininess, ke
 
     Each light aims its points into stacks.light_targets, `shadow_visibility` casts their
     shadow rays, and only then are the Phong terms summed, in a loop with no call in it."""
-    frame, lights = borrow_frame(frame), borrow_lights(lights)
-    geo, stacks = borrow_geometry(geo), borrow_stacks(stacks)
+    frame, lights = borrowed(frame), borrowed(lights)
+    geo, stacks = borrowed(geo), borrowed(stacks)
     targets, visibility = stacks.light_targets, stacks.visibility
     to_viewer = scale(d, -1.0)
     colour = mul(kd, as_tuple(frame.ambient))

@@ -17,7 +17,7 @@ conservative rounding.
 from ..jit import inlined_kernel, kernel
 from .bvh_wide import SLAB_WIDEN
 from .csg import csg_closest, csg_transmittance
-from .mesh_trace import inverse, mesh_closest, mesh_crossings
+from .mesh_trace import mesh_closest, mesh_crossings
 from .shapes import (
     NO_HIT,
     SHAPE_CSG,
@@ -25,7 +25,7 @@ from .shapes import (
     count_crossings,
     intersect_analytic,
 )
-from .vec import add, affine_point, affine_vector, max_abs, scale
+from .vec import add, affine_point, affine_vector, inverse, max_abs, scale
 from .workspace import OCCLUDER_POSITION, OCCLUDER_SHAPE
 
 # Secondary rays start this far off the surface, relative to the magnitude of the

@@ -2,6 +2,8 @@
 
 import math
 
+import numba
+
 from ..jit import kernel
 
 
@@ -94,3 +96,18 @@ def affine_transpose_vector(matrices, i, v):
         matrices[i, 0, 1] * v[0] + matrices[i, 1, 1] * v[1] + matrices[i, 2, 1] * v[2],
         matrices[i, 0, 2] * v[0] + matrices[i, 1, 2] * v[1] + matrices[i, 2, 2] * v[2],
     )
+
+
+@kernel
+def _inverse(d):
+    return (1.0 / d[0], 1.0 / d[1], 1.0 / d[2])
+
+
+def _inverse_in_python(d):
+    """Python's float division raises at zero where compiled code (numpy's error model) gives
+    the signed infinity every slab test relies on."""
+    return tuple(1.0 / c if c != 0.0 else math.copysign(math.inf, c) for c in d)
+
+
+# 1 / d per component, inf where a component is zero: the slab tests' inverse direction
+inverse = _inverse_in_python if numba.config.DISABLE_JIT else _inverse
