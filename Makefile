@@ -4,6 +4,7 @@
 #   make render SCENE=path/to.lua       render a CS488 Lua scene script to the PNG it names
 #   make test                           set everything up, lint, run the whole test suite, and
 #                                       the Blender tests in every bpy version
+#   make test-python                    the kernel tests as plain Python (NUMBA_DISABLE_JIT=1)
 #   make bench                          run the benchmarks in tests/benchmarks/
 #   make fuzz [FUZZ_EXAMPLES=5000]      the fuzz tests' properties with thousands of examples
 SHELL := /bin/bash
@@ -20,7 +21,7 @@ export WHITTED_CACHE_DIR ?= $(CURDIR)/.cache/kernels
 export BLENDER_USER_SCRIPTS := $(CURDIR)/$(BUILD)/blender_scripts
 BLENDER_RUN := PYTHONPATH=$(CURDIR):$(CURDIR)/$(SITE) blender -b --python-use-system-env
 
-.PHONY: setup render test bench fuzz samples addon lint format clean
+.PHONY: setup render test test-python bench fuzz samples addon lint format clean
 
 # The Blenders tested as the bpy module besides the .venv's 5.0, each in .venvs/bpy-<version>
 # (tests/blender/versions.py, which holds their pins; a test checks the two lists agree)
@@ -104,7 +105,20 @@ format: $(VENV)/.installed
 
 test: setup $(BPY_VENVS) lint
 	$(VENV)/bin/python -m pytest
+	$(MAKE) test-python
 	@for v in $(BPY_VERSIONS); do $(VENV)/bin/python -m tests.blender.versions test $$v || exit 1; done
+
+# The kernel and render tests with numba's JIT off: the kernels run as plain Python, so a
+# failure inside one comes with a Python traceback (and pdb works). Small scenes only: the
+# tests whose brute-force references or large meshes would take hours in Python stay out.
+PYTHON_KERNEL_TESTS := tests/core/kernels/test_shapes.py tests/core/kernels/test_sphere_intersection.py \
+  tests/core/kernels/test_float32_slabs.py tests/core/kernels/test_csg.py \
+  tests/core/kernels/test_shadow_culling.py tests/core/kernels/test_stability.py \
+  tests/core/kernels/test_borrow.py tests/core/test_render_accuracy.py tests/core/test_lighting.py \
+  tests/core/test_driver.py tests/core/test_validation.py
+test-python: setup
+	NUMBA_DISABLE_JIT=1 $(VENV)/bin/python -m pytest -q -p no:cacheprovider \
+	  -W ignore::RuntimeWarning $(PYTHON_KERNEL_TESTS)
 
 FUZZ_EXAMPLES ?= 5000
 fuzz: setup

@@ -81,9 +81,11 @@ def _choose_kernel_cache() -> None:
 _choose_kernel_cache()
 _make_core_importable()
 
-from . import engine, kernel_status, lua_import, operators, properties, ui  # noqa: E402
+from . import engine, lua, properties, ui  # noqa: E402
+from .engine import kernel_status  # noqa: E402
 
-_modules = (properties, engine, operators, lua_import, ui, kernel_status)
+# Settings first (the engine and panels read them); the kernel warm-up last
+_modules = (properties, engine, lua, ui, kernel_status)
 
 
 def register():

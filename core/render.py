@@ -17,6 +17,7 @@ from collections.abc import Callable
 from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 
 from .compile import compile_scene
@@ -106,6 +107,8 @@ def prepare_kernels(packed: PackedScene) -> tuple[float, str]:
     Returns (seconds, source). Done once on the calling thread so that worker threads never
     compile concurrently and so that compile time is reported apart from render time.
     """
+    if numba.config.DISABLE_JIT:  # NUMBA_DISABLE_JIT=1: the kernels run as Python
+        return 0.0, "python"
     already = bool(render_tile.signatures)
     hits_before = sum(render_tile.stats.cache_hits.values())
     start = time.perf_counter()

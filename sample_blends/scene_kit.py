@@ -8,6 +8,7 @@ and the power that the add-on turns back into I.
 
 from __future__ import annotations
 
+import importlib
 import math
 from pathlib import Path
 
@@ -45,74 +46,42 @@ def image(name: str):
     return bpy.data.images.load(str(OUTPUT / "textures" / name), check_existing=True)
 
 
-def material(
-    name,
-    diffuse=(0.7, 0.7, 0.7),
-    specular=(0.3, 0.3, 0.3),
-    shininess=25.0,
-    reflectivity=0.0,
-    transparency=0.0,
-    inner_ior=1.5,
-    texture=None,
-):
+def _builder():
+    """The add-on's builder of Blender data (Blender's --addons whitted, or the bpy module's
+    registration, has loaded it as `whitted`): the samples are made as its Add menu and Lua
+    importer make theirs."""
+    return importlib.import_module("whitted.blender_data")
+
+
+def material(name, diffuse=(0.7, 0.7, 0.7), specular=(0.3, 0.3, 0.3), shininess=25.0,
+             reflectivity=0.0, transparency=0.0, inner_ior=1.5, texture=None):  # fmt: skip
     """A material with the Whitted panel switched on (the report's gr.material values); the
     Principled BSDF gets the same base colour and texture, for the viewport."""
-    mat = bpy.data.materials.new(name)
-    mat.use_nodes = True
-    tree = mat.node_tree
-    principled = next(n for n in tree.nodes if n.type == "BSDF_PRINCIPLED")
-    principled.inputs["Base Color"].default_value = (*diffuse, 1.0)
-    mat.diffuse_color = (*diffuse, 1.0)
-    if texture is not None:
-        node = tree.nodes.new("ShaderNodeTexImage")
-        node.image = image(texture)
-        node.location = (-300, 300)
-        tree.links.new(node.outputs["Color"], principled.inputs["Base Color"])
-    settings = mat.whitted
-    settings.use_whitted = True
-    settings.specular = specular
-    settings.shininess = shininess
-    settings.reflectivity = reflectivity
-    settings.transparency = transparency
-    settings.outer_ior = 1.0
-    settings.inner_ior = inner_ior
-    settings.image = None if texture is None else image(texture)
-    return mat
+    return _builder().whitted_material(
+        name, diffuse, specular, shininess, reflectivity, transparency, outer_ior=1.0,
+        inner_ior=inner_ior, image=None if texture is None else image(texture),
+    )  # fmt: skip
 
 
-_PRIMITIVES = {
-    "SPHERE": lambda: bpy.ops.mesh.primitive_uv_sphere_add(segments=48, ring_count=24),
-    "CUBE": lambda: bpy.ops.mesh.primitive_cube_add(),
-    "CYLINDER": lambda: bpy.ops.mesh.primitive_cylinder_add(vertices=64),
-    "CONE": lambda: bpy.ops.mesh.primitive_cone_add(vertices=64),
-    "TORUS": lambda: bpy.ops.mesh.primitive_torus_add(major_segments=64, minor_segments=24),
-}
+# Segments around and along the stand-ins: finer than the Add menu's, for the screenshots
+_DETAIL = {"SPHERE": (48, 24), "CYLINDER": (64, 1), "CONE": (64, 1), "TORUS": (64, 24)}
 
 
 def shape(kind, name, mat=None, location=(0, 0, 0), rotation=(0, 0, 0), scale=(1, 1, 1),
           collection=None, major_radius=1.0, minor_radius=0.25):  # fmt: skip
-    """Blender's primitive of that kind, tagged as Whitted's exact shape. Rotation in
-    degrees (XYZ Euler). A torus's radii are its own (the object's scale comes on top)."""
-    if kind == "TORUS":
-        bpy.ops.mesh.primitive_torus_add(
-            major_radius=major_radius, minor_radius=minor_radius,
-            major_segments=64, minor_segments=24,
-        )  # fmt: skip
-    else:
-        _PRIMITIVES[kind]()
-    obj = bpy.context.object
-    obj.name = obj.data.name = name
+    """A stand-in of that kind, tagged as Whitted's exact shape. Rotation in degrees (XYZ
+    Euler). A torus's radii are its own (the object's scale comes on top)."""
+    builder = _builder()
+    radii = (major_radius, minor_radius)
+    around, along = _DETAIL.get(kind, (None, None))
+    mesh = builder.stand_in(kind, name, radii, around, along)
+    obj = builder.shape_object(kind, name, radii, mesh=mesh)
     obj.location = location
     obj.rotation_euler = [math.radians(a) for a in rotation]
     obj.scale = scale
-    obj.whitted.shape = kind
-    if kind == "TORUS":
-        obj.whitted.major_radius, obj.whitted.minor_radius = major_radius, minor_radius
-    if kind in {"SPHERE", "CYLINDER", "CONE", "TORUS"}:
-        bpy.ops.object.shade_smooth()
     if mat is not None:
         obj.data.materials.append(mat)
-    move_to(obj, collection)
+    (collection or bpy.context.scene.collection).objects.link(obj)
     return obj
 
 
@@ -121,13 +90,7 @@ def mesh_object(name, vertices, triangles, corner_uvs=None, smooth=True, mat=Non
                 collection=None):  # fmt: skip
     """A mesh object from numpy vertices (v, 3) and triangles (t, 3), with optional corner UVs
     (t, 3, 2); every face smooth or every face flat."""
-    mesh = bpy.data.meshes.new(name)
-    mesh.from_pydata([tuple(v) for v in vertices.tolist()], [], triangles.tolist())
-    if corner_uvs is not None:
-        layer = mesh.uv_layers.new(name="UVMap")
-        layer.data.foreach_set("uv", corner_uvs.reshape(-1).astype("float32"))
-    mesh.polygons.foreach_set("use_smooth", [smooth] * len(mesh.polygons))
-    mesh.validate()
+    mesh = _builder().triangle_mesh_data(name, vertices, triangles, corner_uvs, smooth)
     if mat is not None:
         mesh.materials.append(mat)
     obj = bpy.data.objects.new(name, mesh)
@@ -149,14 +112,9 @@ def floor_plane(name, mat, x_range, y_range, tile, z=0.0):
 
 
 def boolean(target, operation, operand):
-    """Add a Boolean modifier (operation UNION, INTERSECT or DIFFERENCE) and hide the operand
-    from rendering, as a Blender user does with a cutter: Whitted renders the exact CSG."""
-    modifier = target.modifiers.new(f"{operation.title()} {operand.name}", "BOOLEAN")
-    modifier.operation = operation
-    modifier.object = operand
-    operand.hide_render = True
-    operand.display_type = "WIRE"
-    return modifier
+    """A Boolean modifier (UNION, INTERSECT or DIFFERENCE) with the operand hidden from
+    rendering, as a Blender user does with a cutter: Whitted renders the exact CSG."""
+    return _builder().add_boolean(target, operation, operand)
 
 
 def move_to(obj, collection):

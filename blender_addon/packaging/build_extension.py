@@ -136,8 +136,10 @@ def platform_manifest(template: str, platform: Platform, wheels: list[Path]) -> 
 def write_zip(target: Path, manifest: str, wheels: list[Path], kernels: list[Path]) -> Path:
     with zipfile.ZipFile(target, "w", zipfile.ZIP_DEFLATED) as archive:
         archive.writestr("blender_manifest.toml", manifest)
-        for path in sorted(ADDON.glob("*.py")):
-            archive.write(path, path.name)
+        for path in sorted(ADDON.rglob("*.py")):
+            inside = path.relative_to(ADDON)
+            if inside.parts[0] != "packaging":  # the build's own tools stay out
+                archive.write(path, str(inside))
         for path in sorted((ROOT / "core").rglob("*.py")):
             archive.write(path, str(path.relative_to(ROOT)))
         # numba's index and machine-code files, in the folders core.portable_cache names

@@ -9,7 +9,7 @@ import time
 
 import bpy
 
-from blender_addon.mesh_export import MeshCache, triangle_mesh
+from blender_addon.export.mesh import MeshCache, triangle_mesh
 
 
 def best_of(runs, f):

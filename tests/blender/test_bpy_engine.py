@@ -23,6 +23,11 @@ def engine_class():
     return sys.modules["whitted.engine"].WhittedRenderEngine
 
 
+def final_render():
+    """The engine's module for F12 and `blender -b` (its hooks are patched below)."""
+    return sys.modules["whitted.engine.final"]
+
+
 def test_engine_is_registered_and_listed(bpy_with_whitted):
     bpy = bpy_with_whitted
     assert bpy.app.version[:2] in SUPPORTED  # also run inside Blender 3.4
@@ -46,15 +51,15 @@ def test_sample_scene_pixels_match_the_reference(sample_scene, bpy_with_whitted,
 
 
 def test_every_pixel_is_written_by_exactly_one_tile(sample_scene, bpy_with_whitted, monkeypatch):
-    cls = engine_class()
+    final = final_render()
     written = np.zeros((120, 160), int)
-    original = cls._write_tile
+    original = final.write_tile
 
-    def record(self, layer, region, tile, pixels):
+    def record(engine, layer, region, tile, pixels):
         written[tile.y : tile.y + tile.height, tile.x : tile.x + tile.width] += 1
-        original(self, layer, region, tile, pixels)
+        original(engine, layer, region, tile, pixels)
 
-    monkeypatch.setattr(cls, "_write_tile", record)
+    monkeypatch.setattr(final, "write_tile", record)
     sample_scene.whitted.tile_size = 24  # does not divide 160 x 120: edge tiles are partial
     bpy_with_whitted.ops.render.render()
     assert np.all(written == 1)
@@ -73,17 +78,17 @@ def test_render_border_is_rendered_in_place(sample_scene, bpy_with_whitted, tmp_
 
 
 def test_cancel_from_test_break_stops_within_one_tile(sample_scene, bpy_with_whitted, monkeypatch):
-    cls = engine_class()
+    final = final_render()
     tiles = []
-    original = cls._write_tile
+    original = final.write_tile
 
-    def record(self, layer, region, tile, pixels):
+    def record(engine, layer, region, tile, pixels):
         tiles.append(tile)
-        original(self, layer, region, tile, pixels)
+        original(engine, layer, region, tile, pixels)
 
-    monkeypatch.setattr(cls, "_write_tile", record)
+    monkeypatch.setattr(final, "write_tile", record)
     # Blender's own test_break cannot be overridden from Python; patch the hook that calls it
-    monkeypatch.setattr(cls, "_cancelled", lambda self: len(tiles) >= 1)
+    monkeypatch.setattr(final, "cancelled", lambda engine: len(tiles) >= 1)
     sample_scene.whitted.tile_size = 8
     sample_scene.render.threads_mode = "FIXED"
     sample_scene.render.threads = 2
@@ -124,7 +129,7 @@ def test_zero_resolution_is_reported(sample_scene, bpy_with_whitted):
     assert sample_scene.render.resolution_x >= 4
     sample_scene.render.resolution_x, sample_scene.render.resolution_percentage = 4, 1
     with pytest.raises(core.SceneError, match=r"render resolution_x: 0 pixels after the 1% scale"):
-        export.render_settings(sample_scene)
+        export.settings.convert(sample_scene)
     with pytest.raises(RuntimeError, match="Image too small|resolution"):
         bpy_with_whitted.ops.render.render()
 
@@ -140,7 +145,7 @@ def test_non_camera_object_as_scene_camera_is_reported(sample_scene, bpy_with_wh
     sample_scene.camera = sample_scene.objects["Key"]  # Blender accepts any object here
     depsgraph = bpy_with_whitted.context.evaluated_depsgraph_get()
     with pytest.raises(core.SceneError, match=r"camera 'Key': type: is a LIGHT object"):
-        export.export_camera(sample_scene, depsgraph, export.render_settings(sample_scene))
+        export.camera.convert(sample_scene, depsgraph, export.settings.convert(sample_scene))
 
 
 def render_float(bpy, scene, path):

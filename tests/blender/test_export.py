@@ -106,7 +106,7 @@ def test_boolean_modifiers_render_as_exact_csg_and_hidden_cutters_only_cut(
     # Blender's own Boolean result (the viewport mesh) as the reference
     depsgraph = bpy.context.evaluated_depsgraph_get()
     evaluated = block.evaluated_get(depsgraph)
-    reference = sys.modules["whitted.mesh_export"].triangle_mesh(evaluated.data, "ref")
+    reference = sys.modules["whitted.export.mesh"].triangle_mesh(evaluated.data, "ref")
     world = np.array(block.matrix_world)
     overlap = iou(mask([solid]), mask([core.Mesh("ref", mesh=reference, world_from_object=world)]))
     assert overlap >= 0.99, f"IoU {overlap:.4f}"
@@ -295,21 +295,24 @@ def test_a_sun_is_parallel_light_along_its_minus_z(empty_scene, monkeypatch):
 def test_an_unchanged_mesh_is_not_exported_again_on_the_next_frame(empty_scene, monkeypatch):
     bpy = sys.modules["bpy"]
     obj = add_primitive(bpy, "SPHERE")
-    mesh_export = sys.modules["whitted.mesh_export"]
+    mesh_export = sys.modules["whitted.export.mesh"]
     calls = []
-    original = mesh_export.triangle_mesh
+    original = mesh_export.convert
 
     def counting(mesh, name):
         calls.append(name)
         return original(mesh, name)
 
-    monkeypatch.setattr(mesh_export, "triangle_mesh", counting)
+    monkeypatch.setattr(mesh_export, "convert", counting)
     first, _, _ = exported(bpy, monkeypatch)
     empty_scene.frame_set(2)
     second, _, _ = exported(bpy, monkeypatch)
+    # (none on the first frame when an earlier test left the same sphere in the cache)
     assert len(calls) <= 1 and second.shapes[0].mesh is first.shapes[0].mesh
+    converted = len(calls)
     obj.data.vertices[0].co.z += 0.1
     third, _, _ = exported(bpy, monkeypatch)
+    assert len(calls) == converted + 1  # the edited mesh, converted again
     assert third.shapes[0].mesh is not first.shapes[0].mesh
     assert third.shapes[0].mesh.vertices[0, 2] == pytest.approx(
         first.shapes[0].mesh.vertices[0, 2] + 0.1

@@ -94,7 +94,7 @@ def test_the_zip_holds_the_add_on_its_core_and_its_kernels(extension_zip):
     with zipfile.ZipFile(extension_zip) as archive:
         names = archive.namelist()
         manifest = archive.read("blender_manifest.toml").decode()
-    assert {"__init__.py", "engine.py", "lua_import.py", "core/__init__.py",
+    assert {"__init__.py", "engine/final.py", "lua/importer.py", "core/__init__.py",
             "core/kernels/trace.py", "core/cs488/sandbox.py"} <= set(names)  # fmt: skip
     wheels = {n for n in names if n.startswith("wheels/")}
     assert len(wheels) == 8 and all(f'"./{w}"' in manifest for w in wheels), manifest

@@ -61,7 +61,7 @@ def render_png(bpy, scene, path):
 def test_the_import_builds_blender_data_a_user_recognises(imported, bpy_with_whitted):
     bpy = bpy_with_whitted
     menu = bpy.types.TOPBAR_MT_file_import._dyn_ui_initialize()
-    assert any(draw.__module__.endswith("lua_import") for draw in menu)  # File > Import
+    assert any(draw.__module__.endswith("lua.importer") for draw in menu)  # File > Import
     scene = imported(EVERY_COMMAND)
     objects = {obj.name: obj for obj in scene.objects}
     tags = {obj.whitted.shape for obj in objects.values() if obj.type == "MESH"}
@@ -131,7 +131,7 @@ def test_an_internal_failure_is_reported_not_raised(imported, bpy_with_whitted, 
     """Whitted's own bug (here the build raises) reaches the user as the operator's error
     report, like a script's mistake, not as a traceback out of Blender's UI."""
     bpy = bpy_with_whitted
-    lua_import = sys.modules["whitted.lua_import"]  # the operator's module
+    lua_import = sys.modules["whitted.lua.importer"]  # the operator's module
     monkeypatch.setattr(lua_import, "import_script", lambda *args: 1 / 0)
     script = tmp_path / "scene.lua"
     script.write_text("root = gr.node('root')\n")

@@ -3,6 +3,7 @@
 import threading
 import time
 
+import numba
 import numpy as np
 import pytest
 
@@ -70,6 +71,7 @@ def test_cancel_stops_within_one_tile_per_thread(threads):
     assert out.stats.tiles_total == 64
 
 
+@pytest.mark.skipif(numba.config.DISABLE_JIT, reason="nothing is compiled without the JIT")
 def test_kernel_compile_time_is_reported_apart_from_render_time():
     out = render(ball_on_ground(), RenderSettings(8, 8))
     assert out.stats.kernel_source in {"compiled", "cache", "memory"}

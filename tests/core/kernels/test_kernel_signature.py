@@ -35,6 +35,10 @@ ROOT = Path(__file__).resolve().parents[3]
 LIGHT = PointLight((0.0, -4.0, 4.0), (1.0, 1.0, 1.0))
 AREA = AreaLight((0.0, 0.0, 4.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (5.0, 5.0, 5.0))
 
+pytestmark = pytest.mark.skipif(
+    numba.config.DISABLE_JIT, reason="about compiled signatures: none without the JIT"
+)
+
 
 def moved(x):
     m = np.eye(4)

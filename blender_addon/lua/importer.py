@@ -26,12 +26,13 @@ import numpy as np
 from bpy_extras.io_utils import ImportHelper
 from mathutils import Matrix
 
-from .compat import give_nodes
-from .core.cs488 import ScriptError, ScriptLimits, ScriptRun, load_script
-from .core.cs488.sandbox import DEFAULT_LIMITS
-from .export import WATTS_TO_INTENSITY
-from .lua_build import Y_UP_TO_Z_UP, Builder, place
-from .reporting import report_internal_failure
+from ..blender_data import place
+from ..compat import give_nodes
+from ..core.cs488 import ScriptError, ScriptLimits, ScriptRun, load_script
+from ..core.cs488.sandbox import DEFAULT_LIMITS
+from ..export.light import WATTS_TO_INTENSITY
+from ..reporting import report_internal_failure
+from .build import Y_UP_TO_Z_UP, Builder
 
 POLL_S = 0.1
 

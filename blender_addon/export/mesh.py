@@ -8,8 +8,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import core
-from .compat import auto_smooth, prepare_corner_normals
+from .. import core
+from ..compat import auto_smooth, prepare_corner_normals
 
 
 class MeshCache:
@@ -39,7 +39,7 @@ class MeshCache:
 
 
 def _converted(mesh, name):
-    whole, material_index = convert_mesh(mesh, name)
+    whole, material_index = convert(mesh, name)
     return whole, by_material(whole, material_index)
 
 
@@ -66,10 +66,10 @@ def _fingerprint(mesh) -> tuple:
 
 def triangle_mesh(mesh, name: str) -> core.TriangleMesh:
     """The triangles of a Blender mesh (object space), whatever their materials."""
-    return convert_mesh(mesh, name)[0]
+    return convert(mesh, name)[0]
 
 
-def convert_mesh(mesh, name: str):
+def convert(mesh, name: str):
     """(the mesh's triangles as one `TriangleMesh`, each triangle's material slot)."""
     mesh.calc_loop_triangles()
     prepare_corner_normals(mesh)

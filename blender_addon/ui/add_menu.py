@@ -1,8 +1,10 @@
-"""Add › Whitted: a Blender primitive, already tagged as the exact shape it stands in for."""
+"""Add › Whitted: a stand-in mesh, already tagged as the exact shape it stands in for
+(made by `blender_data`, as the Lua importer and the sample scenes make theirs)."""
 
 import bpy
 
-from .shape_tags import BY_TAG, EXACT
+from ..blender_data import shape_object
+from ..properties.shape_tags import EXACT
 
 
 class WHITTED_OT_add_shape(bpy.types.Operator):
@@ -17,10 +19,14 @@ class WHITTED_OT_add_shape(bpy.types.Operator):
     )
 
     def execute(self, context):
-        getattr(bpy.ops.mesh, BY_TAG[self.shape].add_primitive)()
-        obj = context.active_object
-        obj.whitted.shape = self.shape
-        obj.name = f"Whitted {self.shape.title()}"
+        # Placed, selected and made active as Blender's own Add menu does
+        obj = shape_object(self.shape, f"Whitted {self.shape.title()}")
+        context.collection.objects.link(obj)
+        obj.location = context.scene.cursor.location
+        for other in context.selected_objects:
+            other.select_set(False)
+        obj.select_set(True)
+        context.view_layer.objects.active = obj
         return {"FINISHED"}
 
 

@@ -12,8 +12,8 @@ import contextlib
 
 import bpy
 
-from .core import child_process
-from .core.warmup_process import shared_warmup
+from ..core import child_process
+from ..core.warmup_process import shared_warmup
 
 POLL_S = 0.5
 

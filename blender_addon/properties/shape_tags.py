@@ -1,12 +1,13 @@
 """The exact shapes a mesh object can be tagged as, each with the Blender primitive that
 stands in for it: listed once for the Object panel's Shape menu (`properties`), the export
-(`export`) and Add › Whitted (`operators`). Each core shape matches the primitive Blender adds
+(`export.instances`) and Add › Whitted (`ui.add_menu`,
+through `blender_data.stand_in`). Each core shape matches the primitive Blender adds
 with default settings, so tagging that primitive renders the exact shape where its mesh sits.
 """
 
 from dataclasses import dataclass
 
-from .core.shapes import ANALYTIC_SHAPES, Box, Cone, Cylinder, Sphere, Torus
+from ..core.shapes import ANALYTIC_SHAPES, Box, Cone, Cylinder, Sphere, Torus
 
 
 @dataclass(frozen=True)
@@ -16,22 +17,21 @@ class ShapeTag:
     label: str
     description: str
     icon: str  # of the stand-in primitive in the Add menu
-    add_primitive: str  # bpy.ops.mesh.<this> adds the stand-in
 
 
 EXACT = (
     ShapeTag("SPHERE", Sphere, "Sphere", "Exact sphere of radius 1 (Blender's UV sphere)",
-             "MESH_UVSPHERE", "primitive_uv_sphere_add"),
+             "MESH_UVSPHERE"),
     ShapeTag("CUBE", Box, "Cube", "Exact cube from -1 to 1 on each axis (Blender's cube)",
-             "MESH_CUBE", "primitive_cube_add"),
+             "MESH_CUBE"),
     ShapeTag("CYLINDER", Cylinder, "Cylinder",
              "Exact capped cylinder, radius 1, z from -1 to 1 (Blender's)",
-             "MESH_CYLINDER", "primitive_cylinder_add"),
+             "MESH_CYLINDER"),
     ShapeTag("CONE", Cone, "Cone", "Exact cone, base radius 1 at z = -1, apex at z = 1 (Blender's)",
-             "MESH_CONE", "primitive_cone_add"),
+             "MESH_CONE"),
     ShapeTag("TORUS", Torus, "Torus",
              "Exact torus around the z axis (Blender's torus: radii 1 and 0.25)",
-             "MESH_TORUS", "primitive_torus_add"),
+             "MESH_TORUS"),
 )  # fmt: skip
 assert {tag.shape for tag in EXACT} == set(ANALYTIC_SHAPES), "a core shape has no tag"
 BY_TAG = {tag.tag: tag for tag in EXACT}

@@ -13,8 +13,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import core
-from .core.vocabulary import CSG_OPERATIONS
+from .. import core
+from ..core.vocabulary import CSG_OPERATIONS
 
 # Blender's Boolean operations onto core's (core.vocabulary, which lists them)
 OPERATIONS = {"UNION": "union", "INTERSECT": "intersection", "DIFFERENCE": "difference"}
@@ -42,7 +42,7 @@ def world_matrix(obj, depsgraph) -> np.ndarray:
         return np.array(obj.matrix_world, float)
 
 
-def solid(obj, exporter, depsgraph, path=()) -> core.Shape:
+def convert(obj, exporter, depsgraph, path=()) -> core.Shape:
     """`obj` (an original, not evaluated, object) as a core shape in its own object space:
     its base shape, then each Boolean modifier applied in order."""
     path = (*path, obj.name)
@@ -67,7 +67,7 @@ def solid(obj, exporter, depsgraph, path=()) -> core.Shape:
                     "is zero on some axis; an object with Boolean modifiers needs an "
                     "invertible transform",
                 )
-            shape = solid(operand, exporter, depsgraph, path)
+            shape = convert(operand, exporter, depsgraph, path)
             shape.world_from_object = to_here @ world_matrix(operand, depsgraph)
             operands.append(shape)
         if not operands:

@@ -21,8 +21,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import core
-from .compat import TRANSMISSION_INPUTS, node_tree_in_use
+from .. import core
+from ..compat import TRANSMISSION_INPUTS, node_tree_in_use
 
 MAX_SHININESS = 10000.0
 
@@ -43,7 +43,7 @@ def _input(node, *names, default=0.0):
     return default
 
 
-def convert_material(material) -> core.Material:
+def convert(material) -> core.Material:
     if material is None:
         return core.Material(name="(no material)")
     settings = material.whitted

@@ -1,0 +1,97 @@
+"""The final render (F12, `blender -b`): export, wait for the kernels, render in tiles,
+stream each tile back, report progress and the summary.
+
+It only coordinates; the work is in `export` (Blender -> core.Scene) and in `core`.
+"""
+
+import time
+
+import numpy as np
+
+from .. import core, export
+from ..core.warmup_process import shared_warmup
+from ..reporting import report_internal_failure
+
+
+def render(engine, depsgraph):
+    """Render the depsgraph's frame into `engine`'s result. Esc (`cancelled`) is polled by
+    the driver between tiles and while the kernels warm up."""
+    try:
+        start = time.perf_counter()
+        scene, settings, warnings = export.convert(depsgraph)
+        export_s = time.perf_counter() - start
+        for warning in warnings:
+            engine.report({"WARNING"}, warning)
+        if not _kernels_ready(engine):
+            return
+        layer = depsgraph.view_layer.name
+
+        region = settings.pixel_region()
+
+        def stream(tile, pixels, done, total):
+            write_tile(engine, layer, region, tile, pixels)
+            engine.update_progress(done / total)
+            engine.update_stats("", f"Whitted | Tile {done}/{total}")
+
+        output = core.render(
+            scene, settings, on_tile=stream, should_cancel=lambda: cancelled(engine)
+        )
+    except core.SceneError as error:
+        engine.report({"ERROR"}, f"Whitted: {error}")
+        return
+    except Exception as error:
+        # Anything else is Whitted's bug, or the machine's (a full disk, a damaged cache
+        # it could not heal): reported, so that `blender -b` exits 1 and writes no frame,
+        # which a farm sees; raised on, Blender would write a blank frame and exit 0
+        report_internal_failure(engine, "render", error)
+        return
+    for warning in output.warnings:
+        engine.report({"WARNING"}, f"Whitted: {warning}")
+    stats = output.stats
+    summary = (
+        f"Whitted | {settings.width}x{settings.height} | export {export_s:.2f} s | "
+        f"{stats.summary()} | {stats.tiles_done}/{stats.tiles_total} tiles"
+        + (" | cancelled" if output.cancelled else "")
+    )
+    engine.update_stats("", summary)
+    print(summary)
+
+
+def _kernels_ready(engine) -> bool:
+    """Wait for the kernel warm-up (started when the add-on loaded, or now), showing its
+    steps in the render's stats and, for `blender -b`, on stdout. False if Esc was
+    pressed meanwhile: the warm-up goes on, the render stops."""
+
+    def show(status):
+        engine.update_stats("", f"Whitted | {status.text}")
+        print(f"Whitted: {status.text}", flush=True)
+
+    warmup = shared_warmup()
+    warmup.start()
+    status = warmup.wait(lambda: cancelled(engine), show)
+    if status.state == "running":
+        print("Whitted: render cancelled while the kernels compile", flush=True)
+        return False
+    if status.state == "failed":
+        engine.report({"WARNING"}, f"Whitted: {status.text}; compiling in this process")
+        print(f"Whitted: {status.text}; compiling in this process", flush=True)
+    engine.update_stats("", "Whitted | Loading kernels")
+    return True
+
+
+def cancelled(engine) -> bool:
+    """Esc in the UI, or a cancelled job. (A function of this module, not a bound method:
+    Blender's own test_break cannot be replaced from Python, this can, by tests.)"""
+    return engine.test_break()
+
+
+def write_tile(engine, layer, region, tile, pixels):
+    """Hand one finished tile to Blender. Blender counts rows from the bottom, and from the
+    render border's corner when there is one; `region` is that border (y from the top)."""
+    region_x, region_y, _, region_height = region
+    x = tile.x - region_x
+    y = region_y + region_height - tile.y - tile.height
+    result = engine.begin_result(x, y, tile.width, tile.height, layer=layer)
+    flipped = np.ascontiguousarray(pixels[::-1]).reshape(-1, 4)
+    result.layers[0].passes["Combined"].rect = flipped
+    engine.end_result(result)

@@ -1,0 +1,72 @@
+"""The active camera -> core.Camera: eye, view (-Z), up (+Y) from its world matrix; the
+vertical field of view from Blender's own projection matrix, so sensor size, sensor fit and
+lens all count; lens shift; depth of field as Cycles reads it."""
+
+from __future__ import annotations
+
+import math
+
+from .. import core
+
+
+def convert(scene, depsgraph, settings: core.RenderSettings) -> core.Camera:
+    if scene.camera is None:
+        raise core.SceneError(
+            f"scene '{scene.name}'",
+            "camera",
+            "there is no active camera; add a camera and set it in Scene Properties > Camera",
+        )
+    camera = scene.camera.evaluated_get(depsgraph)
+    owner = f"camera '{camera.name}'"
+    if camera.type != "CAMERA":
+        raise core.SceneError(owner, "type", f"is a {camera.type} object; use a camera object")
+    if camera.data.type != "PERSP":
+        raise core.SceneError(
+            owner,
+            "lens type",
+            f"is {camera.data.type}; Whitted renders perspective cameras only: "
+            "set Camera Properties > Lens > Type to Perspective",
+        )
+    projection = camera.calc_matrix_camera(
+        depsgraph,
+        x=settings.width,
+        y=settings.height,
+        scale_x=scene.render.pixel_aspect_x,
+        scale_y=scene.render.pixel_aspect_y,
+    )
+    fovy = math.degrees(2.0 * math.atan(1.0 / projection[1][1]))
+    rotation = camera.matrix_world.to_3x3().normalized()
+    eye, view = camera.matrix_world.translation, -rotation.col[2]
+    aperture, focus = _depth_of_field(scene, camera, eye, view)
+    return core.Camera(
+        eye=tuple(eye),
+        view=tuple(view),
+        up=tuple(rotation.col[1]),
+        fovy=fovy,
+        name=camera.name,
+        aperture_radius=aperture,
+        focal_distance=focus,
+        # The off-axis terms of Blender's projection: the lens shift, in half-widths/heights
+        shift=(float(projection[0][2]), float(projection[1][2])),
+    )
+
+
+def _depth_of_field(scene, camera, eye, view) -> tuple[float, float]:
+    """(aperture radius, focus distance) from Blender's own camera depth of field, as
+    Cycles reads it: radius = focal length / (2 f-stop), in scene units; the focus object's
+    distance along the view, else the focus distance. A pinhole when depth of field is off."""
+    dof = camera.data.dof
+    if not dof.use_dof:
+        return 0.0, 10.0
+    focus = dof.focus_distance
+    if dof.focus_object is not None:
+        focus = float((dof.focus_object.matrix_world.translation - eye).dot(view))
+    if focus <= 0.0:
+        raise core.SceneError(
+            f"camera '{camera.name}'",
+            "depth of field focus",
+            f"is {focus:.4g} in front of the camera; put the focus object in front of it or "
+            "set a positive Focus Distance",
+        )
+    radius = camera.data.lens * 1e-3 / (2.0 * dof.aperture_fstop)
+    return radius / scene.unit_settings.scale_length, focus

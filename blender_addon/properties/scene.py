@@ -1,0 +1,77 @@
+"""Render › Whitted: depth, sampling, seed, tiles."""
+
+import bpy
+from bpy.props import (
+    EnumProperty,
+    IntProperty,
+)
+
+from ..core.scene import DEFAULT_PIXEL_SAMPLES, DEFAULT_SHADOW_SAMPLES
+
+
+class WhittedSceneSettings(bpy.types.PropertyGroup):
+    max_depth: IntProperty(
+        name="Max Bounces",
+        description=(
+            "Reflection and refraction bounces after the camera ray; each level can double "
+            "the rays of a pixel between facing mirrors or through glass"
+        ),
+        min=0,
+        soft_max=16,
+        max=64,
+        default=5,
+    )
+    pixel_samples: IntProperty(
+        name="Anti-Aliasing",
+        description=(
+            "n: each pixel averages n x n camera rays (the report used 3); render time grows "
+            "as n squared"
+        ),
+        min=1,
+        soft_max=8,
+        max=32,
+        default=DEFAULT_PIXEL_SAMPLES,
+    )
+    pixel_sampling: EnumProperty(
+        name="Pattern",
+        description="Where in the pixel the camera rays go",
+        items=[
+            ("GRID", "Grid", "At the centres of an n x n grid (the report's supersampling)"),
+            ("JITTERED", "Jittered", "At a random point in each grid cell: noise, not aliasing"),
+            ("RANDOM", "Random", "At independent random points in the pixel (for comparison)"),
+        ],
+        default="GRID",
+    )
+    shadow_sampling: EnumProperty(
+        name="Shadow Pattern",
+        description="Where on an area light the shadow rays go",
+        items=[
+            ("STRATIFIED", "Stratified", "One ray in each of equal cells of the light: less noise"),
+            ("UNIFORM", "Uniform", "Independent random points (the report's way)"),
+            ("HALTON", "Halton", "Low-discrepancy points, randomly shifted per shading point"),
+        ],
+        default="STRATIFIED",
+    )
+    seed: IntProperty(
+        name="Seed",
+        description="Selects the random numbers; the same seed gives the same picture",
+        min=0,
+        default=0,
+    )
+    shadow_samples: IntProperty(
+        name="Soft Shadow Samples",
+        description=(
+            "Shadow rays per area light per shading point, stratified over the light; render "
+            "time grows in proportion, noise falls as its square root"
+        ),
+        min=1,
+        soft_max=256,
+        default=DEFAULT_SHADOW_SAMPLES,
+    )
+    tile_size: IntProperty(
+        name="Tile Size",
+        description="Edge of the square tiles rendered in parallel and streamed to the image",
+        min=8,
+        max=1024,
+        default=32,
+    )
