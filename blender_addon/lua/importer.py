@@ -248,6 +248,11 @@ class WHITTED_OT_import_lua(bpy.types.Operator, ImportHelper):
     def _show(self, context) -> None:
         seconds = time.monotonic() - self._started
         text = f"Whitted: running {Path(self.filepath).name}, {seconds:.0f} s (Esc stops it)"
+        # Set only when it changes (once a second), not at every poll: each set redraws the
+        # status bar
+        if text == getattr(self, "_shown", None):
+            return
+        self._shown = text
         with contextlib.suppress(AttributeError, RuntimeError, ReferenceError):
             context.workspace.status_text_set(text)
 

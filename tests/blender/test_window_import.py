@@ -44,6 +44,23 @@ def run_import(path):
         return sorted(bpy.ops.import_scene.cs488_lua("EXEC_DEFAULT", filepath=path))
 
 # Each step returns when to run next and what
+def when_warm():
+    # Blender's first seconds in a window (its shaders compiled on software OpenGL) and the
+    # kernel warm-up the add-on starts leave its timers little time on two cores: wait for
+    # the warm-up, then count the ticks of 2 s with nothing imported, the baseline
+    import sys
+    warmup = sys.modules["whitted.core"].warmup_process.shared_warmup()
+    if warmup.status().state == "running":
+        return 0.25, when_warm
+    seen["calm from"], seen["baseline"] = time.monotonic(), 0
+    return 0.25, baseline
+
+def baseline():
+    seen["baseline"] += 1
+    if time.monotonic() - seen["calm from"] < 2.0:
+        return 0.25, baseline
+    return 0.0, start
+
 def start():
     seen["returned"] = run_import(LOOP)
     seen["started"] = time.monotonic()
@@ -73,7 +90,7 @@ def finish():
     bpy.ops.wm.quit_blender()
     return None, None
 
-step = [start]
+step = [when_warm]
 
 def tick():
     interval, step[0] = step[0]()
@@ -120,7 +137,9 @@ def test_esc_stops_a_hung_script_and_blender_stays_usable(display, tmp_path):
     assert out.is_file(), run.stdout[-3000:] + run.stderr[-3000:]
     seen = json.loads(out.read_text())
     assert seen["returned"] == ["RUNNING_MODAL"]
-    assert seen["ticks"] >= 6, seen  # two seconds of 0.25 s ticks while the script hung
+    # Blender's 0.25 s timer while the script hung, against the same 2 s before the import: a
+    # frozen window gives 0 or 1
+    assert seen["ticks"] >= max(2, seen["baseline"] // 2), seen
     assert seen["children while running"] == 1, seen
     assert seen["children after esc"] == 0, seen
     assert seen["second import"] == ["RUNNING_MODAL"], seen
