@@ -32,7 +32,9 @@ def stand_in(tag: str, name: str, radii=(1.0, 0.25), around=None, along=None):
     default_around, default_along = DETAIL.get(tag, (0, 0))
     around, along = around or default_around, along or default_along
     if tag == "TORUS":
-        mesh = polygon_mesh(name, *_torus(*radii, rings=around, sides=along))
+        vertices, quads, corner_uvs = _torus(*radii, rings=around, sides=along)
+        mesh = polygon_mesh(name, vertices, quads)
+        mesh.uv_layers.new(name="UVMap").data.foreach_set("uv", corner_uvs.ravel())
     else:
         mesh = bpy.data.meshes.new(name)
         bm = bmesh.new()
@@ -63,7 +65,8 @@ def shape_object(tag: str, name: str, radii=(1.0, 0.25), mesh=None):
 
 
 def _torus(major: float, minor: float, rings: int, sides: int):
-    """(vertices, quads) of a torus about z, as Blender's Add > Torus makes it."""
+    """(vertices, quads, their corners' UVs) of a torus about z, as Blender's Add > Torus
+    makes it: u around the ring, v around the tube, each from 0 to 1 across the seam."""
     u, v = np.meshgrid(np.linspace(0, 2 * np.pi, rings, endpoint=False),
                        np.linspace(0, 2 * np.pi, sides, endpoint=False), indexing="ij")  # fmt: skip
     radius = major + minor * np.cos(v)
@@ -71,7 +74,11 @@ def _torus(major: float, minor: float, rings: int, sides: int):
     i, j = (a.ravel() for a in np.meshgrid(np.arange(rings), np.arange(sides), indexing="ij"))
     ring, side = (i + 1) % rings, (j + 1) % sides
     quads = np.stack([i * sides + j, ring * sides + j, ring * sides + side, i * sides + side], 1)
-    return points.reshape(-1, 3), quads
+    # Unwrapped: the corners past the seam take u = 1 or v = 1, not 0
+    u_corner = np.stack([i, i + 1, i + 1, i], 1) / rings
+    v_corner = np.stack([j, j, j + 1, j + 1], 1) / sides
+    corner_uvs = np.stack([u_corner, v_corner], -1).astype(np.float32)
+    return points.reshape(-1, 3), quads, corner_uvs
 
 
 def polygon_mesh(name: str, vertices: np.ndarray, faces: np.ndarray):

@@ -21,10 +21,10 @@ from pathlib import Path
 
 from .cs488 import ScriptError, ScriptLimits, load_script
 from .cs488.sandbox import DEFAULT_LIMITS
+from .driver import render
 from .errors import SceneError
 from .image_io import save_png
 from .kernel_warmup import kernels_ready, warm_kernels
-from .render import render
 
 BAR_WIDTH = 30
 

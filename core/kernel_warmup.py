@@ -84,10 +84,10 @@ def warmup_steps() -> list[tuple[str, Callable[[], None]]]:
     """(what it compiles, how) for each step, in order."""
     from . import RenderSettings
     from .compile import compile_scene
+    from .driver import prepare_kernels
     from .kernels.light_pyramid import TRAVERSE_ALL
     from .kernels.trace import closest_hit, transmittance
     from .kernels.workspace import new_workspace
-    from .render import prepare_kernels
 
     packed = []
     stacks = new_workspace(0).stacks

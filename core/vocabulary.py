@@ -17,6 +17,9 @@ SHAPE_CSG = 6  # a CSG tree: its operands are rows of their own (core.kernels.cs
 CSG_UNION, CSG_INTERSECTION, CSG_DIFFERENCE = -1, -2, -3
 CSG_OPERATIONS = {"union": CSG_UNION, "intersection": CSG_INTERSECTION,
                   "difference": CSG_DIFFERENCE}  # fmt: skip
+# Operands (leaves) of one CSG tree: the kernel's scratch lists are this long, and packing
+# and the Lua commands refuse a tree with more (here, so neither imports the kernels)
+MAX_OPERANDS = 256
 
 # Where a pixel's n x n camera rays pass: cell centres, a random point per cell, or n x n
 # independent random points anywhere in the pixel

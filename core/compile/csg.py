@@ -15,9 +15,8 @@ import numpy as np
 
 from ..checks import valid_affine
 from ..errors import SceneError
-from ..kernels.csg import MAX_OPERANDS
 from ..shapes import Csg, Shape
-from ..vocabulary import CSG_INTERSECTION, CSG_OPERATIONS, CSG_UNION
+from ..vocabulary import CSG_INTERSECTION, CSG_OPERATIONS, CSG_UNION, MAX_OPERANDS
 
 
 @dataclass

@@ -38,8 +38,6 @@ COINCIDENT_RELATIVE = 1e-9
 # a ray that would need more drops the excess and is counted in span_overflow
 SPAN_CAPACITY = 512
 CROSSING_CAPACITY = 1024
-# Operands (leaves) of one CSG tree; packing refuses a tree with more
-MAX_OPERANDS = 256
 
 
 @inlined_kernel

@@ -4,9 +4,10 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ..vocabulary import MAX_OPERANDS
 from .bvh_build import MAX_TREE_DEPTH
 from .bvh_wide import WIDTH
-from .csg import CROSSING_CAPACITY, MAX_OPERANDS, SPAN_CAPACITY
+from .csg import CROSSING_CAPACITY, SPAN_CAPACITY
 from .light_pyramid import MAX_CANDIDATES, PYRAMID_ROWS
 
 # A wide node leaves at most WIDTH - 1 children waiting besides the one visited next,

@@ -15,10 +15,10 @@ import numpy as np
 
 from core import Mesh, RenderSettings, Scene, TriangleMesh
 from core.compile import compile_scene
+from core.driver import available_threads
 from core.kernels.batch import closest_hits, shadow_rays
 from core.kernels.workspace import new_workspace
-from core.render import available_threads
-from tests.meshes import bumpy_cube_sphere
+from tests.support.meshes import bumpy_cube_sphere
 
 RESULTS = Path(__file__).resolve().parent / "results"
 RAYS = 512 * 512

@@ -27,7 +27,7 @@ from core import (
 from core.compile import pack_scene
 from core.kernels.batch import closest_hits
 from core.kernels.workspace import new_workspace
-from tests.csg_examples import EXAMPLES, analytic_tree, scaled
+from tests.support.csg_examples import EXAMPLES, analytic_tree, scaled
 
 RESULTS = Path(__file__).resolve().parent / "results"
 SIZE = 256

@@ -45,7 +45,7 @@ import time
 start = time.perf_counter()
 import dataclasses, pickle, sys
 from core.kernel_warmup import kernels_ready, warm_kernels
-from core.render import render
+from core.driver import render
 if not kernels_ready():
     warm_kernels()
 scene, settings = pickle.load(open(sys.argv[1], "rb"))
@@ -61,7 +61,7 @@ print(f"first_pixel {first[0]:.3f} kernels {out.stats.kernel_source}")
 SCENE_SOURCE = """
 import pickle, sys
 from core import RenderSettings, render
-from tests.core.kernels.test_kernel_signature import scenes
+from tests.support.scenes import one_of_each_kind as scenes
 name = sys.argv[1]
 if name == "final scene":
     scene, _ = pickle.load(open(sys.argv[2], "rb"))
@@ -86,7 +86,7 @@ def first_pixel(cache, scene_file, cwd=ROOT):
 
 
 def main():
-    from tests.core.kernels.test_kernel_signature import scenes
+    from tests.support.scenes import one_of_each_kind as scenes
 
     with tempfile.TemporaryDirectory() as folder:
         cache, scene_file = Path(folder) / "cache", Path(folder) / "final.pkl"

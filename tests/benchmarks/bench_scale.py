@@ -24,7 +24,7 @@ from core import (
     render,
 )
 from core.compile import compile_scene
-from tests.meshes import icosphere
+from tests.support.meshes import icosphere
 
 
 def grid(count, make):

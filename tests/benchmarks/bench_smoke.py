@@ -35,7 +35,7 @@ def spheres_scene(count=16):
 
 def kernel_load_seconds(cache_dir):
     code = (
-        "import time; t = time.perf_counter(); from core.render import render; "
+        "import time; t = time.perf_counter(); from core.driver import render; "
         "from tests.benchmarks.bench_smoke import spheres_scene; from core import RenderSettings; "
         "first = []; tile = lambda *a: first or first.append(time.perf_counter() - t); "
         "out = render(spheres_scene(), RenderSettings(64, 64, pixel_samples=1), on_tile=tile); "

@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 
-from tests.reference_tracer import camera_ray, shade_ray, sphere_quadric
+from tests.support.reference_tracer import camera_ray, shade_ray, sphere_quadric
 
 
 def srgb_8bit(linear):

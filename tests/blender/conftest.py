@@ -1,10 +1,9 @@
 """Blender fixtures: the bpy 5.0 module with the add-on enabled the way Blender loads it."""
 
-from pathlib import Path
-
 import pytest
 
-ROOT = Path(__file__).resolve().parents[2]
+from tests.support import ROOT  # also the Blender tests' (imported from here)
+
 SAMPLE = ROOT / "sample_blends" / "spheres.blend"
 
 

@@ -3,7 +3,6 @@
 import os
 import shutil
 import subprocess
-import sys
 
 import numpy as np
 import pytest
@@ -11,21 +10,9 @@ from PIL import Image
 
 from tests.blender.blender_reference import expected_pixels, sample_grid
 from tests.blender.conftest import ROOT, SAMPLE
+from tests.support.blender34 import blender_34
 
 pytestmark = pytest.mark.blender34
-
-
-def blender_34(*args, timeout=300):
-    """Run `blender -b` the way `make render` does: add-on from BLENDER_USER_SCRIPTS, numpy
-    and numba from the project's virtual environment."""
-    blender = shutil.which("blender")
-    assert blender, "no `blender` on PATH: run `make test`, which installs Debian's package"
-    site = ROOT / ".venv" / "lib" / "python3.11" / "site-packages"
-    if not site.is_dir():  # running from some other environment: use its packages
-        site = next(p for p in sys.path if p.endswith("site-packages"))
-    env = dict(os.environ, PYTHONPATH=f"{ROOT}{os.pathsep}{site}")
-    command = [blender, "-b", "--python-use-system-env", *args]
-    return subprocess.run(command, env=env, capture_output=True, text=True, timeout=timeout)
 
 
 def test_headless_command_renders_the_sample(sample_scene, tmp_path):

@@ -11,9 +11,9 @@ import pytest
 
 from core import Mesh, TriangleMesh
 from tests.blender.conftest import clear_scene
-from tests.core.probe import hits, packed_shapes
-from tests.csg_examples import EXAMPLES, analytic_tree
-from tests.rays import rays_towards_origin
+from tests.support.csg_examples import EXAMPLES, analytic_tree
+from tests.support.probe import hits, packed_shapes
+from tests.support.rays import rays_towards_origin
 
 pytestmark = pytest.mark.bpy
 

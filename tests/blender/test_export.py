@@ -8,8 +8,8 @@ import pytest
 
 import core
 from tests.blender.conftest import clear_scene
-from tests.core.probe import hits, packed_shapes
-from tests.rays import rays_towards_origin
+from tests.support.probe import hits, packed_shapes
+from tests.support.rays import rays_towards_origin
 
 pytestmark = pytest.mark.bpy
 

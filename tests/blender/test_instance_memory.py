@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from tests.blender.test_blender34_cli import blender_34
+from tests.support.blender34 import blender_34
 
 pytestmark = pytest.mark.blender34
 

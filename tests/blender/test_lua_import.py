@@ -15,8 +15,8 @@ import core
 from core.cs488 import load_script
 from core.image_io import to_bytes
 from tests.blender.conftest import ROOT, clear_scene
-from tests.blender.test_blender34_cli import blender_34
 from tests.core.cs488.test_scenes import SCENES
+from tests.support.blender34 import blender_34
 
 EVERY_COMMAND = SCENES / "every_command.lua"
 

@@ -8,7 +8,7 @@ import filecmp
 import pytest
 
 from tests.blender.conftest import ROOT
-from tests.blender.test_blender34_cli import blender_34
+from tests.support.blender34 import blender_34
 
 pytestmark = [pytest.mark.bpy, pytest.mark.blender34]
 SAMPLES = ROOT / "sample_blends"

@@ -14,7 +14,7 @@ import sys
 
 import pytest
 
-from tests.blender.test_blender34_cli import ROOT
+from tests.support import ROOT
 
 pytestmark = pytest.mark.blender34
 
@@ -28,12 +28,16 @@ OUT, LOOP, GOOD = {out!r}, {loop!r}, {good!r}
 seen = {{"ticks": 0}}
 
 def children():
+    # This Blender's script children only (another test run may have its own)
+    import os
     found = []
     for cmdline in Path("/proc").glob("[0-9]*/cmdline"):
         try:
-            if b"cs488.script_child" in cmdline.read_bytes():
+            stat = (cmdline.parent / "stat").read_text()
+            parent = int(stat.rsplit(")", 1)[1].split()[1])
+            if b"cs488.script_child" in cmdline.read_bytes() and parent == os.getpid():
                 found.append(cmdline.parent.name)
-        except OSError:
+        except (OSError, ValueError, IndexError):
             pass
     return found
 

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from core import RenderSettings, render, split_into_tiles
-from tests.core.scenes import ball_on_ground
+from tests.support.scenes import ball_on_ground
 
 
 @pytest.mark.parametrize(

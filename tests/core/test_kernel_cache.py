@@ -15,7 +15,7 @@ from core.kernel_cache import load_or_rebuild
 ROOT = Path(__file__).resolve().parents[2]
 CHILD = (
     "from core.kernel_cache import load_or_rebuild\n"
-    "from tests.core.cache_probe import doubled\n"
+    "from tests.support.cache_probe import doubled\n"
     "value, rebuilt = load_or_rebuild(lambda: doubled(21.0))\n"
     "print(value, rebuilt)\n"
 )
@@ -72,7 +72,7 @@ def test_an_error_while_writing_the_cache_is_not_taken_for_damage(monkeypatch, t
     only meet it again, so it is raised as it is, after one compile."""
     from numba.core import caching
 
-    from tests.core.cache_probe import doubled
+    from tests.support.cache_probe import doubled
 
     assert doubled(1.0) == 2.0  # compiled or loaded before the disk fills
 

@@ -20,22 +20,9 @@ from core import (
 )
 from core.kernels.integrator import fresnel_dielectric, refract
 from core.kernels.trace import spawn_point
-from tests.core.probe import light_through, packed_shapes, surface
-from tests.core.scenes import translate_scale
-from tests.reference_tracer import camera_ray
-
-GROUND_KD = (0.6, 0.5, 0.4)
-
-
-def ground(material=None):
-    """A 200 x 200 slab whose top face is the plane z = 0."""
-    m = np.diag([100.0, 100.0, 1.0, 1.0])
-    m[2, 3] = -1.0
-    return Box("Ground", material or Material(diffuse=GROUND_KD), m)
-
-
-def look_down(eye=(0.0, -3.0, 8.0)):
-    return Camera(eye=eye, view=(0.0, 3.0, -8.0), up=(0.0, 0.0, 1.0), fovy=60.0)
+from tests.support.probe import light_through, packed_shapes, surface
+from tests.support.reference_tracer import camera_ray
+from tests.support.scenes import GROUND_KD, ground, look_down, translate_scale
 
 
 def test_plane_under_a_point_light_matches_the_formula():

@@ -14,7 +14,7 @@ from core import memory_estimate
 from core.compile import compile_scene
 from core.memory_estimate import check_fits, estimate
 from tests.core.cs488.test_hostile_scripts import one_colour_png
-from tests.core.test_cli import ROOT
+from tests.support import ROOT
 
 
 def scene_of(shapes):

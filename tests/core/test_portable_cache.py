@@ -171,7 +171,7 @@ import numpy as np
 from core import Mesh, RenderSettings, Scene, TriangleMesh
 from core.kernels.mesh_trace import mesh_line_crossings
 from core.compile import compile_scene
-from tests.meshes import icosphere
+from tests.support.meshes import icosphere
 v, t = icosphere(2)
 scene = Scene(shapes=[Mesh(mesh=TriangleMesh(v, t))])
 g = compile_scene(scene, RenderSettings(8, 8, pixel_samples=1)).packed.geometry

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from core import Camera, Material, PointLight, RenderSettings, Scene, Sphere, render
-from tests.core.scenes import ball_on_ground, reference_of, translate_scale
-from tests.reference_tracer import camera_ray, nearest, shade_ray
+from tests.support.reference_tracer import camera_ray, nearest, shade_ray
+from tests.support.scenes import ball_on_ground, reference_of, translate_scale
 
 BACKGROUND = (0.0, 0.0, 0.0)
 

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from core import Camera, Material, PointLight, RenderSettings, Scene, SceneError, Sphere, render
-from tests.core.scenes import ball_on_ground
+from tests.support.scenes import ball_on_ground
 
 
 def render_tiny(scene, settings=None):

@@ -14,7 +14,7 @@ from pathlib import Path
 import pytest
 
 from core.cs488.script_process import GRACE_S
-from tests.core.test_cli import ROOT
+from tests.support import ROOT
 
 RENDER = "gr.render(r, 'o.png', 8, 8, {0, 0, 5}, {0, 0, -1}, {0, 1, 0}, 50, {0, 0, 0}, {})"
 NORMAL = "r = gr.node('r')\nr:add_child(gr.sphere('s'))\n" + RENDER + "\n"

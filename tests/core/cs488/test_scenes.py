@@ -15,7 +15,7 @@ from PIL import Image
 import core
 from core.compile import pack_scene
 from core.cs488 import load_script
-from tests.core.probe import hits
+from tests.support.probe import hits
 
 SCENES = Path(__file__).resolve().parents[2] / "cs488_scenes"
 

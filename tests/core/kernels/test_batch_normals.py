@@ -8,7 +8,7 @@ from core import Mesh
 from core.kernels.workspace import new_workspace
 from tests.benchmarks import bench_analytic_vs_mesh as chart
 from tests.benchmarks.tessellation import tessellate
-from tests.core.probe import packed_shapes, surface
+from tests.support.probe import packed_shapes, surface
 
 STACKS = new_workspace(0).stacks
 

@@ -14,7 +14,7 @@ from core.jit import kernel
 from core.kernels.borrow import borrowed
 from core.kernels.workspace import new_workspace
 from core.scene import RenderSettings
-from tests.meshes import icosphere
+from tests.support.meshes import icosphere
 
 pytestmark = pytest.mark.skipif(
     numba.config.DISABLE_JIT, reason="without the JIT nothing is borrowed (borrowed(x) is x)"

@@ -13,9 +13,9 @@ from core.kernels.bvh_wide import WIDTH, leaf_range
 from core.kernels.shapes import NO_HIT, SHAPE_MESH, intersect_analytic
 from core.kernels.triangles import LEAF_WIDTH, intersect_triangle, permuted, shear_setup
 from core.kernels.vec import affine_point, affine_vector
-from tests.core.kernels.test_shapes import random_affine
-from tests.core.probe import hits, surface
-from tests.meshes import icosphere
+from tests.support.meshes import icosphere
+from tests.support.probe import hits, surface
+from tests.support.reference_shapes import random_affine
 
 RNG = np.random.default_rng(7)
 

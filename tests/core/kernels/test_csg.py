@@ -1,5 +1,5 @@
 """CSG against references written apart from the kernels: every operand's inside-intervals
-in world space (`tests.reference_shapes`), combined by set operations in plain Python."""
+in world space (`tests.support.reference_shapes`), combined by set operations in plain Python."""
 
 import math
 
@@ -22,9 +22,13 @@ from core import (
     TriangleMesh,
     render,
 )
-from tests.core.kernels.test_shapes import random_affine
-from tests.core.probe import hits, light_through, packed_shapes, surface
-from tests.reference_shapes import constraint_normal, inside_intervals, world_constraints
+from tests.support.probe import hits, light_through, packed_shapes, surface
+from tests.support.reference_shapes import (
+    constraint_normal,
+    inside_intervals,
+    random_affine,
+    world_constraints,
+)
 
 RNG = np.random.default_rng(4)
 KIND = {Sphere: "sphere", Box: "box", Cylinder: "cylinder", Cone: "cone"}

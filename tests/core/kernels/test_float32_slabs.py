@@ -14,7 +14,7 @@ from core import Mesh, RenderSettings, Scene, TriangleMesh
 from core.compile import compile_scene
 from core.kernels.bvh_wide import INF32, SLAB_WIDEN32, WIDTH, child_entries, slab_ray
 from core.kernels.triangles import LEAF_WIDTH
-from tests.core.probe import hits
+from tests.support.probe import hits
 
 RNG = np.random.default_rng(11)
 

@@ -9,69 +9,19 @@ import sys
 from pathlib import Path
 
 import numba
-import numpy as np
 import pytest
 
 from core import (
-    AreaLight,
-    Box,
-    Camera,
-    Csg,
-    Cylinder,
-    Material,
-    Mesh,
-    PointLight,
     RenderSettings,
-    Scene,
-    Sphere,
-    Texture,
-    Torus,
-    TriangleMesh,
 )
 from core.compile import compile_scene
-from tests.meshes import icosphere
+from tests.support.scenes import one_of_each_kind as scenes
 
 ROOT = Path(__file__).resolve().parents[3]
-LIGHT = PointLight((0.0, -4.0, 4.0), (1.0, 1.0, 1.0))
-AREA = AreaLight((0.0, 0.0, 4.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (5.0, 5.0, 5.0))
 
 pytestmark = pytest.mark.skipif(
     numba.config.DISABLE_JIT, reason="about compiled signatures: none without the JIT"
 )
-
-
-def moved(x):
-    m = np.eye(4)
-    m[0, 3] = x
-    return m
-
-
-def scenes():
-    vertices, triangles = icosphere(1)
-    mesh = Mesh("Ball", mesh=TriangleMesh(vertices, triangles))
-    checker = np.zeros((2, 2, 3))
-    checker[0, 0] = checker[1, 1] = 1.0
-    textured = Material(texture=Texture(pixels=checker))
-    csg = Csg("Cut", operation="difference", left=Box("B"), right=Cylinder("C"))
-    return {
-        "empty": Scene(),
-        "one sphere": Scene(shapes=[Sphere("S")], lights=[LIGHT]),
-        "one mesh": Scene(shapes=[mesh], lights=[LIGHT]),
-        "only CSG": Scene(shapes=[csg], lights=[LIGHT]),
-        "only an area light": Scene(lights=[AREA]),
-        "textured": Scene(shapes=[Sphere("S", textured)], lights=[LIGHT]),
-        "many shapes": Scene(
-            camera=Camera(eye=(0, -8, 0), view=(0, 1, 0), up=(0, 0, 1), fovy=40),
-            shapes=[
-                Sphere("S", world_from_object=moved(-2)),
-                Torus("T", world_from_object=moved(2)),
-                mesh,
-                csg,
-                Sphere("S2", textured, world_from_object=moved(4)),
-            ],
-            lights=[LIGHT, AREA],
-        ),
-    }
 
 
 def numba_types(scene):
@@ -132,7 +82,7 @@ def test_the_warmup_compiles_what_every_scene_needs_once(tmp_path):
     for name in scenes():
         child = (
             "from core import RenderSettings, render\n"
-            "from tests.core.kernels.test_kernel_signature import scenes\n"
+            "from tests.support.scenes import one_of_each_kind as scenes\n"
             f"out = render(scenes()[{name!r}], RenderSettings(4, 4, pixel_samples=1))\n"
             "print(out.stats.kernel_source)\n"
         )

@@ -12,8 +12,8 @@ from hypothesis import strategies as st
 import core
 from core.compile.frame import SHADOW_CULLING_MIN_SAMPLES
 from core.kernels.light_pyramid import PYRAMID_ROWS, box_meets_pyramid, build_pyramid
-from tests.core.test_fuzz import FUZZ, lights, materials, open_meshes, render_or_refuse, solids
-from tests.core.test_lighting import GROUND_KD, ground, look_down
+from tests.support.fuzz_scenes import FUZZ, lights, materials, open_meshes, render_or_refuse, solids
+from tests.support.scenes import GROUND_KD, ground, look_down
 
 RNG = np.random.default_rng(7)
 
@@ -67,7 +67,7 @@ def test_every_sphere_a_segment_to_the_light_meets_is_listed():
     edges (the pyramid's own faces, where culling is most at risk) just clip them: each such
     sphere must be among the candidates."""
     from core.kernels.light_pyramid import MAX_CANDIDATES, pyramid_candidates
-    from tests.core.probe import packed_shapes
+    from tests.support.probe import packed_shapes
 
     rng = np.random.default_rng(11)
     for _ in range(60):
@@ -188,7 +188,7 @@ def test_a_pyramid_holding_more_shapes_than_the_list_falls_back_to_every_shape()
     most pyramids, which then test every shape along each ray; the same bits as without
     culling."""
     from core.kernels.light_pyramid import MAX_CANDIDATES, TRAVERSE_ALL, pyramid_candidates
-    from tests.core.probe import packed_shapes
+    from tests.support.probe import packed_shapes
 
     rng = np.random.default_rng(5)
     centres = [(*rng.uniform(-0.3, 0.3, 2), 3.0 + k * 0.05) for k in range(MAX_CANDIDATES + 8)]

@@ -7,25 +7,17 @@ import numpy as np
 import pytest
 
 from core import Box, Cone, Cylinder, Sphere, Torus
-from tests.core.probe import hits, packed_shapes, surface
-from tests.reference_shapes import (
+from tests.support.probe import hits, packed_shapes, surface
+from tests.support.reference_shapes import (
     constraint_normal,
     first_crossing,
+    random_affine,
     torus_roots_mp,
     world_constraints,
 )
 
 RNG = np.random.default_rng(20261121)
 SHAPES = {"sphere": Sphere, "box": Box, "cylinder": Cylinder, "cone": Cone}
-
-
-def random_affine(rng, translate=50.0):
-    """Rotation times non-uniform scale (0.2..5), translated."""
-    q, _ = np.linalg.qr(rng.normal(size=(3, 3)))
-    m = np.eye(4)
-    m[:3, :3] = q @ np.diag(rng.uniform(0.2, 5.0, size=3))
-    m[:3, 3] = rng.uniform(-translate, translate, size=3)
-    return m
 
 
 def near_an_edge(quadric, planes, label, point, tolerance=1e-6):

@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 from core import Sphere
-from tests.core.probe import hit, packed_shapes, surface
-from tests.reference_tracer import intersect_quadric, quadric_normal, sphere_quadric
+from tests.support.probe import hit, packed_shapes, surface
+from tests.support.reference_tracer import intersect_quadric, quadric_normal, sphere_quadric
 
 RNG = np.random.default_rng(20261121)
 

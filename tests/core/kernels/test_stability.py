@@ -25,9 +25,9 @@ from core import (
     TriangleMesh,
     render,
 )
-from tests.core.probe import hits, packed_shapes
-from tests.core.scenes import translate_scale
-from tests.meshes import icosphere
+from tests.support.meshes import icosphere
+from tests.support.probe import hits, packed_shapes
+from tests.support.scenes import translate_scale
 
 RNG = np.random.default_rng(5)
 

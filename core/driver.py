@@ -138,34 +138,71 @@ def render(
     `cancelled` set and the unrendered pixels zero.
     """
     compiled = compile_scene(scene, settings)
-    packed = compiled.packed
-    kernel_s, kernel_source = prepare_kernels(packed)
+    kernel_s, kernel_source = prepare_kernels(compiled.packed)
     threads = settings.threads or available_threads()
     tiles = split_into_tiles(settings.pixel_region(), settings.tile_size)
     image = np.zeros((settings.height, settings.width, 4), np.float32)
-    stop_tiles = np.zeros(1, np.int64)  # the kernels' cancel flag (Workspace.cancel)
+    tally = _Tally()
 
-    def render_one(tile: Tile) -> tuple[np.ndarray, int, np.ndarray]:
-        pixels = np.empty((tile.height, tile.width, 4), np.float32)
-        workspace = new_workspace(settings.max_depth, settings.shadow_samples, stop_tiles)
-        render_tile(
-            packed,
-            settings.width,
-            settings.height,
-            tile.x,
-            tile.y,
-            tile.width,
-            tile.height,
-            pixels,
-            workspace,
-        )
-        stacks = workspace.stacks
-        return pixels, int(stacks.csg.overflow[0]), stacks.ray_counts
+    def finished(tile: Tile, result: tuple) -> None:
+        pixels = tally.add(result)
+        image[tile.y : tile.y + tile.height, tile.x : tile.x + tile.width] = pixels
+        if on_tile is not None:
+            on_tile(tile, pixels, tally.tiles_done, len(tiles))
 
     start = time.perf_counter()
-    tiles_done = 0
-    csg_overflows = 0
-    ray_counts = np.zeros(RAY_COUNT_SLOTS, np.int64)
+    cancelled = _run_tiles(compiled.packed, settings, tiles, threads, finished, should_cancel)
+    stats = RenderStats(
+        kernel_s=kernel_s,
+        kernel_source=kernel_source,
+        render_s=time.perf_counter() - start,
+        tiles_done=tally.tiles_done,
+        tiles_total=len(tiles),
+        threads=threads,
+        rays_traced=int(tally.ray_counts[RAYS_TRACED]),
+        shadow_rays=int(tally.ray_counts[SHADOW_RAYS]),
+        shadow_rays_unobstructed=int(tally.ray_counts[SHADOW_RAYS_UNOBSTRUCTED]),
+    )
+    warnings = list(compiled.warnings)
+    if tally.csg_overflows:
+        warnings.append(
+            f"{tally.csg_overflows} rays met more CSG surfaces than one ray can hold "
+            f"({SPAN_CAPACITY} spans, {CROSSING_CAPACITY} crossings of one mesh operand): "
+            "the excess were dropped, and those pixels may be wrong"
+        )
+    return RenderOutput(image=image, stats=stats, cancelled=cancelled, warnings=warnings)
+
+
+class _Tally:
+    """What the finished tiles add up to: how many, their rays, their CSG overflows."""
+
+    def __init__(self):
+        self.tiles_done = 0
+        self.csg_overflows = 0
+        self.ray_counts = np.zeros(RAY_COUNT_SLOTS, np.int64)
+
+    def add(self, result: tuple) -> np.ndarray:
+        pixels, overflows, counts = result
+        self.tiles_done += 1
+        self.csg_overflows += overflows
+        self.ray_counts += counts
+        return pixels
+
+
+def _render_one(packed: PackedScene, settings: RenderSettings, tile: Tile, stop: np.ndarray):
+    """One tile on a worker thread: (pixels, rays whose CSG spans overflowed, ray counts)."""
+    pixels = np.empty((tile.height, tile.width, 4), np.float32)
+    workspace = new_workspace(settings.max_depth, settings.shadow_samples, stop)
+    render_tile(packed, settings.width, settings.height, tile.x, tile.y, tile.width,
+                tile.height, pixels, workspace)  # fmt: skip
+    stacks = workspace.stacks
+    return pixels, int(stacks.csg.overflow[0]), stacks.ray_counts
+
+
+def _run_tiles(packed, settings, tiles, threads, finished, should_cancel) -> bool:
+    """Render `tiles` on `threads` workers, calling finished(tile, result) on this thread as
+    each completes, at most `threads` in flight; True if should_cancel() stopped it."""
+    stop = np.zeros(1, np.int64)  # the kernels' cancel flag (Workspace.cancel)
     cancelled = False
     with ThreadPoolExecutor(max_workers=threads, thread_name_prefix="whitted") as pool:
         queue = iter(tiles)
@@ -174,46 +211,21 @@ def render(
         def start_next() -> None:
             tile = next(queue, None)
             if tile is not None:
-                running[pool.submit(render_one, tile)] = tile
+                running[pool.submit(_render_one, packed, settings, tile, stop)] = tile
 
         try:
             for _ in range(threads):
                 start_next()
             while running and not cancelled:
-                finished, _ = wait(running, timeout=_CANCEL_POLL_S, return_when=FIRST_COMPLETED)
-                for future in finished:
-                    tile = running.pop(future)
-                    pixels, overflows, counts = future.result()
-                    csg_overflows += overflows
-                    ray_counts += counts
-                    image[tile.y : tile.y + tile.height, tile.x : tile.x + tile.width] = pixels
-                    tiles_done += 1
-                    if on_tile is not None:
-                        on_tile(tile, pixels, tiles_done, len(tiles))
+                done, _ = wait(running, timeout=_CANCEL_POLL_S, return_when=FIRST_COMPLETED)
+                for future in done:
+                    finished(running.pop(future), future.result())
                 cancelled = should_cancel is not None and should_cancel()
                 if not cancelled:
-                    for _ in finished:
+                    for _ in done:
                         start_next()
         finally:
             # Tiles still in flight stop at their next pixel (their pixels are dropped), so
             # leaving the pool, which waits for them, takes no longer than that
-            stop_tiles[0] = 1
-    stats = RenderStats(
-        kernel_s=kernel_s,
-        kernel_source=kernel_source,
-        render_s=time.perf_counter() - start,
-        tiles_done=tiles_done,
-        tiles_total=len(tiles),
-        threads=threads,
-        rays_traced=int(ray_counts[RAYS_TRACED]),
-        shadow_rays=int(ray_counts[SHADOW_RAYS]),
-        shadow_rays_unobstructed=int(ray_counts[SHADOW_RAYS_UNOBSTRUCTED]),
-    )
-    warnings = list(compiled.warnings)
-    if csg_overflows:
-        warnings.append(
-            f"{csg_overflows} rays met more CSG surfaces than one ray can hold "
-            f"({SPAN_CAPACITY} spans, {CROSSING_CAPACITY} crossings of one mesh operand): "
-            "the excess were dropped, and those pixels may be wrong"
-        )
-    return RenderOutput(image=image, stats=stats, cancelled=cancelled, warnings=warnings)
+            stop[0] = 1
+    return cancelled

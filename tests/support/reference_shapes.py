@@ -133,3 +133,12 @@ def torus_roots_mp(origin, direction, major, minor, digits=60):
             default=math.inf,
         )
         return real, gap
+
+
+def random_affine(rng, translate=50.0):
+    """Rotation times non-uniform scale (0.2..5), translated."""
+    q, _ = np.linalg.qr(rng.normal(size=(3, 3)))
+    m = np.eye(4)
+    m[:3, :3] = q @ np.diag(rng.uniform(0.2, 5.0, size=3))
+    m[:3, 3] = rng.uniform(-translate, translate, size=3)
+    return m

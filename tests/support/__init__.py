@@ -1,0 +1,8 @@
+"""What the tests share, in one place: reference implementations (`reference_tracer`,
+`reference_shapes`), scenes and meshes (`scenes`, `meshes`, `csg_examples`, `fuzz_scenes`),
+ray sets (`rays`), single-ray probes of the kernels (`probe`, `cache_probe`), and running
+Debian's Blender 3.4 (`blender34`). Test modules import from here, never from each other."""
+
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]  # the checkout
