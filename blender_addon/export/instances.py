@@ -45,9 +45,9 @@ class Exporter:
         else:
             for slot, part in self._instance_mesh(obj).items():
                 if len(part.triangles):
-                    material = self.material(obj, slot)
+                    slot_material = self.material(obj, slot)
                     self.shapes.append(
-                        core.Mesh(obj.name, material, matrix, mesh=part,
+                        core.Mesh(obj.name, slot_material, matrix, mesh=part,
                                   casts_shadows=casts_shadows)
                     )  # fmt: skip
             return
