@@ -112,7 +112,7 @@ test: setup $(BPY_VENVS) lint
 # failure inside one comes with a Python traceback (and pdb works). Small scenes only: the
 # tests whose brute-force references or large meshes would take hours in Python stay out.
 PYTHON_KERNEL_TESTS := tests/core/kernels/test_shapes.py tests/core/kernels/test_sphere_intersection.py \
-  tests/core/kernels/test_float32_slabs.py tests/core/kernels/test_csg.py \
+  tests/core/kernels/test_slabs.py tests/core/kernels/test_csg.py \
   tests/core/kernels/test_shadow_culling.py tests/core/kernels/test_stability.py \
   tests/core/kernels/test_borrow.py tests/core/test_render_accuracy.py tests/core/test_lighting.py \
   tests/core/test_driver.py tests/core/test_validation.py

@@ -26,7 +26,8 @@ import math
 from ..jit import inlined_kernel, kernel
 from ..vocabulary import CSG_DIFFERENCE, CSG_INTERSECTION, CSG_UNION
 from .mesh_trace import mesh_line_crossings
-from .shapes import SHAPE_MESH, SHAPE_TORUS, convex_interval
+from .shapes import NO_HIT, SHAPE_MESH, SHAPE_TORUS, convex_interval
+from .slabs import box_entry
 from .torus import torus_roots
 from .vec import affine_point, affine_vector, inverse
 
@@ -119,25 +120,11 @@ def _mesh_spans(geo, row, o, d, scratch, at):
 
 
 @inlined_kernel
-def _line_misses_box(bounds, row, o, inverse_d):
-    """Whether the whole line o + t d (t of any sign) passes box `row` of bounds (n, 6)
-    by. A NaN (the line in a face's plane) is never taken as a miss."""
-    near, far = -math.inf, math.inf
-    for a in range(3):
-        t0 = (bounds[row, a] - o[a]) * inverse_d[a]
-        t1 = (bounds[row, 3 + a] - o[a]) * inverse_d[a]
-        lo, hi = (t0, t1) if t0 <= t1 else (t1, t0)
-        near = lo if lo > near else near
-        far = hi if hi < far else far
-    return near > far
-
-
-@inlined_kernel
 def operand_spans(geo, row, o, d, inverse_d, scratch, at):
     """Write the spans of shape row `row` along the world line o + t d into the scratch
     lists from position `at`; returns the position after the last. A line that misses the
     operand's world box costs one slab test (inverse_d = 1 / d, per component)."""
-    if _line_misses_box(geo.shape_bounds, row, o, inverse_d):
+    if box_entry(geo.shape_bounds, row, o, inverse_d, -math.inf, math.inf) == NO_HIT:
         return at
     span_f, span_i = scratch.span_f, scratch.span_i
     transforms = geo.shape_object_from_world

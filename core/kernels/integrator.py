@@ -17,7 +17,7 @@ import math
 
 from ..jit import inlined_kernel, kernel
 from .options import OPTION_MAX_DEPTH
-from .shading import local_colour
+from .shading import Phong, ShadingPoint, local_colour
 from .surface import diffuse_colour, surface_at
 from .trace import closest_hit, spawn_point
 from .vec import add, as_tuple, dot, mul, normalize, row, scale, sub
@@ -92,12 +92,13 @@ def trace_ray(ps, o, d, key, ws):
             n_shading = scale(n_shading, -1.0)
         outside = spawn_point(p, n_geometric, o)
         if tau < 1.0:
-            kd = diffuse_colour(mats, material, u, v)
-            ks = row(mats.specular, material)
-            local = local_colour(
-                frame, lights, geo, stacks, outside, n_shading, d, kd, ks,
-                mats.shininess[material], key, event,
-            )  # fmt: skip
+            point = ShadingPoint(outside, n_shading, scale(d, -1.0))
+            phong = Phong(
+                diffuse_colour(mats, material, u, v),
+                row(mats.specular, material),
+                mats.shininess[material],
+            )
+            local = local_colour(frame, lights, geo, stacks, point, phong, key, event)
             colour = add(colour, mul(w, scale(local, 1.0 - tau)))
         event += 1
         if depth >= max_depth:

@@ -1,7 +1,9 @@
-"""Rays against one mesh's eight-wide BVH, in the mesh's object space: the nearest
-triangle, crossings of a segment (shadow rays), and every crossing of a whole line (CSG).
+"""Rays against one mesh's eight-wide BVH, in the mesh's object space, by two traversals:
+the nearest triangle (`mesh_closest`), and the crossings of a segment or of a whole line
+(`mesh_crossings`: counted for shadow rays, listed for CSG).
 
-See `core.kernels.bvh_wide` for the node layout and its float32 slab test, and
+See `core.kernels.bvh_wide` for the node layout, `core.kernels.slabs` for its float32 slab
+test, and
 `core.kernels.triangles` for the leaf blocks and the watertight triangle test. Each traversal
 keeps its own fixed-size stack (`MESH_STACK_SIZE`), indexed as unsigned so that numba does
 not emit its negative-index wraparound on every push and pop.
@@ -16,10 +18,10 @@ import math
 import numpy as np
 
 from ..jit import inlined_kernel, kernel
-from .bvh_wide import INF32, SLAB_WIDEN32, child_entries, float32_above, slab_ray
 from .bvh_wide import leaf_block as _leaf_block
 from .prefetch import prefetch_row
 from .shapes import NO_HIT
+from .slabs import INF32, child_entries, float32_above, float32_below, slab_ray, widened32
 from .triangles import (
     FACING_SIGN,
     LEAF_WIDTH,
@@ -34,11 +36,11 @@ ZERO32 = np.float32(0.0)
 
 
 @inlined_kernel
-def _ray_constants(o, d):
+def _ray_constants(o, d, whole_line):
     """What a traversal computes once per ray: the float32 slab test's `SlabRay`, the
     triangle test's shear and the origin in the shear's order."""
     shear = shear_setup(d)
-    return slab_ray(o, d), shear, permuted(o, shear)
+    return slab_ray(o, d, whole_line), shear, permuted(o, shear)
 
 
 @inlined_kernel
@@ -91,13 +93,13 @@ def mesh_closest(boxes, links, corners, root, o, d, t_max, stack, stack_t):
     space: (t, triangle slot, b1, b2). Children are visited nearest first: those a ray
     enters go onto the stack sorted by entry distance. Inlined into `closest_hit`:
     measured 8% more primary rays per second than a call."""
-    ray, shear, o_sheared = _ray_constants(o, d)
+    ray, shear, o_sheared = _ray_constants(o, d, False)
     best_t, best_tri, best_v, best_w, best_det = t_max, -1, 0.0, 0.0, 1.0
     # The float32 bound the slab test clips to, and the entry distance past which a waiting
     # box cannot hold a nearer hit: an entry distance may exceed the exact one by the slab
-    # test's rounding, which SLAB_WIDEN32 covers
+    # test's rounding, which `widened32` covers
     best32 = float32_above(t_max)
-    cull32 = best32 * SLAB_WIDEN32
+    cull32 = widened32(best32)
     stack[0], stack_t[0] = root, ZERO32
     top = 1
     while top > 0:
@@ -113,7 +115,7 @@ def mesh_closest(boxes, links, corners, root, o, d, t_max, stack, stack_t):
                 if t < best_t:
                     best_t, best_tri, best_v, best_w, best_det = t, slot_of(block, k), v, w, det
             best32 = float32_above(best_t)
-            cull32 = best32 * SLAB_WIDEN32
+            cull32 = widened32(best32)
             continue
         e = child_entries(boxes, link, ray, ZERO32, best32)
         base = top
@@ -132,39 +134,21 @@ def mesh_closest(boxes, links, corners, root, o, d, t_max, stack, stack_t):
 
 
 @inlined_kernel
-def mesh_crossings(boxes, links, corners, root, o, d, t_max, stop_at_first, stack):
-    """How many triangles of the mesh whose BVH starts at `root` the segment crosses
-    (stopping at 1 if stop_at_first). Children are pushed in slot order, unsorted: for a
-    query that stops at any blocker, sorting by distance cost more than it found sooner."""
-    ray, shear, o_sheared = _ray_constants(o, d)
-    t_max32 = float32_above(t_max)
-    crossings = 0
-    stack[0] = root
-    top = 1
-    while top > 0:
-        top -= 1
-        link = stack[np.uintp(top)]
-        if link < 0:
-            h = intersect_leaf(corners, _leaf_block(link), o_sheared, shear, 0.0, t_max)
-            # Counted without a branch per lane: four branches cost 15% of a shadow ray
-            crossed = (h[0][0] < t_max) + (h[1][0] < t_max) + (h[2][0] < t_max) + (h[3][0] < t_max)
-            crossings += crossed
-            if stop_at_first and crossed > 0:
-                return crossings
-            continue
-        e = child_entries(boxes, link, ray, ZERO32, t_max32)
-        top = _push_all(stack, top, links, link, e)
-    return crossings
+def mesh_crossings(boxes, links, corners, root, o, d, t_min, t_max, stop_at_first, cross_f,
+                   cross_i, stack):  # fmt: skip
+    """The crossings of o + t d, t_min < t < t_max, with the mesh whose BVH starts at `root`:
+    the one traversal for queries that want every crossing, not the nearest. Children are
+    pushed in slot order, unsorted: for a query that stops at any blocker, sorting by
+    distance cost more than it found sooner.
 
-
-@kernel
-def mesh_line_crossings(boxes, links, corners, root, o, d, cross_f, cross_i, stack):
-    """Every crossing of the whole line o + t d (t of any sign) with the mesh whose BVH
-    starts at `root`, unsorted: cross_f[k] = (t, b1, b2), cross_i[k] = (triangle slot, +1
-    where the line enters through the triangle's front, -1 where it leaves). Returns the
-    count, at most the lists' length."""
-    ray, shear, o_sheared = _ray_constants(o, d)
-    capacity = cross_f.shape[0]
+    With cross_f None (a shadow ray's segment) the crossings are only counted, stopping at 1
+    if stop_at_first. Otherwise (CSG: the whole line, t from -inf to inf) they are listed,
+    unsorted and at most the lists' length: cross_f[k] = (t, b1, b2), cross_i[k] = (triangle
+    slot, +1 where the line enters through the triangle's front, -1 where it leaves).
+    numba compiles each form on its own, the branch on None taken at compile time. Returns
+    the count."""
+    ray, shear, o_sheared = _ray_constants(o, d, t_min < 0.0)
+    t_min32, t_max32 = float32_below(t_min), float32_above(t_max)
     count = 0
     stack[0] = root
     top = 1
@@ -173,16 +157,43 @@ def mesh_line_crossings(boxes, links, corners, root, o, d, cross_f, cross_i, sta
         link = stack[np.uintp(top)]
         if link < 0:
             block = _leaf_block(link)
-            hits = intersect_leaf(corners, block, o_sheared, shear, -math.inf, math.inf)
-            for k in range(LEAF_WIDTH):
-                t, v, w, det = hits[k]
-                if t != NO_HIT and count < capacity:
-                    b1, b2 = barycentrics(v, w, det)
-                    cross_f[count, 0], cross_f[count, 1], cross_f[count, 2] = t, b1, b2
-                    cross_i[count, 0] = slot_of(block, k)
-                    cross_i[count, 1] = 1 if FACING_SIGN * det > 0.0 else -1
-                    count += 1
+            hits = intersect_leaf(corners, block, o_sheared, shear, t_min, t_max)
+            if cross_f is None:
+                # Counted without a branch per lane: four branches cost 15% of a shadow ray
+                crossed = (
+                    (hits[0][0] < t_max) + (hits[1][0] < t_max)
+                    + (hits[2][0] < t_max) + (hits[3][0] < t_max)
+                )  # fmt: skip
+                count += crossed
+                if stop_at_first and crossed > 0:
+                    return count
+            else:
+                count = _list_crossings(hits, block, t_max, cross_f, cross_i, count)
             continue
-        e = child_entries(boxes, link, ray, -INF32, INF32)
+        e = child_entries(boxes, link, ray, t_min32, t_max32)
         top = _push_all(stack, top, links, link, e)
     return count
+
+
+@inlined_kernel
+def _list_crossings(hits, block, t_max, cross_f, cross_i, count):
+    """Append the hits of leaf block `block` to the crossing lists (see `mesh_crossings`)
+    while they have room; returns the new count."""
+    for k in range(LEAF_WIDTH):
+        t, v, w, det = hits[k]
+        if t < t_max and count < cross_f.shape[0]:
+            b1, b2 = barycentrics(v, w, det)
+            cross_f[count, 0], cross_f[count, 1], cross_f[count, 2] = t, b1, b2
+            cross_i[count, 0] = slot_of(block, k)
+            cross_i[count, 1] = 1 if FACING_SIGN * det > 0.0 else -1
+            count += 1
+    return count
+
+
+@kernel
+def mesh_line_crossings(boxes, links, corners, root, o, d, cross_f, cross_i, stack):
+    """Every crossing of the whole line o + t d with the mesh (`mesh_crossings`' listing
+    form), compiled once as a call of its own for the CSG kernels."""
+    return mesh_crossings(
+        boxes, links, corners, root, o, d, -math.inf, math.inf, False, cross_f, cross_i, stack
+    )

@@ -16,6 +16,7 @@ tested (OPTION_SHADOW_CULLING off, kept to show that).
 """
 
 import math
+from typing import NamedTuple
 
 from ..jit import inlined_kernel, kernel
 from .borrow import borrowed
@@ -39,6 +40,35 @@ from .workspace import (
 
 # The largest attenuation factor 1 / (c0 + c1 d + c2 d^2) applied
 MAX_FALLOFF = 1e20
+
+
+# Records rather than runs of scalars, so that an argument put in the wrong place does not
+# compile: numba passes a named tuple's fields as it would the scalars, and once inlined they
+# cost nothing (the final scene renders in the same time, the same bits)
+class ShadingPoint(NamedTuple):
+    """Where a surface is lit: shadow rays start at `origin` (the hit point lifted off the
+    surface); `normal` is the unit shading normal, facing `to_viewer`."""
+
+    origin: tuple
+    normal: tuple
+    to_viewer: tuple
+
+
+class Phong(NamedTuple):
+    """The report's material terms: diffuse kd, specular ks (RGB) and the Phong exponent."""
+
+    kd: tuple
+    ks: tuple
+    shininess: float
+
+
+class AreaLight(NamedTuple):
+    """A rectangle light's centre and its two edges, the rectangle being
+    centre + a edge_u + b edge_v for a, b in [-1/2, 1/2]."""
+
+    centre: tuple
+    edge_u: tuple
+    edge_v: tuple
 
 
 @inlined_kernel
@@ -78,7 +108,7 @@ def shadow_visibility(geo, stacks, listed, origin, n, count):
 
 
 @inlined_kernel
-def _lit_by(targets, visibility, j, intensity, attenuation, n, to_viewer, kd, ks, shininess):
+def _lit_by(targets, visibility, j, intensity, attenuation, point, phong):
     """What light point j of `targets` (aimed at by `_aim`, seen through visibility[j])
     adds at a point."""
     distance = targets[j, 3]
@@ -88,15 +118,15 @@ def _lit_by(targets, visibility, j, intensity, attenuation, n, to_viewer, kd, ks
     # Without c0 the falloff grows without bound at the light: cap it, so a surface touching
     # a light is blinding but finite (found by the fuzzer: 1 / (c2 d^2) overflowed)
     falloff = 1.0 / max(c0 + c1 * distance + c2 * distance * distance, 1.0 / MAX_FALLOFF)
-    return _phong_lit(
-        row(targets, j), scale(intensity, falloff), visibility[j], n, to_viewer, kd, ks, shininess
-    )
+    return _phong_lit(row(targets, j), scale(intensity, falloff), visibility[j], point, phong)
 
 
 @inlined_kernel
-def _phong_lit(light_dir, radiance, visible, n, to_viewer, kd, ks, shininess):
+def _phong_lit(light_dir, radiance, visible, point, phong):
     """The report's Phong terms for light arriving along unit light_dir with `radiance`,
     of which `visible` gets through (the shadow ray's transmittance)."""
+    n, to_viewer = point.normal, point.to_viewer
+    kd, ks, shininess = phong
     n_dot_l = dot(n, light_dir)
     if n_dot_l <= 0.0 or visible == 0.0:
         return 0.0, 0.0, 0.0
@@ -112,11 +142,11 @@ def _phong_lit(light_dir, radiance, visible, n, to_viewer, kd, ks, shininess):
 
 
 @kernel
-def light_candidates(geo, stacks, origin, centre, edge_u, edge_v):
+def light_candidates(geo, stacks, origin, area):
     """List in stacks.candidates the shapes that may stand between `origin` and the area
     light; returns their count or TRAVERSE_ALL. Finds the cached occluder in the list."""
     geo, stacks = borrowed(geo), borrowed(stacks)
-    build_pyramid(stacks.pyramid, origin, centre, edge_u, edge_v)
+    build_pyramid(stacks.pyramid, origin, area.centre, area.edge_u, area.edge_v)
     count = pyramid_candidates(geo, stacks.pyramid, stacks.candidates, stacks.top)
     occluder = stacks.occluder
     occluder[OCCLUDER_POSITION] = -1
@@ -154,76 +184,69 @@ def stratified_cell(j, count):
 
 
 @inlined_kernel
-def _light_point(centre, edge_u, edge_v, pattern, samples, j, key, stream, shift_a, shift_b):
-    """Point j of an area light's `samples` (see the module's docstring)."""
+def _light_point(area, pattern, samples, j, key, stream, shift):
+    """Point j of an area light's `samples` (see the module's docstring); `shift` is the
+    shading point's Halton offset."""
     if pattern == SHADOW_HALTON:
-        a = (radical_inverse(j + 1, 2) + shift_a) % 1.0
-        b = (radical_inverse(j + 1, 3) + shift_b) % 1.0
+        a = (radical_inverse(j + 1, 2) + shift[0]) % 1.0
+        b = (radical_inverse(j + 1, 3) + shift[1]) % 1.0
     else:
         a, b = uniform2(key, PURPOSE_LIGHT, stream, j)
     if pattern == SHADOW_STRATIFIED:
         x0, y0, w, h = stratified_cell(j, samples)
         a, b = x0 + a * w, y0 + b * h
-    return add(centre, add(scale(edge_u, a - 0.5), scale(edge_v, b - 0.5)))
+    return add(area.centre, add(scale(area.edge_u, a - 0.5), scale(area.edge_v, b - 0.5)))
 
 
 @kernel
-def local_colour(frame, lights, geo, stacks, origin, n, d, kd, ks, shininess, key, event):
-    """Colour at a point seen along unit d, with unit shading normal n facing the viewer;
-    shadow rays start at `origin` (the point lifted off the surface). `key` and `event`
-    select the area lights' random numbers.
+def local_colour(frame, lights, geo, stacks, point, phong, key, event):
+    """Colour at a `ShadingPoint` of a surface with `Phong` terms. `key` and `event` select
+    the area lights' random numbers.
 
     Each light aims its points into stacks.light_targets, `shadow_visibility` casts their
     shadow rays, and only then are the Phong terms summed, in a loop with no call in it."""
     frame, lights = borrowed(frame), borrowed(lights)
     geo, stacks = borrowed(geo), borrowed(stacks)
     targets, visibility = stacks.light_targets, stacks.visibility
-    to_viewer = scale(d, -1.0)
-    colour = mul(kd, as_tuple(frame.ambient))
+    origin, n = point.origin, point.normal
+    colour = mul(phong.kd, as_tuple(frame.ambient))
     for light in range(lights.sun_toward.shape[0]):
         toward = row(lights.sun_toward, light)
         targets[0, 0], targets[0, 1], targets[0, 2] = toward
         targets[0, 3] = math.inf
         shadow_visibility(geo, stacks, TRAVERSE_ALL, origin, n, 1)
-        colour = add(
-            colour,
-            _phong_lit(toward, row(lights.sun_intensity, light), visibility[0], n, to_viewer,
-                       kd, ks, shininess),
-        )  # fmt: skip
+        radiance = row(lights.sun_intensity, light)
+        colour = add(colour, _phong_lit(toward, radiance, visibility[0], point, phong))
     for light in range(lights.point_position.shape[0]):
         _aim(targets, 0, row(lights.point_position, light), origin)
         shadow_visibility(geo, stacks, TRAVERSE_ALL, origin, n, 1)
-        colour = add(
-            colour,
-            _lit_by(targets, visibility, 0, row(lights.point_intensity, light),
-                    row(lights.point_attenuation, light), n, to_viewer, kd, ks, shininess),
-        )  # fmt: skip
+        intensity = row(lights.point_intensity, light)
+        attenuation = row(lights.point_attenuation, light)
+        colour = add(colour, _lit_by(targets, visibility, 0, intensity, attenuation, point, phong))
     samples = frame.options[OPTION_SHADOW_SAMPLES]
     pattern = frame.options[OPTION_SHADOW_PATTERN]
     for light in range(lights.area_centre.shape[0]):
-        centre = row(lights.area_centre, light)
-        edge_u, edge_v = row(lights.area_edge_u, light), row(lights.area_edge_v, light)
+        area = AreaLight(
+            row(lights.area_centre, light),
+            row(lights.area_edge_u, light),
+            row(lights.area_edge_v, light),
+        )
         stream = event * 65536 + light
-        shift_a = shift_b = 0.0
+        shift = (0.0, 0.0)
         if pattern == SHADOW_HALTON:
-            shift_a, shift_b = uniform2(key, PURPOSE_LIGHT_SHIFT, stream, 0)
+            shift = uniform2(key, PURPOSE_LIGHT_SHIFT, stream, 0)
         for j in range(samples):
-            position = _light_point(
-                centre, edge_u, edge_v, pattern, samples, j, key, stream, shift_a, shift_b
-            )
-            _aim(targets, j, position, origin)
+            _aim(targets, j, _light_point(area, pattern, samples, j, key, stream, shift), origin)
         listed = TRAVERSE_ALL
         if frame.options[OPTION_SHADOW_CULLING]:
-            listed = light_candidates(geo, stacks, origin, centre, edge_u, edge_v)
+            listed = light_candidates(geo, stacks, origin, area)
         shadow_visibility(geo, stacks, listed, origin, n, samples)
         intensity = row(lights.area_intensity, light)
         attenuation = row(lights.area_attenuation, light)
         total = (0.0, 0.0, 0.0)
         for j in range(samples):
             total = add(
-                total,
-                _lit_by(targets, visibility, j, intensity, attenuation, n, to_viewer, kd, ks,
-                        shininess),
-            )  # fmt: skip
+                total, _lit_by(targets, visibility, j, intensity, attenuation, point, phong)
+            )
         colour = add(colour, scale(total, 1.0 / samples))
     return colour

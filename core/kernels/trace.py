@@ -8,14 +8,12 @@ boxes are opened first and farther ones skipped once a nearer hit is known. Shad
 the top level in leaf order instead (left child first), so that the transparencies they
 multiply come in one fixed order, the order an area light's candidate list keeps too.
 
-Boxes are tested with the slab method, widened by `SLAB_WIDEN` so that rounding never culls a
-box a ray truly crosses. Mesh BVHs are eight wide (`core.kernels.bvh_wide`); their boxes are
-float32 corners of float32 vertices, padded one float32 step, and tested in float32 with
-conservative rounding.
+Boxes are tested with the float64 slab test of `core.kernels.slabs`, which never culls a box
+a ray truly crosses. Mesh BVHs are eight wide (`core.kernels.bvh_wide`); their boxes are
+float32 corners of float32 vertices, padded one float32 step, and tested in float32.
 """
 
 from ..jit import inlined_kernel, kernel
-from .bvh_wide import SLAB_WIDEN
 from .csg import csg_closest, csg_transmittance
 from .mesh_trace import mesh_closest, mesh_crossings
 from .shapes import (
@@ -25,6 +23,7 @@ from .shapes import (
     count_crossings,
     intersect_analytic,
 )
+from .slabs import box_entry, widened
 from .vec import add, affine_point, affine_vector, inverse, max_abs, scale
 from .workspace import OCCLUDER_POSITION, OCCLUDER_SHAPE
 
@@ -37,38 +36,12 @@ SPAWN_OFFSET_ABSOLUTE = 1e-30
 
 
 @inlined_kernel
-def _slab(lo, hi, o, i, t_near, t_far):
-    """One axis of `box_entry`: the slab's entry and exit, ordered, clip [t_near, t_far].
-    Selects rather than a swap, so that rays of random direction do not mispredict a branch
-    per axis; the same comparisons, so the same bits."""
-    t0 = (lo - o) * i
-    t1 = (hi - o) * i
-    swap = t0 > t1
-    enter = t1 if swap else t0
-    leave = t0 if swap else t1
-    t_near = enter if enter > t_near else t_near
-    t_far = leave if leave < t_far else t_far
-    return t_near, t_far
-
-
-@inlined_kernel
-def box_entry(bounds, k, ox, oy, oz, ix, iy, iz, t_max):
-    """Entry distance of the ray (origin o, inverse direction i) into box k of bounds
-    (n, 6+) = (lo xyz, hi xyz, ...) within [0, t_max]; NO_HIT when it misses. NaNs (a ray
-    in a box's face plane) fail every comparison and so never cull."""
-    t_near, t_far = _slab(bounds[k, 0], bounds[k, 3], ox, ix, 0.0, t_max)
-    t_near, t_far = _slab(bounds[k, 1], bounds[k, 4], oy, iy, t_near, t_far)
-    t_near, t_far = _slab(bounds[k, 2], bounds[k, 5], oz, iz, t_near, t_far)
-    return t_near if t_near <= t_far * SLAB_WIDEN else NO_HIT
-
-
-@inlined_kernel
-def descend(bounds, child, ox, oy, oz, ix, iy, iz, t_max, stack, stack_t, top):
+def descend(bounds, child, o, inverse_d, t_max, stack, stack_t, top):
     """One step down from an inner node whose children are `child` and `child + 1`: test
     both boxes, go on to the nearer one hit and push the other if it is hit too.
     Returns (next node or -1 if neither is hit, new stack top)."""
-    t_left = box_entry(bounds, child, ox, oy, oz, ix, iy, iz, t_max)
-    t_right = box_entry(bounds, child + 1, ox, oy, oz, ix, iy, iz, t_max)
+    t_left = box_entry(bounds, child, o, inverse_d, 0.0, t_max)
+    t_right = box_entry(bounds, child + 1, o, inverse_d, 0.0, t_max)
     if t_left == NO_HIT:
         return (child + 1 if t_right != NO_HIT else -1), top
     if t_right == NO_HIT:
@@ -83,10 +56,11 @@ def descend(bounds, child, ox, oy, oz, ix, iy, iz, t_max, stack, stack_t, top):
 @inlined_kernel
 def pop_nearer(stack, stack_t, top, t_max):
     """The next waiting node that could still hold a hit nearer than t_max:
-    (node or -1 when none is left, new stack top)."""
+    (node or -1 when none is left, new stack top). A node's entry distance may exceed the
+    exact one by the slab test's rounding, which `widened` covers."""
     while top > 0:
         top -= 1
-        if stack_t[top] < t_max:
+        if stack_t[top] <= widened(t_max):
             return stack[top], top
     return -1, 0
 
@@ -108,11 +82,10 @@ def closest_hit(geo, o, d, t_max, stacks):
     kinds, params, meshes = geo.shape_kind, geo.shape_param, geo.shape_index
     transforms, roots = geo.shape_object_from_world, geo.mesh_root
     boxes, links, corners = geo.node_boxes, geo.node_links, geo.tri_corners
-    ox, oy, oz = o
-    ix, iy, iz = inverse(d)
+    inverse_d = inverse(d)
     best_shape, best_t, best_part, best_b1, best_b2 = -1, t_max, -1, 0.0, 0.0
     node = -1
-    if info.shape[0] > 0 and box_entry(bounds, 0, ox, oy, oz, ix, iy, iz, t_max) != NO_HIT:
+    if info.shape[0] > 0 and box_entry(bounds, 0, o, inverse_d, 0.0, t_max) != NO_HIT:
         node = 0
     top = 0
     while node >= 0:
@@ -142,9 +115,7 @@ def closest_hit(geo, o, d, t_max, stacks):
                     best_shape, best_t, best_part, best_b1, best_b2 = shape, t, part, b1, b2
             node = -1
         else:
-            node, top = descend(
-                bounds, info[node, 0], ox, oy, oz, ix, iy, iz, best_t, stack, stack_t, top
-            )
+            node, top = descend(bounds, info[node, 0], o, inverse_d, best_t, stack, stack_t, top)
         if node < 0:
             node, top = pop_nearer(stack, stack_t, top, best_t)
     if best_shape < 0:
@@ -153,11 +124,11 @@ def closest_hit(geo, o, d, t_max, stacks):
 
 
 @inlined_kernel
-def descend_in_order(bounds, child, ox, oy, oz, ix, iy, iz, t_max, stack, top):
+def descend_in_order(bounds, child, o, inverse_d, t_max, stack, top):
     """`descend` for queries that want every hit, not the nearest: the left child first,
     whatever the distances, so leaves come in leaf order. Returns (next node or -1, top)."""
-    left = box_entry(bounds, child, ox, oy, oz, ix, iy, iz, t_max) != NO_HIT
-    right = box_entry(bounds, child + 1, ox, oy, oz, ix, iy, iz, t_max) != NO_HIT
+    left = box_entry(bounds, child, o, inverse_d, 0.0, t_max) != NO_HIT
+    right = box_entry(bounds, child + 1, o, inverse_d, 0.0, t_max) != NO_HIT
     if left and right:
         stack[top] = child + 1
         return child, top + 1
@@ -182,7 +153,7 @@ def shape_transmittance(geo, shape, o, d, t_max, stacks):
     if kind == SHAPE_MESH:
         crossings = mesh_crossings(
             geo.node_boxes, geo.node_links, geo.tri_corners, geo.mesh_root[geo.shape_index[shape]],
-            o_obj, d_obj, t_max, tau == 0.0, stacks.mesh,
+            o_obj, d_obj, 0.0, t_max, tau == 0.0, None, None, stacks.mesh,
         )  # fmt: skip
     else:
         major, minor = geo.shape_param[shape, 0], geo.shape_param[shape, 1]
@@ -213,15 +184,14 @@ def transmittance(geo, o, d, t_max, stacks, listed):
     One loop serves both sources, so that the shape tests are compiled once."""
     bounds, info, order = geo.top_bounds, geo.top_info, geo.top_order
     stack, candidates, occluder = stacks.top, stacks.candidates, stacks.occluder
-    ox, oy, oz = o
-    ix, iy, iz = inverse(d)
+    inverse_d = inverse(d)
     light = 1.0
     # Traversal state: the next node to open, and the leaf's shapes order[k:end] being tried
     node = -1
     if (
         listed < 0
         and info.shape[0] > 0
-        and box_entry(bounds, 0, ox, oy, oz, ix, iy, iz, t_max) != NO_HIT
+        and box_entry(bounds, 0, o, inverse_d, 0.0, t_max) != NO_HIT
     ):
         node = 0
     top = k = end = 0
@@ -242,7 +212,7 @@ def transmittance(geo, o, d, t_max, stacks, listed):
                 light *= hinted_factor
                 continue
             shape = candidates[position]
-            if box_entry(geo.shape_bounds, shape, ox, oy, oz, ix, iy, iz, t_max) == NO_HIT:
+            if box_entry(geo.shape_bounds, shape, o, inverse_d, 0.0, t_max) == NO_HIT:
                 continue
         elif k < end:
             shape = order[k]
@@ -257,7 +227,7 @@ def transmittance(geo, o, d, t_max, stacks, listed):
                     leaf, node = node, -1
                 else:
                     node, top = descend_in_order(
-                        bounds, info[node, 0], ox, oy, oz, ix, iy, iz, t_max, stack, top
+                        bounds, info[node, 0], o, inverse_d, t_max, stack, top
                     )
             if leaf < 0:
                 break

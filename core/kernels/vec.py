@@ -100,14 +100,18 @@ def affine_transpose_vector(matrices, i, v):
 
 @kernel
 def _inverse(d):
-    return (1.0 / d[0], 1.0 / d[1], 1.0 / d[2])
+    # + 0.0 turns -0 into +0 (round to nearest), and so its inverse into +inf
+    return (1.0 / (d[0] + 0.0), 1.0 / (d[1] + 0.0), 1.0 / (d[2] + 0.0))
 
 
 def _inverse_in_python(d):
     """Python's float division raises at zero where compiled code (numpy's error model) gives
-    the signed infinity every slab test relies on."""
-    return tuple(1.0 / c if c != 0.0 else math.copysign(math.inf, c) for c in d)
+    the infinity every slab test relies on."""
+    return tuple(1.0 / c if c != 0.0 else math.inf for c in d)
 
 
-# 1 / d per component, inf where a component is zero: the slab tests' inverse direction
+# 1 / d per component, +inf where a component is zero, -0 included: a zero's inverse must not
+# take its sign, because a line lying in a box's face plane then gives (plane - o) * inverse =
+# NaN on one side and -inf on the other, and the slab tests, which skip the NaN, took the -inf
+# as the exit: they culled the box (found by the whole-line slab tests, for d = -0)
 inverse = _inverse_in_python if numba.config.DISABLE_JIT else _inverse
