@@ -12,7 +12,7 @@ import importlib
 
 from .errors import SceneError
 from .image_io import save_png
-from .scene import (
+from .model import (
     AreaLight,
     Box,
     Camera,

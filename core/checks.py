@@ -9,6 +9,9 @@ import numpy as np
 
 from .errors import SceneError
 
+# An RGB colour, a point or a direction, as the scene model's fields take it
+Vec3 = tuple[float, float, float]
+
 # A transform whose smallest singular value is below this fraction of its largest squashes
 # the shape flat: the inverse needed for object-space intersection would be meaningless.
 SINGULAR_RATIO = 1e-12

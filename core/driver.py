@@ -32,7 +32,7 @@ from .kernels.workspace import (
     SHADOW_RAYS_UNOBSTRUCTED,
     new_workspace,
 )
-from .scene import RenderSettings, Scene
+from .model import RenderSettings, Scene
 
 # How often the driver asks "cancelled?" while tiles are still running.
 _CANCEL_POLL_S = 0.05

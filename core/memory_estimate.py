@@ -23,8 +23,7 @@ from dataclasses import dataclass
 
 from .checks import machine_memory
 from .errors import SceneError
-from .scene_parts import Texture
-from .shapes import Mesh
+from .model import Mesh, Texture
 
 TRIANGLE_PEAK_BYTES = 700
 TEXEL_BYTES, TEXEL_LOADING_BYTES = 12, 120

@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .scene import TriangleMesh
+from .model import TriangleMesh
 
 _COMMENT = re.compile(rb"#[^\n]*")
 # Stands for a line break among the tokens: a byte no OBJ file holds, and not whitespace

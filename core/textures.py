@@ -9,7 +9,7 @@ import numpy as np
 from PIL import Image, UnidentifiedImageError
 
 from .errors import SceneError
-from .scene_parts import Texture
+from .model import Texture
 
 # 8192 x 8192: 0.8 GB as the kernels' float32 RGB. A small PNG can hold far more pixels (a
 # 140 KB file of one colour unpacked to 5.2 GB), so the size is read before the pixels

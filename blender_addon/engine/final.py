@@ -12,13 +12,18 @@ from .. import core, export
 from ..core.warmup_process import shared_warmup
 from ..reporting import report_internal_failure
 
+# Meshes converted by earlier final renders of this Blender session, so that the frames of an
+# animation re-export only the meshes that changed. Kept here, not on the engine: Blender
+# makes a new RenderEngine for each render, which would keep them for one frame only
+MESHES = export.MeshCache()
+
 
 def render(engine, depsgraph):
     """Render the depsgraph's frame into `engine`'s result. Esc (`cancelled`) is polled by
     the driver between tiles and while the kernels warm up."""
     try:
         start = time.perf_counter()
-        scene, settings, warnings = export.convert(depsgraph)
+        scene, settings, warnings = export.convert(depsgraph, MESHES)
         export_s = time.perf_counter() - start
         for warning in warnings:
             engine.report({"WARNING"}, warning)

@@ -10,18 +10,24 @@ import numpy as np
 
 from .. import core
 from . import camera, light, settings, world
-from .instances import MESH_CACHE, Exporter
+from .instances import Exporter
+from .mesh import MeshCache
 
 # Curves, text, surfaces and metaballs are listed too as the mesh instances they evaluate to
 GEOMETRY_TYPES = {"MESH"}
 
 
-def convert(depsgraph) -> tuple[core.Scene, core.RenderSettings, list[str]]:
-    """Export the evaluated scene. Returns (scene, settings, warnings); raises SceneError."""
+def convert(
+    depsgraph, mesh_cache: MeshCache | None = None
+) -> tuple[core.Scene, core.RenderSettings, list[str]]:
+    """Export the evaluated scene. Returns (scene, settings, warnings); raises SceneError.
+    `mesh_cache` is the caller's `MeshCache`, kept from one export to the next (the final
+    render's, the viewport's); without one, every mesh is converted afresh."""
+    mesh_cache = MeshCache() if mesh_cache is None else mesh_cache
     scene = depsgraph.scene
     render = settings.convert(scene)
     ambient = world.convert(scene.world)
-    exporter = Exporter(depsgraph)
+    exporter = Exporter(depsgraph, mesh_cache)
     lights, skipped = [], []
     for instance in depsgraph.object_instances:
         obj = instance.object
@@ -40,7 +46,7 @@ def convert(depsgraph) -> tuple[core.Scene, core.RenderSettings, list[str]]:
                 f"object '{obj.name}' is an Empty tagged {tags.whitted.shape.title()}: only "
                 "mesh objects can carry a Whitted shape; it is not rendered"
             )
-    MESH_CACHE.keep_only(exporter.meshes.keys())
+    mesh_cache.keep_only(exporter.meshes.keys())
     warnings = list(exporter.warnings)
     if skipped:
         names = ", ".join(f"'{name}'" for name in sorted(set(skipped))[:5])

@@ -13,16 +13,14 @@ from ..properties.shape_tags import BY_TAG
 from . import csg, material
 from .mesh import MeshCache
 
-# Meshes converted for earlier renders in this Blender session (frames of an animation)
-MESH_CACHE = MeshCache()
-
 
 class Exporter:
     """Collects shapes from object instances: one `TriangleMesh` per distinct mesh, one
     `Material` per Blender material, and the warnings for the user."""
 
-    def __init__(self, depsgraph):
+    def __init__(self, depsgraph, mesh_cache: MeshCache):
         self.depsgraph = depsgraph
+        self.mesh_cache = mesh_cache
         self.shapes: list = []
         self.warnings: list[str] = []
         self.materials: dict[str, core.Material] = {}
@@ -68,7 +66,7 @@ class Exporter:
         mesh = obj.original.data
         key = ("original", mesh.name_full)
         if key not in self.meshes:
-            self.meshes[key] = MESH_CACHE.get(key, mesh, mesh.name)
+            self.meshes[key] = self.mesh_cache.get(key, mesh, mesh.name)
         return core.Mesh(obj.name, material, mesh=self.meshes[key][0])
 
     def _instance_mesh(self, obj) -> dict:
@@ -81,7 +79,7 @@ class Exporter:
         owner = source.name_full if len(obj.modifiers) or source.type != "MESH" else ""
         key = ("evaluated", owner, obj.data.original.name_full)
         if key not in self.meshes:
-            self.meshes[key] = MESH_CACHE.get(key, obj.data, obj.data.name)
+            self.meshes[key] = self.mesh_cache.get(key, obj.data, obj.data.name)
         return self.meshes[key][1]
 
     def material(self, obj, slot: int | None = None) -> core.Material:

@@ -6,7 +6,7 @@ from bpy.props import (
     IntProperty,
 )
 
-from ..core.scene import DEFAULT_PIXEL_SAMPLES, DEFAULT_SHADOW_SAMPLES
+from ..core.model.settings import DEFAULT_PIXEL_SAMPLES, DEFAULT_SHADOW_SAMPLES
 
 
 class WhittedSceneSettings(bpy.types.PropertyGroup):

@@ -7,7 +7,7 @@ with default settings, so tagging that primitive renders the exact shape where i
 
 from dataclasses import dataclass
 
-from ..core.shapes import ANALYTIC_SHAPES, Box, Cone, Cylinder, Sphere, Torus
+from ..core.model.shapes import ANALYTIC_SHAPES, Box, Cone, Cylinder, Sphere, Torus
 
 
 @dataclass(frozen=True)

@@ -29,7 +29,7 @@ import numpy as np
 
 from ..kernels.layout import PackedScene
 from ..memory_estimate import check_fits, estimate
-from ..scene import RenderSettings, Scene
+from ..model import RenderSettings, Scene
 from .csg import pack_csg
 from .frame import pack_frame
 from .lights import pack_lights

@@ -15,7 +15,7 @@ import numpy as np
 
 from ..checks import valid_affine
 from ..errors import SceneError
-from ..shapes import Csg, Shape
+from ..model import Csg, Shape
 from ..vocabulary import CSG_INTERSECTION, CSG_OPERATIONS, CSG_UNION, MAX_OPERANDS
 
 

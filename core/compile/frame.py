@@ -19,7 +19,7 @@ from ..kernels.options import (
     PIXEL_PATTERNS,
     SHADOW_PATTERNS,
 )
-from ..scene import RenderSettings, Scene
+from ..model import RenderSettings, Scene
 
 # Listing an area light's shapes costs about as much per shading point as tracing a few
 # shadow rays: on the final scene (300 x 300) culling was slower at 1 to 6 rays per light

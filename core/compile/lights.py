@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..kernels.layout import Lights
-from ..scene import AreaLight, DirectionalLight, PointLight
+from ..model import AreaLight, DirectionalLight, PointLight
 from .arrays import rows
 
 

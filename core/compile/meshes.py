@@ -17,7 +17,7 @@ from ..kernels.bvh_build import build_bvh
 from ..kernels.bvh_collapse import collapse_to_wide
 from ..kernels.bvh_wide import LEAF_COUNT_BITS, number_leaf_blocks, offset_links
 from ..kernels.triangles import LEAF_WIDTH
-from ..shapes import Mesh, TriangleMesh
+from ..model import Mesh, TriangleMesh
 
 # Leaves of up to MESH_MAX_LEAF triangles; a node visit costs about as much as this many
 # triangle tests. Chosen on the million-triangle benchmark mesh with the four-wide BVH, all

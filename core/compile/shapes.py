@@ -14,7 +14,7 @@ from ..kernels.bvh_build import build_bvh
 from ..kernels.bvh_wide import WIDTH
 from ..kernels.layout import Geometry
 from ..kernels.triangles import LEAF_WIDTH
-from ..scene import Csg, Mesh, Torus
+from ..model import Csg, Mesh, Torus
 from .arrays import concatenated
 from .csg import CsgTables, csg_world_box
 from .meshes import MeshTables, has_triangles

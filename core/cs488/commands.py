@@ -13,8 +13,8 @@ from pathlib import Path
 import numpy as np
 from PIL import Image, UnidentifiedImageError
 
+from ..model import AreaLight, Material, PointLight, Texture, TriangleMesh
 from ..obj_file import ObjError, read_obj, summed_face_normals
-from ..scene import AreaLight, Material, PointLight, Texture, TriangleMesh
 from ..textures import open_image, too_large
 from ..vocabulary import MAX_OPERANDS
 from .graph import (

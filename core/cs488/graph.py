@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..scene import Box, Cone, Csg, Cylinder, Material, Mesh, Sphere, Torus, TriangleMesh
+from ..model import Box, Cone, Csg, Cylinder, Material, Mesh, Sphere, Torus, TriangleMesh
 from ..vocabulary import CSG_OPERATIONS
 from .sandbox import ArgumentError, ScriptObject
 

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import SceneError
-from ..scene import Camera, Material, RenderSettings, Scene
+from ..model import Camera, Material, RenderSettings, Scene
 from .graph import CsgNode, GeometryNode, Node, vec3
 from .sandbox import ArgumentError
 

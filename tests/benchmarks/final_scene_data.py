@@ -20,7 +20,7 @@ import addon_utils
 addon_utils.enable("whitted", default_set=True, handle_error=None)
 bpy.ops.wm.open_mainfile(filepath=sys.argv[1])
 from blender_addon import export
-from tests.blender.render_view import export_scenes
+from tests.support.render_view import export_scenes
 _, scene, settings = export_scenes(bpy, export)[0]
 with open(sys.argv[2], "wb") as f:
     pickle.dump((scene, settings), f)

@@ -7,8 +7,8 @@ import pytest
 from PIL import Image
 
 import core
-from tests.blender.blender_reference import expected_pixels, sample_grid
 from tests.blender.versions import SUPPORTED
+from tests.support.blender_reference import expected_pixels, sample_grid
 
 pytestmark = pytest.mark.bpy
 

@@ -11,7 +11,7 @@ import pytest
 
 import core
 from tests.blender.conftest import ROOT
-from tests.blender.render_view import export_scenes
+from tests.support.render_view import export_scenes
 
 pytestmark = pytest.mark.bpy
 SAMPLES = sorted((ROOT / "sample_blends").glob("*.blend"))

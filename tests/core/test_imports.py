@@ -9,7 +9,7 @@ from tests.support import ROOT
 
 PROBE = """
 import sys
-import core, core.scene, core.cs488, core.cs488.script_child
+import core, core.model, core.cs488, core.cs488.script_child
 print("numba before", "numba" in sys.modules)
 from core import render
 import core.driver

@@ -2,9 +2,10 @@
 every shape class names a distinct kernel kind, the model's CSG operations and sampling
 patterns are the vocabulary's, and the A4 language's CSG names map onto all of them."""
 
-from core import shapes, vocabulary
+from core import vocabulary
 from core.cs488.graph import A4_OPERATIONS
-from core.scene import PIXEL_SAMPLINGS, SHADOW_SAMPLINGS, RenderSettings
+from core.model import RenderSettings, shapes
+from core.model.settings import PIXEL_SAMPLINGS, SHADOW_SAMPLINGS
 
 
 def test_every_shape_class_has_its_own_kernel_kind():

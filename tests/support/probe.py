@@ -10,7 +10,7 @@ from core.kernels.light_pyramid import TRAVERSE_ALL
 from core.kernels.surface import surface_at
 from core.kernels.trace import closest_hit, transmittance
 from core.kernels.workspace import new_workspace
-from core.scene import RenderSettings, Scene
+from core.model import RenderSettings, Scene
 
 WORKSPACE = new_workspace(8)
 

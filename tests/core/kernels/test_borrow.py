@@ -13,7 +13,7 @@ from core.compile import pack_scene
 from core.jit import kernel
 from core.kernels.borrow import borrowed
 from core.kernels.workspace import new_workspace
-from core.scene import RenderSettings
+from core.model import RenderSettings
 from tests.support.meshes import icosphere
 
 pytestmark = pytest.mark.skipif(

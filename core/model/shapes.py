@@ -21,10 +21,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .checks import check_affine, check_array, check_choice, check_flag, check_number
-from .errors import SceneError
-from .scene_parts import Material
-from .vocabulary import (
+from ..checks import check_affine, check_array, check_choice, check_flag, check_number
+from ..errors import SceneError
+from ..vocabulary import (
     CSG_OPERATIONS,
     SHAPE_BOX,
     SHAPE_CONE,
@@ -34,6 +33,7 @@ from .vocabulary import (
     SHAPE_SPHERE,
     SHAPE_TORUS,
 )
+from .materials import Material
 
 
 def _identity() -> np.ndarray:

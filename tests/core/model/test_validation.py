@@ -104,9 +104,9 @@ def test_region_outside_image():
 
 def test_an_image_larger_than_the_machine_is_refused_before_it_is_allocated(monkeypatch):
     """A 65536 x 65536 frame started, and would have needed 64 GiB of float pixels."""
-    import core.scene
+    import core.model.settings
 
-    monkeypatch.setattr(core.scene, "machine_memory", lambda: 24 * 2**30)
+    monkeypatch.setattr(core.model.settings, "machine_memory", lambda: 24 * 2**30)
     settings = RenderSettings(65536, 65536)
     with pytest.raises(SceneError, match=r"width, height: a 65536 x 65536 image needs 64.0 GiB"):
         render_tiny(ball_on_ground(), settings)

@@ -1,105 +1,12 @@
-"""The scene model: small dataclasses a person can read, and their validation.
-
-Everything here is plain Python and numpy; nothing is Blender-specific. Exporters (the
-Blender add-on, the Lua loader) build these objects; `core.compile` turns them into the flat
-arrays the kernels read. Validation lives with the classes, so every front end gets the same
-`SceneError` naming the object and the field. The shapes live in `core.shapes`, cameras,
-lights and materials in `core.scene_parts`; both are re-exported here.
-"""
+"""How to render: image size, tiling, threads, recursion and sampling."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
-import numpy as np
-
-from .checks import (
-    check_choice,
-    check_count,
-    check_flag,
-    check_vec3,
-    machine_memory,
-    valid_affine,
-)
-from .errors import SceneError
-from .scene_parts import (
-    AreaLight,
-    Camera,
-    DirectionalLight,
-    Material,
-    PointLight,
-    Texture,
-    Vec3,
-)
-from .shapes import Box, Cone, Csg, Cylinder, Mesh, Shape, Sphere, Torus, TriangleMesh
-from .vocabulary import PIXEL_PATTERNS, SHADOW_PATTERNS
-
-__all__ = [
-    "AreaLight",
-    "Box",
-    "Camera",
-    "Cone",
-    "Csg",
-    "Cylinder",
-    "DirectionalLight",
-    "Material",
-    "Mesh",
-    "PointLight",
-    "RenderSettings",
-    "Scene",
-    "Shape",
-    "Sphere",
-    "Texture",
-    "Torus",
-    "TriangleMesh",
-]
-
-
-@dataclass
-class Scene:
-    """Everything that is rendered.
-
-    camera      -- the `Camera`
-    shapes      -- the `Shape`s (Sphere, Box, Cylinder, Cone, Torus, Mesh, Csg)
-    lights      -- `PointLight`s, `AreaLight`s and `DirectionalLight`s
-    ambient     -- linear RGB ambient light, added as kd * ambient
-    background  -- linear RGB colour of rays that hit nothing
-    """
-
-    camera: Camera = field(default_factory=Camera)
-    shapes: list = field(default_factory=list)
-    lights: list = field(default_factory=list)
-    ambient: Vec3 = (0.0, 0.0, 0.0)
-    background: Vec3 = (0.0, 0.0, 0.0)
-
-    def validate(self) -> None:
-        self.camera.validate()
-        for i, light in enumerate(self.lights):
-            if not isinstance(light, (PointLight, AreaLight, DirectionalLight)):
-                raise SceneError("scene", f"lights[{i}]", f"got {light!r}; need a light")
-            light.validate()
-        for i, shape in enumerate(self.shapes):
-            if not isinstance(shape, Shape) or type(shape) is Shape:
-                raise SceneError("scene", f"shapes[{i}]", f"got {shape!r}; need a shape")
-        checked = self._checked_transforms()
-        for shape in self.shapes:
-            shape.validate(checked)
-        check_vec3("scene", "ambient", self.ambient, nonnegative=True)
-        check_vec3("scene", "background", self.background, nonnegative=True)
-
-    def _checked_transforms(self) -> set:
-        """Ids of the shapes' transforms found valid, all checked at once (thousands of
-        shapes would spend seconds one by one); the others are left to each shape's own
-        check, which names it."""
-        try:
-            matrices = np.array([s.world_from_object for s in self.shapes], float)
-        except (TypeError, ValueError):
-            return set()
-        if matrices.shape != (len(self.shapes), 4, 4):
-            return set()
-        ok = valid_affine(matrices)
-        return {id(s.world_from_object) for s, good in zip(self.shapes, ok, strict=True) if good}
-
+from ..checks import check_choice, check_count, check_flag, machine_memory
+from ..errors import SceneError
+from ..vocabulary import PIXEL_PATTERNS, SHADOW_PATTERNS
 
 PIXEL_SAMPLINGS = tuple(PIXEL_PATTERNS)
 SHADOW_SAMPLINGS = tuple(SHADOW_PATTERNS)

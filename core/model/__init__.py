@@ -1,0 +1,44 @@
+"""The scene model: small dataclasses a person can read, and their validation, a module each.
+
+    camera.py     Camera
+    lights.py     PointLight, DirectionalLight, AreaLight
+    materials.py  Material, Texture
+    shapes.py     Sphere, Box, Cylinder, Cone, Torus, TriangleMesh and Mesh, Csg
+    scene.py      Scene
+    settings.py   RenderSettings and its defaults and limits
+
+Everything here is plain Python and numpy; nothing is Blender-specific, and nothing imports
+numba. Exporters (the Blender add-on, the Lua loader) build these objects; `core.compile` turns
+them into the flat arrays the kernels read. Validation lives with the classes, so every front
+end gets the same `SceneError` naming the object and the field.
+
+Conventions: world space is z-up like Blender's; colours are linear RGB; distances are in
+scene units; angles are in degrees.
+"""
+
+from .camera import Camera
+from .lights import AreaLight, DirectionalLight, PointLight
+from .materials import Material, Texture
+from .scene import Scene
+from .settings import RenderSettings
+from .shapes import Box, Cone, Csg, Cylinder, Mesh, Shape, Sphere, Torus, TriangleMesh
+
+__all__ = [
+    "AreaLight",
+    "Box",
+    "Camera",
+    "Cone",
+    "Csg",
+    "Cylinder",
+    "DirectionalLight",
+    "Material",
+    "Mesh",
+    "PointLight",
+    "RenderSettings",
+    "Scene",
+    "Shape",
+    "Sphere",
+    "Texture",
+    "Torus",
+    "TriangleMesh",
+]

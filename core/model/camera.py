@@ -1,0 +1,53 @@
+"""The camera: the report's pinhole, plus a thin lens for depth of field."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..checks import Vec3, check_number, check_vec3
+from ..errors import SceneError
+
+
+@dataclass
+class Camera:
+    """A camera: the report's eye/view/up/fovy pinhole, plus a thin lens for depth of field.
+
+    eye             -- position of the centre of projection (the centre of the lens)
+    view            -- direction the camera looks along; any non-zero length
+    up              -- a direction that appears upwards in the image; not parallel to `view`
+    fovy            -- vertical field of view in degrees, strictly between 0 and 180
+    aperture_radius -- radius of the lens; 0 is a pinhole (everything sharp)
+    focal_distance  -- distance along `view` of the plane that is in focus, > 0
+    shift           -- (x, y) offset of the image on the image plane, in half-widths and
+                       half-heights of the image (a view-camera lens shift, as Blender's
+                       projection matrix gives it): verticals stay vertical
+    """
+
+    eye: Vec3 = (0.0, 0.0, 0.0)
+    view: Vec3 = (0.0, 0.0, -1.0)
+    up: Vec3 = (0.0, 1.0, 0.0)
+    fovy: float = 50.0
+    name: str = "Camera"
+    aperture_radius: float = 0.0
+    focal_distance: float = 10.0
+    shift: tuple[float, float] = (0.0, 0.0)
+
+    def validate(self) -> None:
+        owner = f"camera '{self.name}'"
+        check_vec3(owner, "eye", self.eye)
+        view = check_vec3(owner, "view", self.view, nonzero=True)
+        up = check_vec3(owner, "up", self.up, nonzero=True)
+        check_number(owner, "fovy", self.fovy, low=0.0, high=180.0, low_open=True)
+        if self.fovy == 180.0:
+            raise SceneError(owner, "fovy", "got 180.0; use an angle between 0 and 180")
+        view, up = view / np.linalg.norm(view), up / np.linalg.norm(up)
+        if np.linalg.norm(np.cross(view, up)) < 1e-9:
+            raise SceneError(owner, "up", f"{self.up} is parallel to view {self.view}")
+        check_number(owner, "aperture_radius", self.aperture_radius, low=0.0)
+        check_number(owner, "focal_distance", self.focal_distance, low=0.0, low_open=True)
+        if len(self.shift) != 2:
+            raise SceneError(owner, "shift", f"got {self.shift!r}; use two numbers (x, y)")
+        for value in self.shift:
+            check_number(owner, "shift", value)

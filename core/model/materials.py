@@ -1,0 +1,81 @@
+"""Materials and their textures."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..checks import Vec3, check_number, check_vec3
+from ..errors import SceneError
+
+
+@dataclass(eq=False)
+class Texture:
+    """An image that replaces a material's diffuse colour, looked up bilinearly and repeated.
+
+    path    -- an image file Pillow can read (PNG, JPEG, ...); or None when `pixels` is given
+    pixels  -- alternatively an (h, w, 3) or (h, w, 4) float array in [0, 1], row 0 at the top
+    srgb    -- whether the values are sRGB-encoded (true of ordinary image files, and Blender's
+               colour textures) and so converted to linear; False uses them as they are (the
+               report's renderer did)
+    """
+
+    path: str | Path | None = None
+    pixels: np.ndarray | None = None
+    srgb: bool = True
+    name: str = "Texture"
+
+    def validate(self, owner: str) -> None:
+        if (self.path is None) == (self.pixels is None):
+            raise SceneError(owner, "texture", "give either an image file path or pixels")
+        if self.pixels is not None:
+            p = np.asarray(self.pixels)
+            if p.ndim != 3 or p.shape[2] not in (3, 4) or min(p.shape[:2]) < 1:
+                raise SceneError(owner, "texture", f"pixels of shape {p.shape}; use (h, w, 3|4)")
+            return
+        path = Path(self.path)
+        if not path.is_file():
+            raise SceneError(owner, "texture", f"image file '{path}' does not exist")
+
+
+@dataclass(eq=False)
+class Material:
+    """The report's material: Phong, plus mirror reflection, refraction and a texture.
+
+    diffuse       -- linear RGB diffuse reflectance kd, each channel >= 0
+    specular      -- linear RGB specular reflectance ks, each channel >= 0
+    shininess     -- Phong exponent p >= 0 in ks (R.V)^p
+    reflectivity  -- 0..1: weight of the mirror-reflected colour added to the surface colour
+    transparency  -- 0..1: fraction of the colour that comes from the dielectric: Fresnel's
+                     reflectance F times the reflected colour plus (1 - F) times the refracted
+                     colour; the other 1 - transparency is the surface colour plus mirror
+    outer_ior     -- index of refraction outside the surface (> 0)
+    inner_ior     -- index of refraction inside it (> 0); glass is about 1.5
+    texture       -- a `Texture` replacing `diffuse`, or None
+    """
+
+    diffuse: Vec3 = (0.8, 0.8, 0.8)
+    specular: Vec3 = (0.0, 0.0, 0.0)
+    shininess: float = 1.0
+    name: str = "Material"
+    reflectivity: float = 0.0
+    transparency: float = 0.0
+    outer_ior: float = 1.0
+    inner_ior: float = 1.0
+    texture: Texture | None = None
+
+    def validate(self, user: str) -> None:
+        owner = f"material '{self.name}' (on {user})"
+        check_vec3(owner, "diffuse", self.diffuse, nonnegative=True)
+        check_vec3(owner, "specular", self.specular, nonnegative=True)
+        check_number(owner, "shininess", self.shininess, low=0.0)
+        check_number(owner, "reflectivity", self.reflectivity, low=0.0, high=1.0)
+        check_number(owner, "transparency", self.transparency, low=0.0, high=1.0)
+        check_number(owner, "outer_ior", self.outer_ior, low=0.0, low_open=True)
+        check_number(owner, "inner_ior", self.inner_ior, low=0.0, low_open=True)
+        if self.texture is not None:
+            if not isinstance(self.texture, Texture):
+                raise SceneError(owner, "texture", f"got {self.texture!r}; need a Texture")
+            self.texture.validate(owner)
