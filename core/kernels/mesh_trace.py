@@ -3,10 +3,9 @@ the nearest triangle (`mesh_closest`), and the crossings of a segment or of a wh
 (`mesh_crossings`: counted for shadow rays, listed for CSG).
 
 See `core.kernels.bvh_wide` for the node layout, `core.kernels.slabs` for its float32 slab
-test, and
-`core.kernels.triangles` for the leaf blocks and the watertight triangle test. Each traversal
-keeps its own fixed-size stack (`MESH_STACK_SIZE`), indexed as unsigned so that numba does
-not emit its negative-index wraparound on every push and pop.
+test, and `core.kernels.triangles` for the leaf blocks and the watertight triangle test. Each
+traversal keeps its own fixed-size stack (`MESH_STACK_SIZE`), indexed as unsigned so that
+numba does not emit its negative-index wraparound on every push and pop.
 
 A node's eight children are pushed by eight straight-line calls rather than a loop: numba
 compiles a loop over a tuple of eight into a jump table, and its indirect branches cost more
