@@ -35,6 +35,13 @@ from .vec import affine_point, affine_vector, inverse
 # event (the same relative size as the spawn offset in `trace`)
 COINCIDENT_RELATIVE = 1e-9
 
+# Crossings of one mesh closer than this, relative to the size of the distances involved, are
+# one event: the distances two triangles compute for a point of their shared edge differ by
+# rounding (a few units in the last place: 38.67452487468917 and ...16 for one edge), and
+# counted apart, a ray through that edge entered twice and the solid lost its span. Far
+# finer than any two surfaces a scene could tell apart
+MESH_COINCIDENT_RELATIVE = 1e-12
+
 # Spans of one ray's evaluation (all operands at once), and mesh crossings of one operand;
 # a ray that would need more drops the excess and is counted in span_overflow
 SPAN_CAPACITY = 512
@@ -78,9 +85,10 @@ def _sort_crossings(cross_f, cross_i, n):
 def _mesh_spans(geo, row, o, d, scratch, at):
     """Spans of a closed mesh along the line: every crossing, sorted, with the winding
     number counted from -inf; inside is where it is not zero, so either orientation works.
-    Crossings at the same distance (a ray through a shared edge or vertex, reported by each
-    triangle there) count once per facing: a ray through an edge between two faces facing it
-    enters once; one grazing a silhouette edge enters and leaves, and stays outside."""
+    Crossings at the same distance, to rounding (a ray through a shared edge or vertex,
+    reported by each triangle there), count once per facing: a ray through an edge between
+    two faces facing it enters once; one grazing a silhouette edge enters and leaves, and
+    stays outside."""
     span_f, span_i = scratch.span_f, scratch.span_i
     cross_f, cross_i = scratch.cross_f, scratch.cross_i
     n = mesh_line_crossings(
@@ -90,13 +98,17 @@ def _mesh_spans(geo, row, o, d, scratch, at):
     if n == cross_f.shape[0]:
         scratch.overflow[0] += 1
     _sort_crossings(cross_f, cross_i, n)
+    scale = max(abs(o[0]), abs(o[1]), abs(o[2])) / math.sqrt(
+        d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
+    )
     winding = 0
     k = at
     i = 0
     while i < n:
         t = cross_f[i, 0]
+        same = t + MESH_COINCIDENT_RELATIVE * (abs(t) + scale)
         entering = leaving = -1
-        while i < n and cross_f[i, 0] == t:
+        while i < n and cross_f[i, 0] <= same:
             if cross_i[i, 1] > 0:
                 entering = i
             else:

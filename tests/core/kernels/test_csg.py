@@ -22,6 +22,8 @@ from core import (
     TriangleMesh,
     render,
 )
+from core.kernels.mesh_trace import mesh_line_crossings
+from core.vocabulary import SHAPE_MESH
 from tests.support.probe import hits, light_through, packed_shapes, surface
 from tests.support.reference_shapes import (
     constraint_normal,
@@ -242,6 +244,41 @@ def test_a_closed_mesh_operand_cuts_like_its_analytic_twin_even_through_its_edge
     both = np.isfinite(t_mesh) & np.isfinite(t_box)
     np.testing.assert_allclose(t_mesh[both], t_box[both], rtol=1e-6)
     assert both.sum() > 1000
+
+
+# A line through the diagonal of the cube mesh's y = +1 face (the edge its two triangles
+# share), found by the test above in Blender 5.2's environment: the two triangles put the
+# point 1 ulp apart (38.67452487468917 and ...16), and the mesh solid lost the ray
+EDGE_LINE_ORIGIN = ("0x1.f54a7e12641d5p+1", "0x1.6f2406faf1893p+3", "0x1.4429d83b64d6dp+4")
+EDGE_LINE_DIRECTION = ("-0x1.cb446d4ea060cp-4", "-0x1.154d2e8243ec3p-2", "-0x1.11c7ab21a059ap-1")
+
+
+def test_a_ray_through_a_shared_edge_enters_once_though_its_triangles_round_apart():
+    o = np.array([float.fromhex(x) for x in EDGE_LINE_ORIGIN])
+    d = np.array([float.fromhex(x) for x in EDGE_LINE_DIRECTION])
+    cube = closed_cube_mesh()
+    # Untransformed, so the kernels see the line's bits as they are here
+    away = placed(translate=(50.0, 50.0, 50.0))
+    mesh_solid = Csg("M", operation="union", left=Mesh("Cube", mesh=cube),
+                     right=Sphere("Away", world_from_object=away))  # fmt: skip
+    box_solid = Csg("A", operation="union", left=Box("Cube"),
+                    right=Sphere("Away", world_from_object=away))  # fmt: skip
+    packed = packed_shapes(mesh_solid)
+    g = packed.geometry
+    row = int(np.flatnonzero(g.shape_kind == SHAPE_MESH)[0])
+    cross_f, cross_i = np.zeros((64, 3)), np.zeros((64, 2), np.int32)
+    n = mesh_line_crossings(
+        g.node_boxes, g.node_links, g.tri_corners, g.mesh_root[g.shape_index[row]],
+        tuple(o), tuple(d), cross_f, cross_i, np.zeros(256, np.int32),
+    )  # fmt: skip
+    # The premise: two entering crossings a rounding apart, not equal
+    entering = np.sort(cross_f[:n, 0][cross_i[:n, 1] > 0])
+    assert len(entering) == 2 and 0 < entering[1] - entering[0] <= 1e-12 * entering[1]
+    origins, directions = o[None, :], d[None, :]
+    t_mesh, _, _ = hits(packed, origins, directions)
+    t_box, _, _ = hits(packed_shapes(box_solid), origins, directions)
+    assert np.isfinite(t_box[0])
+    np.testing.assert_allclose(t_mesh, t_box, rtol=1e-9)
 
 
 def test_a_flush_cut_leaves_no_skin_on_any_pixel():
