@@ -30,3 +30,8 @@ PIXEL_PATTERNS = {"grid": PIXEL_GRID, "jittered": PIXEL_JITTERED, "random": PIXE
 SHADOW_UNIFORM, SHADOW_STRATIFIED, SHADOW_HALTON = 0, 1, 2
 SHADOW_PATTERNS = {"uniform": SHADOW_UNIFORM, "stratified": SHADOW_STRATIFIED,
                    "halton": SHADOW_HALTON}  # fmt: skip
+
+# How camera rays leave the camera: from the eye through the image plane, or parallel to the
+# view from every point of the image plane
+PROJECTION_PERSPECTIVE, PROJECTION_ORTHOGRAPHIC = 0, 1
+PROJECTIONS = {"perspective": PROJECTION_PERSPECTIVE, "orthographic": PROJECTION_ORTHOGRAPHIC}

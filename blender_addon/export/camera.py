@@ -1,6 +1,7 @@
 """The active camera -> core.Camera: eye, view (-Z), up (+Y) from its world matrix; the
-vertical field of view from Blender's own projection matrix, so sensor size, sensor fit and
-lens all count; lens shift; depth of field as Cycles reads it."""
+vertical field of view (perspective) or the view's height (orthographic) from Blender's own
+projection matrix, so sensor size, sensor fit, lens and orthographic scale all count; lens
+shift; depth of field as Cycles reads it."""
 
 from __future__ import annotations
 
@@ -20,12 +21,12 @@ def convert(scene, depsgraph, settings: core.RenderSettings) -> core.Camera:
     owner = f"camera '{camera.name}'"
     if camera.type != "CAMERA":
         raise core.SceneError(owner, "type", f"is a {camera.type} object; use a camera object")
-    if camera.data.type != "PERSP":
+    if camera.data.type not in ("PERSP", "ORTHO"):
         raise core.SceneError(
             owner,
             "lens type",
-            f"is {camera.data.type}; Whitted renders perspective cameras only: "
-            "set Camera Properties > Lens > Type to Perspective",
+            f"is {camera.data.type}; Whitted renders perspective and orthographic cameras: "
+            "set Camera Properties > Lens > Type to Perspective or Orthographic",
         )
     projection = camera.calc_matrix_camera(
         depsgraph,
@@ -34,20 +35,31 @@ def convert(scene, depsgraph, settings: core.RenderSettings) -> core.Camera:
         scale_x=scene.render.pixel_aspect_x,
         scale_y=scene.render.pixel_aspect_y,
     )
-    fovy = math.degrees(2.0 * math.atan(1.0 / projection[1][1]))
     rotation = camera.matrix_world.to_3x3().normalized()
     eye, view = camera.matrix_world.translation, -rotation.col[2]
     aperture, focus = _depth_of_field(scene, camera, eye, view)
-    return core.Camera(
+    common = dict(
         eye=tuple(eye),
         view=tuple(view),
         up=tuple(rotation.col[1]),
-        fovy=fovy,
         name=camera.name,
         aperture_radius=aperture,
         focal_distance=focus,
+    )
+    if camera.data.type == "ORTHO":
+        # Blender's orthographic projection: 2 / height of the view in its [1][1] term, and
+        # the lens shift, in half-widths and half-heights, in the translation column
+        return core.Camera(
+            projection="orthographic",
+            ortho_height=2.0 / projection[1][1],
+            shift=(-float(projection[0][3]), -float(projection[1][3])),
+            **common,
+        )
+    return core.Camera(
+        fovy=math.degrees(2.0 * math.atan(1.0 / projection[1][1])),
         # The off-axis terms of Blender's projection: the lens shift, in half-widths/heights
         shift=(float(projection[0][2]), float(projection[1][2])),
+        **common,
     )
 
 

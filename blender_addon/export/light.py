@@ -41,6 +41,26 @@ def _point_light(obj, matrix_world) -> core.PointLight:
     )
 
 
+def _check_area(obj, width: float, height: float, axes: np.ndarray) -> None:
+    """Refuse a light with no area in the fields a user would change (Light > Size, the
+    object's Scale), before the core's check names its edges instead."""
+    owner = f"area light '{obj.name}'"
+    square = obj.data.shape == "SQUARE"
+    for size, field in ((width, "Size" if square else "Size X"), (height, "Size Y")):
+        if not size > 0.0:
+            raise core.SceneError(
+                owner, f"Light Properties > Light > {field}",
+                f"is {size:g}; an area light needs a size above 0",
+            )  # fmt: skip
+    u, v = axes[:, 0], axes[:, 1]
+    # (a zero axis makes both sides 0)
+    if np.linalg.norm(np.cross(u, v)) <= 1e-12 * np.linalg.norm(u) * np.linalg.norm(v):
+        raise core.SceneError(
+            owner, "Object Properties > Transform > Scale",
+            "flattens the light to no area; give X and Y a non-zero scale",
+        )  # fmt: skip
+
+
 def _sun_light(obj, matrix_world) -> core.DirectionalLight:
     """A sun: light along the object's -Z axis, irradiance colour x strength / pi (a white
     diffuse surface facing it is then as bright as Cycles makes it)."""
@@ -62,6 +82,7 @@ def _area_light(obj, matrix_world) -> core.AreaLight | None:
     width = light.size
     height = light.size if light.shape == "SQUARE" else light.size_y
     axes = np.array(matrix_world.to_3x3(), float)
+    _check_area(obj, width, height, axes)
     intensity = tuple(float(c) * light.energy * WATTS_TO_INTENSITY for c in light.color)
     return core.AreaLight(
         centre=tuple(matrix_world.translation),

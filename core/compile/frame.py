@@ -12,11 +12,14 @@ from ..kernels.options import (
     OPTION_MAX_DEPTH,
     OPTION_PIXEL_PATTERN,
     OPTION_PIXEL_SAMPLES,
+    OPTION_PROJECTION,
     OPTION_SEED,
     OPTION_SHADOW_CULLING,
     OPTION_SHADOW_PATTERN,
     OPTION_SHADOW_SAMPLES,
     PIXEL_PATTERNS,
+    PROJECTION_ORTHOGRAPHIC,
+    PROJECTIONS,
     SHADOW_PATTERNS,
 )
 from ..model import RenderSettings, Scene
@@ -33,12 +36,13 @@ def pack_frame(scene: Scene, settings: RenderSettings) -> Frame:
         lens=np.array([scene.camera.aperture_radius, scene.camera.focal_distance], float),
         ambient=np.asarray(scene.ambient, float),
         background=np.asarray(scene.background, float),
-        options=_options(settings),
+        options=_options(scene, settings),
     )
 
 
-def _options(settings: RenderSettings) -> np.ndarray:
+def _options(scene: Scene, settings: RenderSettings) -> np.ndarray:
     options = np.zeros(OPTION_COUNT, np.int64)
+    options[OPTION_PROJECTION] = PROJECTIONS[scene.camera.projection]
     options[OPTION_MAX_DEPTH] = settings.max_depth
     options[OPTION_PIXEL_SAMPLES] = settings.pixel_samples
     options[OPTION_PIXEL_PATTERN] = PIXEL_PATTERNS[settings.pixel_sampling]
@@ -53,15 +57,23 @@ def _options(settings: RenderSettings) -> np.ndarray:
 
 def _camera(scene: Scene, settings: RenderSettings) -> np.ndarray:
     """Rows: the eye, the ray through the image centre, and the image plane's half extents
-    along right and up."""
+    along right and up (see `Frame.camera`, for either projection)."""
     cam = scene.camera
     forward = np.asarray(cam.view, float)
     forward /= np.linalg.norm(forward)
     right = np.cross(forward, np.asarray(cam.up, float))
     right /= np.linalg.norm(right)
     up = np.cross(right, forward)
+    aspect = settings.width / settings.height
+    if PROJECTIONS[cam.projection] == PROJECTION_ORTHOGRAPHIC:
+        half_height = cam.ortho_height / 2.0
+        half_width = half_height * aspect
+        # The lens shift moves the image plane's centre, in half-widths and half-heights
+        centre = np.asarray(cam.eye, float)
+        centre = centre + right * half_width * cam.shift[0] + up * half_height * cam.shift[1]
+        return np.array([centre, forward, right * half_width, up * half_height], float)
     half_height = math.tan(math.radians(cam.fovy) / 2.0)
-    half_width = half_height * settings.width / settings.height
+    half_width = half_height * aspect
     # The ray through the image centre: shifted in the image plane, still one unit along
     # the view direction, so the plane in focus stays perpendicular to the view
     centre = forward + right * half_width * cam.shift[0] + up * half_height * cam.shift[1]

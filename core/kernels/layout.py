@@ -13,8 +13,11 @@ import numpy as np
 class Frame(NamedTuple):
     """Camera and render options: what frames the picture."""
 
-    # rows: eye, forward (unit), right (scaled by the half-width of the image plane at
-    # distance 1), up (scaled by its half-height)
+    # rows: eye, forward, right and up. Perspective: forward is the ray through the image
+    # centre (one unit along the view), right and up are scaled by the half-width and
+    # half-height of the image plane at distance 1. Orthographic: the eye is the image
+    # centre, forward is the unit view direction, right and up are scaled by the image's
+    # half-width and half-height in scene units
     camera: np.ndarray  # float64 (4, 3)
     lens: np.ndarray  # float64 (2,): aperture radius, focal distance
     ambient: np.ndarray  # float64 (3,)

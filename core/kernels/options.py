@@ -7,14 +7,18 @@ OPTION_SHADOW_SAMPLES = 3
 OPTION_SHADOW_PATTERN = 4  # one of SHADOW_*
 OPTION_SEED = 5
 OPTION_SHADOW_CULLING = 6  # 1: area lights' shadow rays test only the shapes in their pyramid
-OPTION_COUNT = 7
+OPTION_PROJECTION = 7  # one of PROJECTION_*
+OPTION_COUNT = 8
 
-# The patterns' codes, listed with their names in core.vocabulary
+# The patterns' and projections' codes, listed with their names in core.vocabulary
 from ..vocabulary import (  # noqa: E402, F401
     PIXEL_GRID,
     PIXEL_JITTERED,
     PIXEL_PATTERNS,
     PIXEL_RANDOM,
+    PROJECTION_ORTHOGRAPHIC,
+    PROJECTION_PERSPECTIVE,
+    PROJECTIONS,
     SHADOW_HALTON,
     SHADOW_PATTERNS,
     SHADOW_STRATIFIED,

@@ -16,9 +16,11 @@ from .integrator import trace_ray
 from .options import (
     OPTION_PIXEL_PATTERN,
     OPTION_PIXEL_SAMPLES,
+    OPTION_PROJECTION,
     OPTION_SEED,
     PIXEL_GRID,
     PIXEL_RANDOM,
+    PROJECTION_ORTHOGRAPHIC,
 )
 from .rng import PURPOSE_LENS, PURPOSE_PIXEL, permuted, sample_key, uniform2
 from .vec import add, normalize, row, scale, sub
@@ -55,7 +57,13 @@ def camera_ray(frame, image_width, image_height, px, py, sample, key):
     sy = 1.0 - 2.0 * (py + fy) / image_height
     eye = row(frame.camera, 0)
     right, up = row(frame.camera, 2), row(frame.camera, 3)
-    d = add(row(frame.camera, 1), add(scale(right, sx), scale(up, sy)))
+    offset = add(scale(right, sx), scale(up, sy))
+    if frame.options[OPTION_PROJECTION] == PROJECTION_ORTHOGRAPHIC:
+        # Parallel rays, each from its own point of the image plane through the eye; the
+        # lens below then works about that point as it does about the eye
+        eye, d = add(eye, offset), row(frame.camera, 1)
+    else:
+        d = add(row(frame.camera, 1), offset)
     aperture = frame.lens[0]
     if aperture == 0.0:
         return eye, normalize(d)

@@ -1,4 +1,5 @@
-"""The camera: the report's pinhole, plus a thin lens for depth of field."""
+"""The camera: the report's pinhole, or an orthographic one, plus a thin lens for depth of
+field."""
 
 from __future__ import annotations
 
@@ -6,8 +7,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..checks import Vec3, check_number, check_vec3
+from ..checks import Vec3, check_choice, check_number, check_vec3
 from ..errors import SceneError
+from ..vocabulary import PROJECTIONS
 
 
 @dataclass
@@ -17,7 +19,11 @@ class Camera:
     eye             -- position of the centre of projection (the centre of the lens)
     view            -- direction the camera looks along; any non-zero length
     up              -- a direction that appears upwards in the image; not parallel to `view`
+    projection      -- "perspective" (rays from the eye) or "orthographic" (rays parallel to
+                       `view`, from the plane through the eye square to it)
     fovy            -- vertical field of view in degrees, strictly between 0 and 180
+                       (perspective)
+    ortho_height    -- height of the image in scene units, > 0 (orthographic)
     aperture_radius -- radius of the lens; 0 is a pinhole (everything sharp)
     focal_distance  -- distance along `view` of the plane that is in focus, > 0
     shift           -- (x, y) offset of the image on the image plane, in half-widths and
@@ -33,6 +39,8 @@ class Camera:
     aperture_radius: float = 0.0
     focal_distance: float = 10.0
     shift: tuple[float, float] = (0.0, 0.0)
+    projection: str = "perspective"
+    ortho_height: float = 2.0
 
     def validate(self) -> None:
         owner = f"camera '{self.name}'"
@@ -45,6 +53,8 @@ class Camera:
         view, up = view / np.linalg.norm(view), up / np.linalg.norm(up)
         if np.linalg.norm(np.cross(view, up)) < 1e-9:
             raise SceneError(owner, "up", f"{self.up} is parallel to view {self.view}")
+        check_choice(owner, "projection", self.projection, tuple(PROJECTIONS))
+        check_number(owner, "ortho_height", self.ortho_height, low=0.0, low_open=True)
         check_number(owner, "aperture_radius", self.aperture_radius, low=0.0)
         check_number(owner, "focal_distance", self.focal_distance, low=0.0, low_open=True)
         if len(self.shift) != 2:

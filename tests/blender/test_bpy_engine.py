@@ -134,9 +134,34 @@ def test_zero_resolution_is_reported(sample_scene, bpy_with_whitted):
         bpy_with_whitted.ops.render.render()
 
 
-def test_orthographic_camera_is_reported(sample_scene, bpy_with_whitted):
+def test_orthographic_camera_pixels_match_the_reference(sample_scene, bpy_with_whitted, tmp_path):
     sample_scene.camera.data.type = "ORTHO"
-    with pytest.raises(RuntimeError, match=r"camera 'Camera': lens type: is ORTHO;.*Perspective"):
+    sample_scene.camera.data.ortho_scale = 9.0
+    image = render_to_array(bpy_with_whitted, sample_scene, tmp_path / "ortho.png")
+    pixels = sample_grid(160, 120, 6)
+    expected = expected_pixels(sample_scene, pixels)
+    got = np.array([image[py, px, :3] for px, py in pixels])
+    np.testing.assert_allclose(got, expected, atol=1.6)
+    # Not the perspective picture, and not empty: the spheres are in view
+    assert np.ptp(got) > 50
+
+
+def test_orthographic_lens_shift_is_exported(sample_scene, bpy_with_whitted):
+    export = sys.modules["whitted.export"]
+    data = sample_scene.camera.data
+    data.type, data.ortho_scale, data.shift_x, data.shift_y = "ORTHO", 8.0, 0.25, -0.1
+    depsgraph = bpy_with_whitted.context.evaluated_depsgraph_get()
+    camera = export.camera.convert(sample_scene, depsgraph, export.settings.convert(sample_scene))
+    # Blender's shift is in units of the larger side (the width, 8.0 here): in half-widths
+    # and half-heights of a 160 x 120 image that is 2 shift_x and 2 shift_y * 160 / 120
+    assert camera.projection == "orthographic"
+    assert camera.ortho_height == pytest.approx(8.0 * 120 / 160)
+    assert camera.shift == pytest.approx((0.5, -0.2 * 160 / 120))
+
+
+def test_panoramic_camera_is_reported(sample_scene, bpy_with_whitted):
+    sample_scene.camera.data.type = "PANO"
+    with pytest.raises(RuntimeError, match=r"camera 'Camera': lens type: is PANO;.*Orthographic"):
         bpy_with_whitted.ops.render.render()
 
 

@@ -168,7 +168,12 @@ def test_bad_blender_input_is_reported_clearly(empty_scene, monkeypatch):
     bpy.context.active_object.data.size = 0.0
     bpy.context.active_object.name = "Flat"
     # The engine reports the error (the bpy module raises it from the operator)
-    with pytest.raises(RuntimeError, match=r"Whitted: area light 'Flat': edge_u.*non-zero"):
+    message = r"Whitted: area light 'Flat': Light Properties > Light > Size: is 0; .* above 0"
+    with pytest.raises(RuntimeError, match=message):
+        bpy.ops.render.render()
+    flat = bpy.data.objects["Flat"]
+    flat.data.size, flat.scale = 1.0, (1.0, 0.0, 1.0)
+    with pytest.raises(RuntimeError, match=r"'Flat': Object Properties > Transform > Scale"):
         bpy.ops.render.render()
     bpy.data.objects.remove(bpy.data.objects["Flat"])
     bpy.ops.render.render()  # Blender stays usable

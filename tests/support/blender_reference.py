@@ -9,7 +9,12 @@ import math
 
 import numpy as np
 
-from tests.support.reference_tracer import camera_ray, shade_ray, sphere_quadric
+from tests.support.reference_tracer import (
+    camera_ray,
+    orthographic_camera_ray,
+    shade_ray,
+    sphere_quadric,
+)
 
 
 def srgb_8bit(linear):
@@ -34,6 +39,8 @@ def reference_scene(bpy_scene):
         "view": -rotation[:, 2],
         "up": rotation[:, 1],
         "fovy": fovy,
+        # With sensor fit Auto, Orthographic Scale spans the larger side, here the width
+        "ortho_height": cam.data.ortho_scale * height / width if cam.data.type == "ORTHO" else None,
     }
     spheres, lights = [], []
     for obj in bpy_scene.objects:
@@ -67,9 +74,15 @@ def expected_pixels(bpy_scene, pixels):
     camera, spheres, lights, world, width, height = reference_scene(bpy_scene)
     expected = []
     for px, py in pixels:
-        o, d = camera_ray(
-            camera["eye"], camera["view"], camera["up"], camera["fovy"], width, height, px, py
-        )
+        if camera["ortho_height"] is not None:
+            o, d = orthographic_camera_ray(
+                camera["eye"], camera["view"], camera["up"], camera["ortho_height"], width,
+                height, px, py,
+            )  # fmt: skip
+        else:
+            o, d = camera_ray(
+                camera["eye"], camera["view"], camera["up"], camera["fovy"], width, height, px, py
+            )
         expected.append(srgb_8bit(shade_ray(spheres, lights, world, world, o, d)))
     return np.array(expected)
 

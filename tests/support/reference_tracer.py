@@ -56,6 +56,21 @@ def camera_ray(eye, view, up, fovy_degrees, width, height, px, py):
     return np.asarray(eye, float), d / np.linalg.norm(d)
 
 
+def orthographic_camera_ray(eye, view, up, view_height, width, height, px, py, shift=(0, 0)):
+    """The ray of pixel (px, py)'s centre for an orthographic camera whose image is
+    view_height scene units tall: parallel to the view, from the plane through the eye.
+    `shift` moves the image by half-widths and half-heights."""
+    forward = np.asarray(view, float) / np.linalg.norm(view)
+    right = np.cross(forward, up)
+    right /= np.linalg.norm(right)
+    true_up = np.cross(right, forward)
+    half_h = view_height / 2
+    half_w = half_h * width / height
+    sx = (2 * (px + 0.5) / width - 1 + shift[0]) * half_w
+    sy = (1 - 2 * (py + 0.5) / height + shift[1]) * half_h
+    return np.asarray(eye, float) + sx * right + sy * true_up, forward
+
+
 def shade_ray(spheres, lights, ambient, background, origin, direction):
     """Colour along a ray: ambient + per unshadowed light kd(N.L) + ks(R.V)^p, attenuated."""
     index, t = nearest(spheres, origin, direction)
