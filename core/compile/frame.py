@@ -64,17 +64,16 @@ def _camera(scene: Scene, settings: RenderSettings) -> np.ndarray:
     right = np.cross(forward, np.asarray(cam.up, float))
     right /= np.linalg.norm(right)
     up = np.cross(right, forward)
-    aspect = settings.width / settings.height
-    if PROJECTIONS[cam.projection] == PROJECTION_ORTHOGRAPHIC:
-        half_height = cam.ortho_height / 2.0
-        half_width = half_height * aspect
-        # The lens shift moves the image plane's centre, in half-widths and half-heights
-        centre = np.asarray(cam.eye, float)
-        centre = centre + right * half_width * cam.shift[0] + up * half_height * cam.shift[1]
+    orthographic = PROJECTIONS[cam.projection] == PROJECTION_ORTHOGRAPHIC
+    if orthographic:
+        half_height, base = cam.ortho_height / 2.0, np.asarray(cam.eye, float)
+    else:
+        half_height, base = math.tan(math.radians(cam.fovy) / 2.0), forward
+    half_width = half_height * settings.width / settings.height
+    # The lens shift moves the image in its plane, in half-widths and half-heights:
+    # perspective, the ray through its centre (still one unit along the view, so the plane in
+    # focus stays perpendicular to the view); orthographic, the centre itself
+    centre = base + right * half_width * cam.shift[0] + up * half_height * cam.shift[1]
+    if orthographic:
         return np.array([centre, forward, right * half_width, up * half_height], float)
-    half_height = math.tan(math.radians(cam.fovy) / 2.0)
-    half_width = half_height * aspect
-    # The ray through the image centre: shifted in the image plane, still one unit along
-    # the view direction, so the plane in focus stays perpendicular to the view
-    centre = forward + right * half_width * cam.shift[0] + up * half_height * cam.shift[1]
     return np.array([cam.eye, centre, right * half_width, up * half_height], float)

@@ -146,6 +146,7 @@ def mesh_crossings(boxes, links, corners, root, o, d, t_min, t_max, stop_at_firs
     slot, +1 where the line enters through the triangle's front, -1 where it leaves).
     numba compiles each form on its own, the branch on None taken at compile time. Returns
     the count."""
+    # A negative t_min is a whole line's query (the slab test treats those apart)
     ray, shear, o_sheared = _ray_constants(o, d, t_min < 0.0)
     t_min32, t_max32 = float32_below(t_min), float32_above(t_max)
     count = 0
