@@ -12,6 +12,7 @@ stop within a pixel's rays, not at their end.
 from __future__ import annotations
 
 import os
+import threading
 import time
 from collections.abc import Callable
 from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
@@ -20,7 +21,7 @@ from dataclasses import dataclass
 import numba
 import numpy as np
 
-from .compile import compile_scene
+from .compile import CompiledScene, compile_scene
 from .kernel_cache import load_or_rebuild, note_use
 from .kernels.csg import CROSSING_CAPACITY, SPAN_CAPACITY
 from .kernels.layout import PackedScene
@@ -36,6 +37,9 @@ from .model import RenderSettings, Scene
 
 # How often the driver asks "cancelled?" while tiles are still running.
 _CANCEL_POLL_S = 0.05
+# The final render, the viewport and previews each render on threads of their own: the first
+# to need the kernels loads (or compiles) them, the others wait for it, not compile them twice
+_KERNELS_LOCK = threading.Lock()
 
 
 @dataclass(frozen=True)
@@ -109,6 +113,11 @@ def prepare_kernels(packed: PackedScene) -> tuple[float, str]:
     """
     if numba.config.DISABLE_JIT:  # NUMBA_DISABLE_JIT=1: the kernels run as Python
         return 0.0, "python"
+    with _KERNELS_LOCK:
+        return _prepare_kernels(packed)
+
+
+def _prepare_kernels(packed: PackedScene) -> tuple[float, str]:
     already = bool(render_tile.signatures)
     hits_before = sum(render_tile.stats.cache_hits.values())
     start = time.perf_counter()
@@ -137,7 +146,17 @@ def render(
     polled between tiles; once it says True no new tile starts and render returns with
     `cancelled` set and the unrendered pixels zero.
     """
-    compiled = compile_scene(scene, settings)
+    return render_compiled(compile_scene(scene, settings), settings, on_tile, should_cancel)
+
+
+def render_compiled(
+    compiled: CompiledScene,
+    settings: RenderSettings,
+    on_tile: TileCallback | None = None,
+    should_cancel: Callable[[], bool] | None = None,
+) -> RenderOutput:
+    """`render` of a scene compiled already (`compile_scene`, `compile.with_frame`) for
+    `settings`: the viewport compiles once and renders it at several sizes."""
     kernel_s, kernel_source = prepare_kernels(compiled.packed)
     threads = settings.threads or available_threads()
     tiles = split_into_tiles(settings.pixel_region(), settings.tile_size)

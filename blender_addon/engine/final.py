@@ -16,16 +16,21 @@ from ..reporting import report_internal_failure
 # animation re-export only the meshes that changed. Kept here, not on the engine: Blender
 # makes a new RenderEngine for each render, which would keep them for one frame only
 MESHES = export.MeshCache()
+# Material and world previews render Blender's preview scenes: their meshes are cached apart,
+# or each thumbnail would evict the user's scene from MESHES
+PREVIEW_MESHES = export.MeshCache()
 
 
 def render(engine, depsgraph):
     """Render the depsgraph's frame into `engine`'s result. Esc (`cancelled`) is polled by
-    the driver between tiles and while the kernels warm up."""
+    the driver between tiles and while the kernels warm up. A preview (`is_preview`: a
+    material or world thumbnail, the Preview panel) renders the same way, quietly."""
+    preview = engine.is_preview
     try:
         start = time.perf_counter()
-        scene, settings, warnings = export.convert(depsgraph, MESHES)
+        scene, settings, warnings = export.convert(depsgraph, PREVIEW_MESHES if preview else MESHES)
         export_s = time.perf_counter() - start
-        for warning in warnings:
+        for warning in () if preview else warnings:
             engine.report({"WARNING"}, warning)
         if not _kernels_ready(engine):
             return
@@ -42,7 +47,8 @@ def render(engine, depsgraph):
             scene, settings, on_tile=stream, should_cancel=lambda: cancelled(engine)
         )
     except core.SceneError as error:
-        engine.report({"ERROR"}, f"Whitted: {error}")
+        if not preview:  # a thumbnail the scene cannot make stays blank, without a report
+            engine.report({"ERROR"}, f"Whitted: {error}")
         return
     except Exception as error:
         # Anything else is Whitted's bug, or the machine's (a full disk, a damaged cache
@@ -59,7 +65,8 @@ def render(engine, depsgraph):
         + (" | cancelled" if output.cancelled else "")
     )
     engine.update_stats("", summary)
-    print(summary)
+    if not preview:
+        print(summary)
 
 
 def _kernels_ready(engine) -> bool:

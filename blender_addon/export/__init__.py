@@ -10,6 +10,7 @@ import numpy as np
 
 from .. import core
 from . import camera, light, settings, world
+from . import view as view  # the viewport's reader of its 3D view, export.view
 from .instances import Exporter
 from .mesh import MeshCache
 
@@ -18,11 +19,12 @@ GEOMETRY_TYPES = {"MESH"}
 
 
 def convert(
-    depsgraph, mesh_cache: MeshCache | None = None
+    depsgraph, mesh_cache: MeshCache | None = None, view_camera: core.Camera | None = None
 ) -> tuple[core.Scene, core.RenderSettings, list[str]]:
     """Export the evaluated scene. Returns (scene, settings, warnings); raises SceneError.
     `mesh_cache` is the caller's `MeshCache`, kept from one export to the next (the final
-    render's, the viewport's); without one, every mesh is converted afresh."""
+    render's, the viewport's); without one, every mesh is converted afresh. `view_camera`
+    (the viewport's, `view.camera`) stands for the scene camera, which need not exist."""
     mesh_cache = MeshCache() if mesh_cache is None else mesh_cache
     scene = depsgraph.scene
     render = settings.convert(scene)
@@ -54,9 +56,14 @@ def convert(
             f"Whitted skipped {len(skipped)} light(s) it cannot render ({names}): it renders "
             "point and sun lights and square or rectangular area lights"
         )
-    view = camera.convert(scene, depsgraph, render)
+    if view_camera is None:
+        view_camera = camera.convert(scene, depsgraph, render)
     result = core.Scene(
-        camera=view, shapes=exporter.shapes, lights=lights, ambient=ambient, background=ambient
+        camera=view_camera,
+        shapes=exporter.shapes,
+        lights=lights,
+        ambient=ambient,
+        background=ambient,
     )
     return result, render, warnings
 

@@ -20,16 +20,19 @@ class MeshCache:
 
     def __init__(self):
         self._entries: dict = {}
+        self.conversions = 0  # meshes read from Blender, not reused: what tests count
 
     def get(self, key, mesh, name: str):
         """(whole `TriangleMesh`, its parts by material slot)."""
         if mesh.has_custom_normals:
+            self.conversions += 1
             return _converted(mesh, name)
         fingerprint = _fingerprint(mesh)
         cached = self._entries.get(key)
         if cached is not None and cached[0] == fingerprint:
             return cached[1]
         converted = _converted(mesh, name)
+        self.conversions += 1
         self._entries[key] = (fingerprint, converted)
         return converted
 

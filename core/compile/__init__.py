@@ -87,6 +87,17 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
     return CompiledScene(packed, warnings, meshes.counts["tris"], mesh_bytes)
 
 
+def with_frame(compiled: CompiledScene, scene: Scene, settings: RenderSettings) -> CompiledScene:
+    """`compiled` seen through `scene`'s camera at `settings`' size and sampling: only the
+    frame (step 2) is packed again, the geometry, materials and lights are shared. What the
+    viewport does when the view moves, and for each of its coarse-to-fine passes. `scene`
+    must hold what `compiled` was compiled from, but for its camera."""
+    scene.camera.validate()
+    settings.validate()
+    frame = kernel_ready(PackedScene(pack_frame(scene, settings), *compiled.packed[1:]))[0]
+    return compiled._replace(packed=compiled.packed._replace(frame=frame))
+
+
 def kernel_ready(packed: PackedScene) -> PackedScene:
     """Every array of the packed scene C-contiguous, aligned and writable, made so here and
     nowhere else. numba compiles an entry kernel anew for each array layout or read-only flag

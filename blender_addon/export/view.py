@@ -1,0 +1,147 @@
+"""A 3D view in Rendered shading -> core.Camera and the settings of its render.
+
+`View` is everything the viewport's picture depends on besides the scene: the region's size,
+its view and projection matrices, its kind of view (perspective, orthographic, or through the
+scene camera) and its render border. Two equal `View`s give the same picture, which is how the
+viewport knows that only the view moved (orbit, zoom, pan, a resized area) and packs only the
+camera again.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+from mathutils import Vector
+
+from .. import core
+from .camera import _depth_of_field
+
+Matrix4 = tuple[tuple[float, ...], ...]
+
+
+@dataclass(frozen=True)
+class View:
+    width: int  # region pixels
+    height: int
+    view_matrix: Matrix4  # world -> view, as RegionView3D.view_matrix
+    window_matrix: Matrix4  # view -> clip, as RegionView3D.window_matrix
+    perspective: str  # RegionView3D.view_perspective: "PERSP", "ORTHO" or "CAMERA"
+    clip_end: float  # SpaceView3D.clip_end: orthographic views see half of it behind the eye
+    border: tuple[int, int, int, int] | None  # (x, y, width, height), y from the region's top
+
+
+def read_view(context) -> View:
+    """The View of `context`'s 3D view region (view_draw's context)."""
+    region, view3d, space = context.region, context.region_data, context.space_data
+    width, height = region.width, region.height
+    return View(
+        width=width,
+        height=height,
+        view_matrix=_rows(view3d.view_matrix),
+        window_matrix=_rows(view3d.window_matrix),
+        perspective=view3d.view_perspective,
+        clip_end=float(space.clip_end),
+        border=_border(context, width, height),
+    )
+
+
+def camera(view: View, depsgraph) -> core.Camera:
+    """The view as a camera: eye and axes from the inverse view matrix; the field of view (or
+    the view's height) and the off-centre shift from the projection matrix, read as
+    export.camera reads a camera's. Through the scene camera, its depth of field too."""
+    world_from_view = np.linalg.inv(np.array(view.view_matrix, float))
+    projection = view.window_matrix
+    axes = world_from_view[:3, :3] / np.linalg.norm(world_from_view[:3, :3], axis=0)
+    eye, forward, up = world_from_view[:3, 3], -axes[:, 2], axes[:, 1]
+    aperture, focus = 0.0, 10.0
+    scene_camera = depsgraph.scene.camera
+    if view.perspective == "CAMERA" and scene_camera is not None:
+        evaluated = scene_camera.evaluated_get(depsgraph)
+        if evaluated.type == "CAMERA":
+            aperture, focus = _depth_of_field(
+                depsgraph.scene, evaluated, Vector(tuple(eye)), Vector(tuple(forward))
+            )
+    common = dict(up=tuple(up), name="3D Viewport", aperture_radius=aperture, focal_distance=focus)
+    if projection[3][3] == 1.0:  # orthographic
+        if view.perspective != "CAMERA":
+            # Blender's orthographic views clip half the clip distance behind the eye; rays
+            # start on the image plane, so it moves back that far (the picture stays put)
+            eye = eye - forward * (view.clip_end / 2.0)
+        return core.Camera(
+            eye=tuple(eye),
+            view=tuple(forward),
+            projection="orthographic",
+            ortho_height=2.0 / projection[1][1],
+            shift=(-float(projection[0][3]), -float(projection[1][3])),
+            **common,
+        )
+    return core.Camera(
+        eye=tuple(eye),
+        view=tuple(forward),
+        fovy=math.degrees(2.0 * math.atan(1.0 / projection[1][1])),
+        shift=(float(projection[0][2]), float(projection[1][2])),
+        **common,
+    )
+
+
+def settings(render: core.RenderSettings, view: View) -> core.RenderSettings:
+    """The scene's Whitted settings (bounces, samples) at the region's size and border."""
+    return replace(render, width=view.width, height=view.height, region=view.border)
+
+
+def _border(context, width: int, height: int):
+    """The render border as Blender draws it in this view: the view's own (Ctrl+B) outside
+    camera view, the scene's (Output > Format > Render Region) inside the camera frame in
+    camera view; in region pixels, y from the top, truncated as export.settings truncates."""
+    view3d, space, scene = context.region_data, context.space_data, context.scene
+    if view3d.view_perspective == "CAMERA":
+        render = scene.render
+        if not render.use_border or scene.camera is None:
+            return None
+        frame = _camera_frame(context, scene.camera)
+        if frame is None:
+            return None
+        left, bottom, right, top = frame
+        x_min = left + render.border_min_x * (right - left)
+        x_max = left + render.border_max_x * (right - left)
+        y_min = bottom + render.border_min_y * (top - bottom)
+        y_max = bottom + render.border_max_y * (top - bottom)
+    else:
+        if not space.use_render_border:
+            return None
+        x_min, x_max = space.render_border_min_x * width, space.render_border_max_x * width
+        y_min, y_max = space.render_border_min_y * height, space.render_border_max_y * height
+    return border_pixels((x_min, y_min, x_max, y_max), width, height)
+
+
+def border_pixels(corners, width: int, height: int):
+    """(x_min, y_min, x_max, y_max) in region pixels, y from the bottom, clipped to the
+    region -> (x, y, width, height) with y from the top; None when nothing is left."""
+    x_min, y_min, x_max, y_max = (int(max(0.0, c)) for c in corners)
+    x_max, y_max = min(x_max, width), min(y_max, height)
+    if x_max <= x_min or y_max <= y_min:
+        return None
+    return (x_min, height - y_max, x_max - x_min, y_max - y_min)
+
+
+def _camera_frame(context, camera_object):
+    """The scene camera's frame in region pixels (left, bottom, right, top): its view frame's
+    corners through the region's projection."""
+    region, view3d = context.region, context.region_data
+    corners = camera_object.data.view_frame(scene=context.scene)
+    clip_from_world = np.array(view3d.perspective_matrix, float)
+    world_from_camera = np.array(camera_object.matrix_world, float)
+    xs, ys = [], []
+    for corner in corners:
+        point = clip_from_world @ world_from_camera @ np.array([*corner, 1.0])
+        if point[3] <= 0.0:
+            return None
+        xs.append((point[0] / point[3] + 1.0) * 0.5 * region.width)
+        ys.append((point[1] / point[3] + 1.0) * 0.5 * region.height)
+    return min(xs), min(ys), max(xs), max(ys)
+
+
+def _rows(matrix) -> Matrix4:
+    return tuple(tuple(float(v) for v in row) for row in matrix)
