@@ -6,6 +6,8 @@ as it does to the final render (the engine's display-space shader is bound aroun
 
 from __future__ import annotations
 
+import time
+
 import numpy as np
 
 
@@ -13,6 +15,7 @@ class ViewTexture:
     def __init__(self):
         self.image = None  # the core.progressive.ViewImage uploaded
         self._texture = None
+        self.drawn_at = 0.0  # perf_counter of the last upload
 
     def draw(self, engine, scene, image, view) -> None:
         """Draw `image` (None: nothing yet) stretched over the region, uploading it first if
@@ -24,7 +27,7 @@ class ViewTexture:
 
         if image is not self.image or self._texture is None:
             self._texture = _upload(gpu, image.pixels)
-            self.image = image
+            self.image, self.drawn_at = image, time.perf_counter()
         gpu.state.blend_set("ALPHA_PREMULT")
         engine.bind_display_space_shader(scene)
         draw_texture_2d(self._texture, (0, 0), view.width, view.height)

@@ -26,6 +26,9 @@ from ..core.warmup_process import shared_warmup
 from . import view_texture
 
 REDRAW_S = 0.05  # how often the timer looks for new images while a session renders
+# Tiles of the last pass are drawn at most this often: each redraw of a 3D view costs Blender's
+# main thread (and with software OpenGL, the cores the render needs) far more than a tile
+STREAM_REDRAW_S = 0.5
 _sessions = weakref.WeakSet()  # the sessions alive, for the redraw timer
 
 
@@ -103,7 +106,11 @@ class ViewportSession:
         return f"Whitted | {state} | pass {min(done + 1, passes)}/{passes}"
 
     def needs_redraw(self) -> bool:
-        return self.renderer.busy() or self.texture.image is not self.renderer.latest()
+        """A new image to draw: a finished pass at once, streamed tiles now and then."""
+        latest = self.renderer.latest()
+        if latest is None or latest is self.texture.image:
+            return False
+        return latest.complete or time.perf_counter() - self.texture.drawn_at > STREAM_REDRAW_S
 
     def close(self) -> None:
         _sessions.discard(self)
@@ -164,8 +171,11 @@ def keep_redrawing() -> None:
 def _redraw_rendered_views():
     """Timer, on the main thread: while a session has an image not yet drawn, redraw the 3D
     views in Rendered shading (no engine is touched here: Blender may have freed it)."""
-    if not any(session.needs_redraw() for session in list(_sessions)):
+    sessions = list(_sessions)
+    if not any(session.renderer.busy() or session.needs_redraw() for session in sessions):
         return None
+    if not any(session.needs_redraw() for session in sessions):
+        return REDRAW_S
     with contextlib.suppress(AttributeError, ReferenceError, RuntimeError):
         for window in bpy.context.window_manager.windows:
             for area in window.screen.areas:

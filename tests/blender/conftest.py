@@ -1,5 +1,9 @@
 """Blender fixtures: the bpy 5.0 module with the add-on enabled the way Blender loads it."""
 
+import os
+import shutil
+import subprocess
+
 import pytest
 
 from tests.support import ROOT  # also the Blender tests' (imported from here)
@@ -44,3 +48,21 @@ def pytest_collection_modifyitems(items):
     for item in items:
         if "bpy_with_whitted" in getattr(item, "fixturenames", ()):
             item.add_marker(pytest.mark.bpy)
+
+
+@pytest.fixture
+def display():
+    """A fresh X server of its own (the display number it chose)."""
+    xvfb = shutil.which("Xvfb")
+    assert xvfb, "no Xvfb on PATH: run `make setup`, which installs Debian's xvfb"
+    read, write = os.pipe()
+    server = subprocess.Popen(
+        [xvfb, "-displayfd", str(write), "-screen", "0", "1280x800x24", "-nolisten", "tcp"],
+        pass_fds=(write,), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+    )  # fmt: skip
+    os.close(write)
+    with os.fdopen(read) as chosen:
+        number = chosen.readline().strip()
+    yield f":{number}"
+    server.kill()
+    server.wait()

@@ -104,24 +104,6 @@ bpy.app.timers.register(tick, first_interval=2.0)
 """
 
 
-@pytest.fixture
-def display():
-    """A fresh X server of its own (the display number it chose)."""
-    xvfb = shutil.which("Xvfb")
-    assert xvfb, "no Xvfb on PATH: run `make setup`, which installs Debian's xvfb"
-    read, write = os.pipe()
-    server = subprocess.Popen(
-        [xvfb, "-displayfd", str(write), "-screen", "0", "1280x800x24", "-nolisten", "tcp"],
-        pass_fds=(write,), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-    )  # fmt: skip
-    os.close(write)
-    with os.fdopen(read) as chosen:
-        number = chosen.readline().strip()
-    yield f":{number}"
-    server.kill()
-    server.wait()
-
-
 def test_esc_stops_a_hung_script_and_blender_stays_usable(display, tmp_path):
     loop = tmp_path / "loop.lua"
     loop.write_text("setmetatable({}, {__gc = function() while true do end end})\n"
