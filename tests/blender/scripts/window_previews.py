@@ -1,0 +1,59 @@
+"""Run inside Blender's window: render each material's preview thumbnail (as the Material
+tab and the asset browser do: `ed.lib_id_generate_preview`), one at a time, and count the
+preview renders Whitted's engine made. Writes, to the path after `--`, JSON of each material's
+preview as RGB rows (row 0 at the top) and the count."""
+
+import json
+import sys
+import time
+
+import bpy
+
+OUT = sys.argv[sys.argv.index("--") + 1]
+TIMEOUT_S = 60
+final = sys.modules["whitted.engine.final"]
+seen = {"previews rendered by Whitted": 0, "materials": {}}
+original_render = final.render
+
+
+def counting_render(engine, depsgraph):
+    seen["previews rendered by Whitted"] += bool(engine.is_preview)
+    original_render(engine, depsgraph)
+
+
+final.render = counting_render
+queue = list(bpy.data.materials)
+state = {"material": None, "since": 0.0}
+
+
+def rgb_rows(preview):
+    width, height = preview.image_size
+    values = preview.image_pixels_float[:]
+    rows = [[values[4 * (y * width + x) : 4 * (y * width + x) + 3] for x in range(width)]
+            for y in range(height)]  # fmt: skip
+    return rows[::-1]
+
+
+def tick():
+    if sys.modules["whitted.core"].warmup_process.shared_warmup().status().state == "running":
+        return 0.25
+    material = state["material"]
+    if material is not None:
+        rows = rgb_rows(material.preview)
+        blank = max(max(max(pixel) for pixel in row) for row in rows) <= 0.0
+        if blank and time.monotonic() - state["since"] < TIMEOUT_S:
+            return 0.25
+        seen["materials"][material.name] = rows
+    if not queue:
+        with open(OUT, "w") as f:
+            json.dump(seen, f)
+        bpy.ops.wm.quit_blender()
+        return None
+    material = state["material"] = queue.pop(0)
+    state["since"] = time.monotonic()
+    with bpy.context.temp_override(id=material):
+        bpy.ops.ed.lib_id_generate_preview()
+    return 0.25
+
+
+bpy.app.timers.register(tick, first_interval=2.0)
