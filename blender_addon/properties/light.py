@@ -1,4 +1,4 @@
-"""Light › Whitted Light: the report's attenuation."""
+"""Light Properties › Light: the report's attenuation, drawn by ui.light."""
 
 import bpy
 from bpy.props import (

@@ -1,0 +1,79 @@
+"""Blender's panels under Whitted: those whose settings the exporter reads are shown (checked
+by changing a setting each draws and seeing the export change), those whose settings it
+ignores are not, and the Light panel's type row shows once."""
+
+import sys
+
+import numpy as np
+import pytest
+
+pytestmark = pytest.mark.bpy
+
+
+def shown_panels(bpy):
+    return {
+        name
+        for name in dir(bpy.types)
+        if "WHITTED" in getattr(getattr(bpy.types, name), "COMPAT_ENGINES", ())
+        and not name.startswith("WHITTED_")
+    }
+
+
+def exported(bpy):
+    export = sys.modules["whitted.export"]
+    return export.convert(bpy.context.evaluated_depsgraph_get())
+
+
+def test_panels_whose_settings_the_export_reads_are_shown(sample_scene, bpy_with_whitted):
+    bpy = bpy_with_whitted
+    shown = shown_panels(bpy)
+    scene = sample_scene
+    camera = scene.camera.data
+    ball = next(o for o in scene.objects if o.type == "MESH" and o.whitted.shape == "SPHERE")
+    # (panel, a setting it draws, what the export gives for it)
+    checks = [
+        ("DATA_PT_camera_dof", lambda: setattr(camera.dof, "use_dof", True),
+         lambda s, r: s.camera.aperture_radius),
+        ("DATA_PT_camera_dof_aperture", lambda: setattr(camera.dof, "aperture_fstop", 0.5),
+         lambda s, r: s.camera.aperture_radius),
+        ("DATA_PT_lens", lambda: setattr(camera, "lens", 80.0), lambda s, r: s.camera.fovy),
+        # Show in > Viewports: a script's depsgraph is the viewport's (Renders, in a render)
+        ("OBJECT_PT_visibility", lambda: setattr(ball, "hide_viewport", True),
+         lambda s, r: len(s.shapes)),
+        ("RENDER_PT_format", lambda: setattr(scene.render, "resolution_x", 100),
+         lambda s, r: r.width),
+        ("RENDER_PT_frame_range", None, None),  # the frame rendered: Blender's own
+        ("RENDER_PT_output", None, None),  # the file written: Blender's own
+        ("RENDER_PT_stamp", None, None),  # Output > Metadata, written by Blender
+        ("RENDER_PT_color_management", None, None),  # applied by Blender to the result
+        ("DATA_PT_uv_texture", None, None),  # the active UV map (test_export)
+        ("DATA_PT_mesh_attributes", None, None),
+        ("EEVEE_MATERIAL_PT_context_material", None, None),
+        ("MATERIAL_PT_preview", None, None),
+    ]  # fmt: skip
+    for panel, change, read in checks:
+        assert panel in shown, f"{panel} is hidden under Whitted"
+        if change is None:
+            continue
+        before = read(*exported(bpy)[:2])
+        change()
+        after = read(*exported(bpy)[:2])
+        assert not np.isclose(before, after), f"{panel}: its setting changed nothing"
+
+
+def test_panels_whose_settings_whitted_ignores_are_hidden(bpy_with_whitted):
+    shown = shown_panels(bpy_with_whitted)
+    for panel in ("DATA_PT_EEVEE_light", "DATA_PT_EEVEE_light_distance", "DATA_PT_spot",
+                  "RENDER_PT_freestyle", "VIEWLAYER_PT_freestyle", "DATA_PT_lightprobe",
+                  "RENDER_PT_stereoscopy", "RENDER_PT_eevee_film", "DATA_PT_light"):  # fmt: skip
+        assert panel not in shown, f"{panel} is shown, but Whitted ignores its settings"
+
+
+def test_one_light_panel_draws_the_type_row(bpy_with_whitted):
+    """Blender's Light panel (the type row) and the Area Shape panel are Whitted's own Light
+    panel's now: the type row is drawn by one panel only."""
+    bpy = bpy_with_whitted
+    shown = shown_panels(bpy)
+    light_panels = [n for n in shown if n in ("DATA_PT_light", "DATA_PT_EEVEE_light")]
+    assert light_panels == []
+    assert bpy.types.WHITTED_PT_light.bl_label == "Light"
