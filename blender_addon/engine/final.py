@@ -67,6 +67,17 @@ def render(engine, depsgraph):
     engine.update_stats("", summary)
     if not preview:
         print(summary)
+        keep_summary(engine, summary)
+
+
+def keep_summary(engine, summary: str) -> None:
+    """Blender replaces the engine's stats line with its own when the render ends: the summary
+    stays in the result's metadata (the Image Editor's sidebar, Metadata; written to files
+    that carry metadata) and in the Info log and status bar."""
+    engine.report({"INFO"}, summary)
+    result = engine.get_result()
+    if result is not None:
+        result.stamp_data_add_field("Whitted", summary)
 
 
 def _kernels_ready(engine) -> bool:

@@ -226,3 +226,12 @@ def test_a_border_without_crop_fills_its_region_of_the_whole_frame(
     outside = np.ones(whole.shape[:2], bool)
     outside[rows, columns] = False
     assert np.all(framed[outside] == 0.0)  # Blender leaves the rest empty
+
+
+def test_the_render_summary_stays_in_the_results_metadata(sample_scene, bpy_with_whitted, tmp_path):
+    """Blender replaces the engine's stats line when the render ends; the summary is kept in
+    the result's metadata, which the PNG carries."""
+    path = tmp_path / "summary.png"
+    render_to_array(bpy_with_whitted, sample_scene, path)
+    summary = Image.open(path).info.get("Whitted", "")
+    assert "M rays/s" in summary and "160x120" in summary, summary
