@@ -9,6 +9,8 @@ render starts it and prints the same lines.
 """
 
 import contextlib
+import threading
+import traceback
 
 import bpy
 
@@ -47,6 +49,8 @@ def _poll():
     # No window yet, or one closing: try again on the next tick
     with contextlib.suppress(AttributeError, RuntimeError, ReferenceError, TypeError):
         _show_in_windows(status_text() if running else None)
+    if not running:
+        _preload()
     return POLL_S if running else None
 
 
@@ -55,7 +59,25 @@ def _start_in_window():
         shared_warmup().start()
         if shared_warmup().status().state == "running":
             bpy.app.timers.register(_poll, first_interval=POLL_S, persistent=True)
+        else:
+            _preload()
     return None
+
+
+def _preload():
+    """Load the warmed-up kernels into Blender's process on a thread of its own (loading
+    blocks no one: the first render that needs them waits for it)."""
+
+    def load():
+        try:
+            from ..core.driver import preload_kernels
+
+            preload_kernels()
+        except Exception:  # the first render loads them itself, and reports what fails
+            traceback.print_exc()
+
+    if shared_warmup().status().state == "ready":
+        threading.Thread(target=load, name="whitted-preload", daemon=True).start()
 
 
 def blender_launcher() -> list[str] | None:

@@ -3,9 +3,12 @@ through its camera, driven as Blender drives the engine (view_update, view_draw'
 without a window's drawing.
 
 Prints:
-  viewport_first_image_cold_s  Rendered switched on in a fresh process, to the first coarse
-                               image: the kernels load from the (warm) disk cache meanwhile
-  viewport_first_image_s       the same once the kernels are in memory (any later switch)
+  viewport_first_image_unloaded_s  Rendered switched on in a process whose kernels are not
+                               loaded yet, to the first coarse image: they load from the
+                               (warm) disk cache meanwhile
+  viewport_first_image_s       the same with the kernels in memory, as Blender's window has
+                               them: the add-on loads them once the warm-up is done
+                               (kernel_status._preload), and any later switch finds them
   viewport_update_s            an object moved (view_update), to the first updated image
   viewport_orbit_s             the view moved (view_draw), to the first image of the new view
   viewport_pass_N_s            when each pass of the first render is complete
@@ -67,7 +70,7 @@ def main():
     cold = first_image_after(session, lambda: session.update(depsgraph, view))
     session.renderer.wait_for(session.renderer.generation, len(session.renderer.passes) - 1, 600)
     pass_times = [t - start for t in passes]
-    print(f"viewport_first_image_cold_s: {cold:.3f}")
+    print(f"viewport_first_image_unloaded_s: {cold:.3f}")
     session.close()
 
     firsts, updates, orbits = [], [], []

@@ -108,3 +108,13 @@ def test_the_tile_kernel_returns_at_once_when_the_flag_is_set():
     assert np.all(out == -7.0)
     render_tile(packed, 16, 16, 0, 0, 16, 16, out, new_workspace(4, 1))
     assert np.all(out[..., 3] == 1.0)
+
+
+@pytest.mark.skipif(numba.config.DISABLE_JIT, reason="no kernels to load as Python")
+def test_preloaded_kernels_serve_the_next_render_from_memory():
+    from core.driver import preload_kernels
+
+    _, source = preload_kernels()
+    assert source in ("compiled", "cache", "memory")
+    output = render(ball_on_ground(), RenderSettings(width=8, height=6))
+    assert output.stats.kernel_source == "memory"
