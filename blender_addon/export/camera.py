@@ -37,16 +37,27 @@ def convert(scene, depsgraph, settings: core.RenderSettings) -> core.Camera:
     )
     rotation = camera.matrix_world.to_3x3().normalized()
     eye, view = camera.matrix_world.translation, -rotation.col[2]
-    aperture, focus = _depth_of_field(scene, camera, eye, view)
+    aperture, focus = depth_of_field(scene, camera, eye, view)
+    return from_projection(
+        projection, eye, view, rotation.col[1], camera.name, aperture, focus,
+        orthographic=camera.data.type == "ORTHO",
+    )  # fmt: skip
+
+
+def from_projection(
+    projection, eye, view, up, name: str, aperture: float, focus: float, orthographic: bool
+) -> core.Camera:
+    """A core.Camera from Blender's projection matrix (a camera's `calc_matrix_camera`, a 3D
+    view's `window_matrix`) and the eye and axes it looks from."""
     common = dict(
         eye=tuple(eye),
         view=tuple(view),
-        up=tuple(rotation.col[1]),
-        name=camera.name,
+        up=tuple(up),
+        name=name,
         aperture_radius=aperture,
         focal_distance=focus,
     )
-    if camera.data.type == "ORTHO":
+    if orthographic:
         # Blender's orthographic projection: 2 / height of the view in its [1][1] term, and
         # the lens shift, in half-widths and half-heights, in the translation column
         return core.Camera(
@@ -63,7 +74,7 @@ def convert(scene, depsgraph, settings: core.RenderSettings) -> core.Camera:
     )
 
 
-def _depth_of_field(scene, camera, eye, view) -> tuple[float, float]:
+def depth_of_field(scene, camera, eye, view) -> tuple[float, float]:
     """(aperture radius, focus distance) from Blender's own camera depth of field, as
     Cycles reads it: radius = focal length / (2 f-stop), in scene units; the focus object's
     distance along the view, else the focus distance. A pinhole when depth of field is off."""

@@ -9,14 +9,13 @@ camera again.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, replace
 
 import numpy as np
 from mathutils import Vector
 
 from .. import core
-from .camera import _depth_of_field
+from .camera import depth_of_field, from_projection
 
 Matrix4 = tuple[tuple[float, ...], ...]
 
@@ -60,29 +59,16 @@ def camera(view: View, depsgraph) -> core.Camera:
     if view.perspective == "CAMERA" and scene_camera is not None:
         evaluated = scene_camera.evaluated_get(depsgraph)
         if evaluated.type == "CAMERA":
-            aperture, focus = _depth_of_field(
+            aperture, focus = depth_of_field(
                 depsgraph.scene, evaluated, Vector(tuple(eye)), Vector(tuple(forward))
             )
-    common = dict(up=tuple(up), name="3D Viewport", aperture_radius=aperture, focal_distance=focus)
-    if projection[3][3] == 1.0:  # orthographic
-        if view.perspective != "CAMERA":
-            # Blender's orthographic views clip half the clip distance behind the eye; rays
-            # start on the image plane, so it moves back that far (the picture stays put)
-            eye = eye - forward * (view.clip_end / 2.0)
-        return core.Camera(
-            eye=tuple(eye),
-            view=tuple(forward),
-            projection="orthographic",
-            ortho_height=2.0 / projection[1][1],
-            shift=(-float(projection[0][3]), -float(projection[1][3])),
-            **common,
-        )
-    return core.Camera(
-        eye=tuple(eye),
-        view=tuple(forward),
-        fovy=math.degrees(2.0 * math.atan(1.0 / projection[1][1])),
-        shift=(float(projection[0][2]), float(projection[1][2])),
-        **common,
+    orthographic = projection[3][3] == 1.0
+    if orthographic and view.perspective != "CAMERA":
+        # Blender's orthographic views clip half the clip distance behind the eye; rays start
+        # on the image plane, so it moves back that far (the picture stays put)
+        eye = eye - forward * (view.clip_end / 2.0)
+    return from_projection(
+        projection, eye, forward, up, "3D Viewport", aperture, focus, orthographic
     )
 
 
