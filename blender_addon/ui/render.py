@@ -21,6 +21,8 @@ class WHITTED_PT_render(WhittedPanel, bpy.types.Panel):
         if warmup:
             self.layout.label(text=warmup, icon="TIME")
         render = context.scene.render
+        # Film > Transparent, as Cycles and EEVEE name it in their Film panels
+        self.layout.prop(render, "film_transparent", text="Transparent Film")
         self.layout.prop(render, "threads_mode")
         row = self.layout.row()
         row.enabled = render.threads_mode == "FIXED"

@@ -17,6 +17,7 @@ from ..kernels.options import (
     OPTION_SHADOW_CULLING,
     OPTION_SHADOW_PATTERN,
     OPTION_SHADOW_SAMPLES,
+    OPTION_TRANSPARENT,
     PIXEL_PATTERNS,
     PROJECTION_ORTHOGRAPHIC,
     PROJECTIONS,
@@ -49,6 +50,7 @@ def _options(scene: Scene, settings: RenderSettings) -> np.ndarray:
     options[OPTION_SHADOW_SAMPLES] = settings.shadow_samples
     options[OPTION_SHADOW_PATTERN] = SHADOW_PATTERNS[settings.shadow_sampling]
     options[OPTION_SEED] = settings.seed
+    options[OPTION_TRANSPARENT] = settings.transparent
     options[OPTION_SHADOW_CULLING] = (
         settings.shadow_culling and settings.shadow_samples >= SHADOW_CULLING_MIN_SAMPLES
     )

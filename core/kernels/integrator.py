@@ -16,7 +16,7 @@ after `max_depth` bounces, or once their weight can no longer show (MIN_WEIGHT).
 import math
 
 from ..jit import inlined_kernel, kernel
-from .options import OPTION_MAX_DEPTH
+from .options import OPTION_MAX_DEPTH, OPTION_TRANSPARENT
 from .shading import Phong, ShadingPoint, local_colour
 from .surface import diffuse_colour, surface_at
 from .trace import closest_hit, spawn_point
@@ -62,11 +62,13 @@ def _push(rays, top, o, d, w, depth):
 
 @inlined_kernel
 def trace_ray(ps, o, d, key, ws):
-    """Linear RGB colour seen along unit direction d from o, with every bounce."""
+    """(linear RGB colour seen along unit direction d from o, with every bounce; its alpha:
+    0 for a camera ray that meets nothing under Film > Transparent, else 1)."""
     frame, geo, surf, mats, lights = ps
     stacks, rays = ws.stacks, ws.rays
     max_depth = frame.options[OPTION_MAX_DEPTH]
     colour = (0.0, 0.0, 0.0)
+    alpha = 1.0
     top = _push(rays, 0, o, d, (1.0, 1.0, 1.0), 0)
     event = 0
     while top > 0:
@@ -76,7 +78,10 @@ def trace_ray(ps, o, d, key, ws):
         stacks.ray_counts[RAYS_TRACED] += 1
         shape, t, part, b1, b2 = closest_hit(geo, o, d, math.inf, stacks)
         if shape < 0:
-            colour = add(colour, mul(w, as_tuple(frame.background)))
+            if depth == 0 and frame.options[OPTION_TRANSPARENT] != 0:
+                alpha = 0.0  # the camera ray itself: nothing there, not even background
+            else:
+                colour = add(colour, mul(w, as_tuple(frame.background)))
             continue
         material = surf.shape_material[shape]
         textured = mats.texture[material] >= 0
@@ -117,4 +122,4 @@ def trace_ray(ps, o, d, key, ws):
         if reflect_weight > 0.0:
             reflected = sub(d, scale(n_shading, 2.0 * dot(d, n_shading)))
             top = _push(rays, top, outside, reflected, scale(w, reflect_weight), depth + 1)
-    return colour
+    return colour, alpha

@@ -8,7 +8,10 @@ OPTION_SHADOW_PATTERN = 4  # one of SHADOW_*
 OPTION_SEED = 5
 OPTION_SHADOW_CULLING = 6  # 1: area lights' shadow rays test only the shapes in their pyramid
 OPTION_PROJECTION = 7  # one of PROJECTION_*
-OPTION_COUNT = 8
+# 1: a camera ray that meets nothing is transparent (alpha 0, no background colour; Blender's
+# Film > Transparent); reflected and refracted rays still see the background, as in Cycles
+OPTION_TRANSPARENT = 8
+OPTION_COUNT = 9
 
 # The patterns' and projections' codes, listed with their names in core.vocabulary
 from ..vocabulary import (  # noqa: E402, F401

@@ -103,16 +103,17 @@ def render_tile(ps, image_width, image_height, x0, y0, width, height, out, ws):
             if cancel[0] != 0:
                 return
             px, py = x0 + i, y0 + j
-            r = g = b = 0.0
+            r = g = b = a = 0.0
             for s in range(samples):
                 key = sample_key(seed, px, py, s)
                 o, d = camera_ray(frame, image_width, image_height, px, py, s, key)
-                colour = trace_ray(ps, o, d, key, ws)
+                colour, alpha = trace_ray(ps, o, d, key, ws)
                 r += colour[0]
                 g += colour[1]
                 b += colour[2]
+                a += alpha
             # Linear light has no upper bound, the float32 image has: saturate, never inf
             out[j, i, 0] = min(r / samples, FLOAT32_MAX)
             out[j, i, 1] = min(g / samples, FLOAT32_MAX)
             out[j, i, 2] = min(b / samples, FLOAT32_MAX)
-            out[j, i, 3] = 1.0
+            out[j, i, 3] = a / samples  # the share of camera rays that met something

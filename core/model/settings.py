@@ -43,6 +43,10 @@ class RenderSettings:
                         light; "uniform": independent random points (the report's way);
                         "halton": the Halton sequence, shifted at random per shading point
     seed             -- selects the random numbers; the same seed gives the same picture
+    transparent      -- camera rays that meet nothing are transparent: alpha 0 there and
+                        fractional at edges, colour premultiplied (Blender's Film ›
+                        Transparent); what mirrors and glass show still includes the
+                        background, and a glass surface itself is opaque, as in Cycles
     shadow_culling   -- an area light's shadow rays test only the shapes in the pyramid from
                         the shading point to the light, from 8 shadow rays per light up
                         (below, it costs more than it saves): exact, the same pixels either
@@ -61,6 +65,7 @@ class RenderSettings:
     shadow_sampling: str = "stratified"
     seed: int = 0
     shadow_culling: bool = True
+    transparent: bool = False
 
     def validate(self) -> None:
         owner = "render settings"
@@ -78,6 +83,7 @@ class RenderSettings:
         check_choice(owner, "pixel_sampling", self.pixel_sampling, PIXEL_SAMPLINGS)
         check_choice(owner, "shadow_sampling", self.shadow_sampling, SHADOW_SAMPLINGS)
         check_flag(owner, "shadow_culling", self.shadow_culling)
+        check_flag(owner, "transparent", self.transparent)
         self._check_image_fits()
         if self.region is not None:
             x, y, w, h = self.region

@@ -235,3 +235,18 @@ def test_the_render_summary_stays_in_the_results_metadata(sample_scene, bpy_with
     render_to_array(bpy_with_whitted, sample_scene, path)
     summary = Image.open(path).info.get("Whitted", "")
     assert "M rays/s" in summary and "160x120" in summary, summary
+
+
+def test_film_transparent_writes_the_background_transparent(
+    sample_scene, bpy_with_whitted, tmp_path
+):
+    """Film > Transparent: the sky's pixels have alpha 0 in the PNG, the ground's and balls'
+    255 (the sample's ground fills the lower part of the frame)."""
+    sample_scene.render.film_transparent = True
+    sample_scene.render.image_settings.color_mode = "RGBA"
+    image = render_to_array(bpy_with_whitted, sample_scene, tmp_path / "clear.png")
+    assert image[0, 0, 3] == 0 and image[-1, -1, 3] == 255
+    assert np.all(image[image[..., 3] == 0][:, :3] == 0)
+    sample_scene.render.film_transparent = False
+    image = render_to_array(bpy_with_whitted, sample_scene, tmp_path / "opaque.png")
+    assert np.all(image[..., 3] == 255)
