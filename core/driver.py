@@ -16,7 +16,7 @@ import threading
 import time
 from collections.abc import Callable
 from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numba
 import numpy as np
@@ -34,6 +34,7 @@ from .kernels.workspace import (
     new_workspace,
 )
 from .model import RenderSettings, Scene
+from .passes import CRYPTO_PASSES, layout, split
 
 # How often the driver asks "cancelled?" while tiles are still running.
 _CANCEL_POLL_S = 0.05
@@ -86,8 +87,12 @@ class RenderOutput:
     stats: RenderStats
     cancelled: bool
     warnings: list[str]  # things the scene asked for that were left out (each once)
+    # the passes asked for (RenderSettings.passes), name -> float32 (height, width, channels)
+    passes: dict[str, np.ndarray] = field(default_factory=dict)
 
 
+# on_tile(tile, pixels, done, total): pixels float32 (tile.height, tile.width, 4 + channels),
+# RGBA then the passes as core.passes.layout places them (`core.passes.split` names them)
 TileCallback = Callable[[Tile, np.ndarray, int, int], None]
 
 
@@ -150,7 +155,7 @@ def render(
     """Render `scene`. Raises `SceneError` for bad input before any work starts.
 
     on_tile(tile, pixels, tiles_done, tiles_total) is called on this thread after each tile,
-    with pixels float32 (tile.height, tile.width, 4), row 0 at the top. should_cancel() is
+    with pixels float32 (tile.height, tile.width, 4 + pass channels), row 0 at the top. should_cancel() is
     polled between tiles; once it says True no new tile starts and render returns with
     `cancelled` set and the unrendered pixels zero.
     """
@@ -168,12 +173,13 @@ def render_compiled(
     kernel_s, kernel_source = prepare_kernels(compiled.packed)
     threads = settings.threads or available_threads()
     tiles = split_into_tiles(settings.pixel_region(), settings.tile_size)
-    image = np.zeros((settings.height, settings.width, 4), np.float32)
+    _, pass_channels = layout(settings.passes, settings.crypto_levels)
+    pixels_all = np.zeros((settings.height, settings.width, 4 + pass_channels), np.float32)
     tally = _Tally()
 
     def finished(tile: Tile, result: tuple) -> None:
         pixels = tally.add(result)
-        image[tile.y : tile.y + tile.height, tile.x : tile.x + tile.width] = pixels
+        pixels_all[tile.y : tile.y + tile.height, tile.x : tile.x + tile.width] = pixels
         if on_tile is not None:
             on_tile(tile, pixels, tally.tiles_done, len(tiles))
 
@@ -197,7 +203,13 @@ def render_compiled(
             f"({SPAN_CAPACITY} spans, {CROSSING_CAPACITY} crossings of one mesh operand): "
             "the excess were dropped, and those pixels may be wrong"
         )
-    return RenderOutput(image=image, stats=stats, cancelled=cancelled, warnings=warnings)
+    # Copies, not views: a caller that keeps only the image does not keep every pass with it
+    image = pixels_all[..., :4].copy() if pass_channels else pixels_all
+    passes = {
+        name: np.ascontiguousarray(values)
+        for name, values in split(pixels_all, settings.passes, settings.crypto_levels).items()
+    }
+    return RenderOutput(image, stats, cancelled, warnings, passes)
 
 
 class _Tally:
@@ -218,8 +230,14 @@ class _Tally:
 
 def _render_one(packed: PackedScene, settings: RenderSettings, tile: Tile, stop: np.ndarray):
     """One tile on a worker thread: (pixels, rays whose CSG spans overflowed, ray counts)."""
-    pixels = np.empty((tile.height, tile.width, 4), np.float32)
-    workspace = new_workspace(settings.max_depth, settings.shadow_samples, stop)
+    _, pass_channels = layout(settings.passes, settings.crypto_levels)
+    pixels = np.empty((tile.height, tile.width, 4 + pass_channels), np.float32)
+    # Cryptomatte keeps each camera ray's ids until its pixel is done
+    crypto = any(name in CRYPTO_PASSES for name in settings.passes)
+    workspace = new_workspace(
+        settings.max_depth, settings.shadow_samples, stop,
+        settings.pixel_samples**2 if crypto else 1,
+    )  # fmt: skip
     render_tile(packed, settings.width, settings.height, tile.x, tile.y, tile.width,
                 tile.height, pixels, workspace)  # fmt: skip
     stacks = workspace.stacks

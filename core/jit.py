@@ -27,8 +27,10 @@ def kernel_source_hash(package: str = __package__) -> str:
     # and imports it by that name on loading, so kernels compiled as `core` (a checkout) do
     # not load as an add-on's `bl_ext.user_default.whitted.core`, nor the other way round
     digest = hashlib.sha1(package.encode())
-    # portable_cache.py too: it decides how cached kernels are found and stamped
-    sources = [here / "jit.py", here / "portable_cache.py", *(here / "kernels").glob("*.py")]
+    # portable_cache.py too: it decides how cached kernels are found and stamped; and
+    # vocabulary.py, whose codes the kernels compile in as constants
+    sources = [here / "jit.py", here / "portable_cache.py", here / "vocabulary.py",
+               *(here / "kernels").glob("*.py")]  # fmt: skip
     for path in sorted(sources):
         digest.update(path.name.encode() + path.read_bytes())
     return digest.hexdigest()[:12]

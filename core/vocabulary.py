@@ -35,3 +35,10 @@ SHADOW_PATTERNS = {"uniform": SHADOW_UNIFORM, "stratified": SHADOW_STRATIFIED,
 # view from every point of the image plane
 PROJECTION_PERSPECTIVE, PROJECTION_ORTHOGRAPHIC = 0, 1
 PROJECTIONS = {"perspective": PROJECTION_PERSPECTIVE, "orthographic": PROJECTION_ORTHOGRAPHIC}
+
+# Render passes beside Combined, in the order of their slots in `Frame.pass_offset`
+# (`core.passes` says what each holds and how many channels it has)
+PASS_NAMES = ("depth", "mist", "normal", "position", "uv", "object_index", "material_index",
+              "diffuse_color", "shadow", "environment", "ambient", "diffuse", "specular",
+              "reflection", "refraction", "crypto_object", "crypto_material")  # fmt: skip
+PASS_SLOT = {name: slot for slot, name in enumerate(PASS_NAMES)}

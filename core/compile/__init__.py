@@ -30,7 +30,7 @@ import numpy as np
 from ..kernels.layout import PackedScene
 from ..memory_estimate import check_fits, estimate
 from ..model import RenderSettings, Scene
-from .csg import pack_csg
+from .csg import owner_rows, pack_csg
 from .frame import pack_frame
 from .lights import pack_lights
 from .materials import pack_materials
@@ -70,7 +70,8 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
     meshes, mesh_of = pack_meshes(shapes)
     geometry = pack_geometry(scene.shapes, shapes, world_from_object, csg, tree_of_row,
                              meshes, mesh_of)  # fmt: skip
-    surfaces = pack_surfaces(shapes, material_of, meshes)
+    owners = [scene.shapes[row] for row in owner_rows(csg, tree_of_row, len(scene.shapes))]
+    surfaces = pack_surfaces(shapes, owners, material_of, meshes)
     lights = pack_lights(scene.lights)
     packed = kernel_ready(PackedScene(frame, geometry, surfaces, materials, lights))
     warnings = [

@@ -71,6 +71,18 @@ def _emit(tables: CsgTables, node: Shape, world: np.ndarray, first_row: int) -> 
     tables.program.append(CSG_OPERATIONS[node.operation])
 
 
+def owner_rows(tables: CsgTables, tree_of_row: dict, scene_rows: int) -> list[int]:
+    """For every row (the scene's shapes, then the CSG operands), the scene shape it belongs
+    to: itself, or the top node of the tree it is an operand of."""
+    owners = list(range(scene_rows)) + [-1] * len(tables.operands)
+    for row, tree in tree_of_row.items():
+        first, end = tables.ranges[tree]
+        for step in tables.program[first:end]:
+            if step >= 0:
+                owners[step] = row
+    return owners
+
+
 def csg_world_box(program: list, first: int, end: int, lo: np.ndarray, hi: np.ndarray):
     """World box of the tree whose steps are program[first:end], from its operand rows'
     boxes lo/hi: a union spans both operands' boxes, an intersection their overlap, a

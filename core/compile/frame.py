@@ -9,7 +9,9 @@ import numpy as np
 from ..kernels.layout import Frame
 from ..kernels.options import (
     OPTION_COUNT,
+    OPTION_CRYPTO_LEVELS,
     OPTION_MAX_DEPTH,
+    OPTION_PASSES,
     OPTION_PIXEL_PATTERN,
     OPTION_PIXEL_SAMPLES,
     OPTION_PROJECTION,
@@ -24,6 +26,7 @@ from ..kernels.options import (
     SHADOW_PATTERNS,
 )
 from ..model import RenderSettings, Scene
+from ..passes import MIST_FALLOFFS, layout
 
 # Listing an area light's shapes costs about as much per shading point as tracing a few
 # shadow rays: on the final scene (300 x 300) culling was slower at 1 to 6 rays per light
@@ -38,6 +41,12 @@ def pack_frame(scene: Scene, settings: RenderSettings) -> Frame:
         ambient=np.asarray(scene.ambient, float),
         background=np.asarray(scene.background, float),
         options=_options(scene, settings),
+        pass_offset=layout(settings.passes, settings.crypto_levels)[0],
+        mist=np.array([
+            settings.mist_start,
+            1.0 / settings.mist_depth if settings.mist_depth > 0.0 else 0.0,
+            MIST_FALLOFFS[settings.mist_falloff],
+        ]),
     )
 
 
@@ -51,6 +60,8 @@ def _options(scene: Scene, settings: RenderSettings) -> np.ndarray:
     options[OPTION_SHADOW_PATTERN] = SHADOW_PATTERNS[settings.shadow_sampling]
     options[OPTION_SEED] = settings.seed
     options[OPTION_TRANSPARENT] = settings.transparent
+    options[OPTION_PASSES] = len(settings.passes) > 0
+    options[OPTION_CRYPTO_LEVELS] = settings.crypto_levels
     options[OPTION_SHADOW_CULLING] = (
         settings.shadow_culling and settings.shadow_samples >= SHADOW_CULLING_MIN_SAMPLES
     )

@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..kernels.layout import Materials
+from ..passes import crypto_id
 from ..textures import load_texture
 from .arrays import concatenated, rows
 
@@ -38,5 +39,7 @@ def pack_materials(shapes: list) -> tuple[Materials, dict[int, int]]:
         texture_size=np.array([(t.shape[1], t.shape[0]) for t in textures], np.int64).reshape(
             -1, 2
         ),
+        pass_index=np.array([m.pass_index for m, _ in materials], np.int32),
+        crypto=np.array([crypto_id(m.name) for m, _ in materials], np.float32),
     )
     return table, row_of

@@ -1,16 +1,23 @@
 """How each row's surface is shaded (`Surfaces`): its material's row, and for meshes the
-smooth flags, vertex normals and UVs per triangle slot."""
+smooth flags, vertex normals and UVs per triangle slot; what the passes say of its object
+(pass index, holdout, Cryptomatte id), taken from the scene shape the row belongs to."""
 
 from __future__ import annotations
 
 import numpy as np
 
 from ..kernels.layout import Surfaces
+from ..passes import crypto_id
 from .arrays import concatenated
 from .meshes import MeshTables
 
 
-def pack_surfaces(shapes: list, material_of: dict, meshes: MeshTables) -> Surfaces:
+def pack_surfaces(shapes: list, owners: list, material_of: dict, meshes: MeshTables) -> Surfaces:
+    """`owners[i]` is the scene shape row i belongs to (a CSG operand's top node)."""
+    ids = {}  # each name hashed once: instances share their object's name
+    for owner in owners:
+        if owner.name not in ids:
+            ids[owner.name] = crypto_id(owner.name)
     return Surfaces(
         shape_material=np.array([material_of[id(s.material)] for s in shapes], np.int32),
         mesh_tri_offset=np.array(meshes.tri_offset, np.int64),
@@ -21,4 +28,7 @@ def pack_surfaces(shapes: list, material_of: dict, meshes: MeshTables) -> Surfac
         normals=concatenated(meshes.normals, (0, 3), np.float32),
         tri_uv_index=concatenated(meshes.tri_uv_index, (0, 3), np.int32),
         uvs=concatenated(meshes.uvs, (0, 2), np.float32),
+        shape_pass_index=np.array([o.pass_index for o in owners], np.int32),
+        shape_holdout=np.array([o.holdout for o in owners], np.uint8),
+        shape_crypto=np.array([ids[o.name] for o in owners], np.float32),
     )

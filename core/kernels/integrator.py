@@ -16,7 +16,16 @@ after `max_depth` bounces, or once their weight can no longer show (MIN_WEIGHT).
 import math
 
 from ..jit import inlined_kernel, kernel
-from .options import OPTION_MAX_DEPTH, OPTION_TRANSPARENT
+from .options import OPTION_MAX_DEPTH, OPTION_PASSES, OPTION_TRANSPARENT
+from .pass_record import (
+    REC_ENVIRONMENT,
+    REC_REFLECTION,
+    REC_REFRACTION,
+    add_to,
+    clear,
+    record_hit,
+    record_lighting,
+)
 from .shading import Phong, ShadingPoint, local_colour
 from .surface import diffuse_colour, surface_at
 from .trace import closest_hit, spawn_point
@@ -49,7 +58,7 @@ def refract(d, n, eta, cos_i, cos_t):
 
 
 @kernel
-def _push(rays, top, o, d, w, depth):
+def _push(rays, top, o, d, w, depth, branch):
     if max(w[0], w[1], w[2]) < MIN_WEIGHT:
         return top
     for a in range(3):
@@ -57,36 +66,50 @@ def _push(rays, top, o, d, w, depth):
         rays.direction[top, a] = d[a]
         rays.weight[top, a] = w[a]
     rays.depth[top] = depth
+    rays.branch[top] = branch
     return top + 1
 
 
 @inlined_kernel
 def trace_ray(ps, o, d, key, ws):
     """(linear RGB colour seen along unit direction d from o, with every bounce; its alpha:
-    0 for a camera ray that meets nothing under Film > Transparent, else 1)."""
+    0 for a camera ray that meets nothing under Film > Transparent, or meets a holdout,
+    else 1). When passes are made, ws.record gets what they need of this camera ray
+    (core.kernels.pass_record): each ray's colour goes to the term of its branch, the
+    camera ray's own hit is split into ambient, diffuse and specular."""
     frame, geo, surf, mats, lights = ps
-    stacks, rays = ws.stacks, ws.rays
+    stacks, rays, record = ws.stacks, ws.rays, ws.record
     max_depth = frame.options[OPTION_MAX_DEPTH]
+    recording = frame.options[OPTION_PASSES] != 0
+    if recording:
+        clear(record, 0.0)
     colour = (0.0, 0.0, 0.0)
     alpha = 1.0
-    top = _push(rays, 0, o, d, (1.0, 1.0, 1.0), 0)
+    top = _push(rays, 0, o, d, (1.0, 1.0, 1.0), 0, REC_ENVIRONMENT)
     event = 0
     while top > 0:
         top -= 1
         o, d = row(rays.origin, top), row(rays.direction, top)
-        w, depth = row(rays.weight, top), rays.depth[top]
+        w, depth, branch = row(rays.weight, top), rays.depth[top], rays.branch[top]
         stacks.ray_counts[RAYS_TRACED] += 1
         shape, t, part, b1, b2 = closest_hit(geo, o, d, math.inf, stacks)
         if shape < 0:
             if depth == 0 and frame.options[OPTION_TRANSPARENT] != 0:
                 alpha = 0.0  # the camera ray itself: nothing there, not even background
             else:
-                colour = add(colour, mul(w, as_tuple(frame.background)))
+                seen = mul(w, as_tuple(frame.background))
+                colour = add(colour, seen)
+                if recording:
+                    add_to(record, branch, seen)
+            continue
+        if depth == 0 and surf.shape_holdout[shape] != 0:
+            alpha = 0.0  # a hole in the picture, as Cycles cuts: nothing behind shows
             continue
         material = surf.shape_material[shape]
+        first = recording and depth == 0
         textured = mats.texture[material] >= 0
         p, n_geometric, n_shading, u, v = surface_at(
-            geo, surf, shape, part, b1, b2, o, d, t, textured
+            geo, surf, shape, part, b1, b2, o, d, t, textured or first
         )
         tau = mats.transparency[material]
         rho = mats.reflectivity[material]
@@ -96,15 +119,19 @@ def trace_ray(ps, o, d, key, ws):
             n_geometric = scale(n_geometric, -1.0)
             n_shading = scale(n_shading, -1.0)
         outside = spawn_point(p, n_geometric, o)
+        kd = diffuse_colour(mats, material, u, v) if tau < 1.0 or first else (0.0, 0.0, 0.0)
+        if first:
+            record_hit(record, surf, mats, shape, material, p, n_shading, u, v, 1.0 - tau, kd)
         if tau < 1.0:
             point = ShadingPoint(outside, n_shading, scale(d, -1.0))
-            phong = Phong(
-                diffuse_colour(mats, material, u, v),
-                row(mats.specular, material),
-                mats.shininess[material],
-            )
-            local = local_colour(frame, lights, geo, stacks, point, phong, key, event)
-            colour = add(colour, mul(w, scale(local, 1.0 - tau)))
+            phong = Phong(kd, row(mats.specular, material), mats.shininess[material])
+            local = local_colour(frame, lights, geo, stacks, point, phong, key, event, first)
+            seen = mul(w, scale(local, 1.0 - tau))
+            colour = add(colour, seen)
+            if first:
+                record_lighting(record, stacks.terms, kd, frame.ambient, 1.0 - tau)
+            elif recording:
+                add_to(record, branch, seen)
         event += 1
         if depth >= max_depth:
             continue
@@ -118,8 +145,12 @@ def trace_ray(ps, o, d, key, ws):
             if f < 1.0:
                 refracted = refract(d, n_shading, n1 / n2, cos_i, cos_t)
                 inside = spawn_point(p, scale(n_geometric, -1.0), o)
-                top = _push(rays, top, inside, refracted, scale(w, tau * (1.0 - f)), depth + 1)
+                through = REC_REFRACTION if depth == 0 else branch
+                weight = scale(w, tau * (1.0 - f))
+                top = _push(rays, top, inside, refracted, weight, depth + 1, through)
         if reflect_weight > 0.0:
             reflected = sub(d, scale(n_shading, 2.0 * dot(d, n_shading)))
-            top = _push(rays, top, outside, reflected, scale(w, reflect_weight), depth + 1)
+            mirrored = REC_REFLECTION if depth == 0 else branch
+            weight = scale(w, reflect_weight)
+            top = _push(rays, top, outside, reflected, weight, depth + 1, mirrored)
     return colour, alpha

@@ -23,6 +23,9 @@ class Frame(NamedTuple):
     ambient: np.ndarray  # float64 (3,)
     background: np.ndarray  # float64 (3,)
     options: np.ndarray  # int64 (OPTION_COUNT,)
+    # where each pass (core.passes, in slot order) starts after the pixel's RGBA, or -1
+    pass_offset: np.ndarray  # int64 (PASS_COUNT,)
+    mist: np.ndarray  # float64 (3,): start, 1 / depth (0 for depth 0), falloff power
 
 
 class Geometry(NamedTuple):
@@ -67,6 +70,10 @@ class Surfaces(NamedTuple):
     normals: np.ndarray  # float32 (r, 3)
     tri_uv_index: np.ndarray  # int32 (rows, 3): rows of uvs per corner
     uvs: np.ndarray  # float32 (r, 2)
+    # per row, of the scene shape it belongs to (a CSG operand: its tree's top node)
+    shape_pass_index: np.ndarray  # int32 (n,): the object index pass's value
+    shape_holdout: np.ndarray  # uint8 (n,): 1 if camera rays see a hole there
+    shape_crypto: np.ndarray  # float32 (n,): the Cryptomatte id of its name
 
 
 class Materials(NamedTuple):
@@ -80,6 +87,8 @@ class Materials(NamedTuple):
     texture_pixels: np.ndarray  # float32 (texels, 3): all images, row-major, top row first
     texture_offset: np.ndarray  # int64 (x,): each image's first texel
     texture_size: np.ndarray  # int64 (x, 2): width, height
+    pass_index: np.ndarray  # int32 (q,): the material index pass's value
+    crypto: np.ndarray  # float32 (q,): the Cryptomatte id of its name
 
 
 class Lights(NamedTuple):

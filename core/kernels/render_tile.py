@@ -14,6 +14,7 @@ from ..jit import kernel
 from .borrow import borrowed
 from .integrator import trace_ray
 from .options import (
+    OPTION_PASSES,
     OPTION_PIXEL_PATTERN,
     OPTION_PIXEL_SAMPLES,
     OPTION_PROJECTION,
@@ -22,6 +23,7 @@ from .options import (
     PIXEL_RANDOM,
     PROJECTION_ORTHOGRAPHIC,
 )
+from .pass_record import accumulate, start_pixel, view_axis, write_passes
 from .rng import PURPOSE_LENS, PURPOSE_PIXEL, permuted, sample_key, uniform2
 from .vec import add, normalize, row, scale, sub
 
@@ -84,7 +86,8 @@ def camera_ray(frame, image_width, image_height, px, py, sample, key):
 
 @kernel
 def render_tile(ps, image_width, image_height, x0, y0, width, height, out, ws):
-    """Fill out[:height, :width] (float32 RGBA) with pixels x0.. and y0.. of the image.
+    """Fill out[:height, :width] (float32: RGBA, then the passes asked for, as
+    Frame.pass_offset lays them out) with pixels x0.. and y0.. of the image.
 
     Pixels depend only on their image coordinates, never on the tile, so any tiling of the
     image gives the same picture. The entry point the driver calls: it borrows its arrays
@@ -98,12 +101,16 @@ def render_tile(ps, image_width, image_height, x0, y0, width, height, out, ws):
     n = frame.options[OPTION_PIXEL_SAMPLES]
     samples = n * n
     seed = frame.options[OPTION_SEED]
+    passes = frame.options[OPTION_PASSES] != 0
+    axis = view_axis(frame)
     for j in range(height):
         for i in range(width):
             if cancel[0] != 0:
                 return
             px, py = x0 + i, y0 + j
             r = g = b = a = 0.0
+            if passes:
+                start_pixel(ws.accum)
             for s in range(samples):
                 key = sample_key(seed, px, py, s)
                 o, d = camera_ray(frame, image_width, image_height, px, py, s, key)
@@ -112,8 +119,12 @@ def render_tile(ps, image_width, image_height, x0, y0, width, height, out, ws):
                 g += colour[1]
                 b += colour[2]
                 a += alpha
+                if passes:
+                    accumulate(ws.accum, ws.crypto_ids, ws.record, s, frame, axis)
             # Linear light has no upper bound, the float32 image has: saturate, never inf
             out[j, i, 0] = min(r / samples, FLOAT32_MAX)
             out[j, i, 1] = min(g / samples, FLOAT32_MAX)
             out[j, i, 2] = min(b / samples, FLOAT32_MAX)
             out[j, i, 3] = a / samples  # the share of camera rays that met something
+            if passes:
+                write_passes(out, j, i, frame, ws.accum, ws.crypto_ids, ws.crypto_distinct, samples)

@@ -21,6 +21,7 @@ from typing import NamedTuple
 from ..jit import inlined_kernel, kernel
 from .borrow import borrowed
 from .light_pyramid import TRAVERSE_ALL, build_pyramid, pyramid_candidates
+from .pass_record import TERM_ROW_DIFFUSE, TERM_ROW_LIT, TERM_ROW_SPECULAR, TERM_ROW_UNSHADOWED
 from .options import (
     OPTION_SHADOW_CULLING,
     OPTION_SHADOW_PATTERN,
@@ -114,11 +115,45 @@ def _lit_by(targets, visibility, j, intensity, attenuation, point, phong):
     distance = targets[j, 3]
     if distance == 0.0:
         return 0.0, 0.0, 0.0
+    return _phong_lit(
+        row(targets, j), _radiance(intensity, attenuation, distance), visibility[j], point, phong
+    )
+
+
+@inlined_kernel
+def _radiance(intensity, attenuation, distance):
+    """A light's intensity at `distance`, after the falloff 1 / (c0 + c1 d + c2 d^2)."""
     c0, c1, c2 = attenuation
     # Without c0 the falloff grows without bound at the light: cap it, so a surface touching
     # a light is blinding but finite (found by the fuzzer: 1 / (c2 d^2) overflowed)
     falloff = 1.0 / max(c0 + c1 * distance + c2 * distance * distance, 1.0 / MAX_FALLOFF)
-    return _phong_lit(row(targets, j), scale(intensity, falloff), visibility[j], point, phong)
+    return scale(intensity, falloff)
+
+
+@kernel
+def _split_lit(terms, light_dir, radiance, visible, point, phong, weight):
+    """`_phong_lit`'s light split into the passes' terms, each times `weight`, added to
+    `terms` (see core.kernels.pass_record): its diffuse and specular parts, and the light
+    falling on the point with and without its shadow. Only for a first hit when passes are
+    made: the colour itself is `_phong_lit`'s, computed as ever."""
+    n, to_viewer = point.normal, point.to_viewer
+    kd, ks, shininess = phong
+    n_dot_l = dot(n, light_dir)
+    if n_dot_l <= 0.0:
+        return
+    falling = scale(radiance, n_dot_l * weight)
+    for a in range(3):
+        terms[TERM_ROW_UNSHADOWED, a] += falling[a]
+        terms[TERM_ROW_LIT, a] += falling[a] * visible
+        terms[TERM_ROW_DIFFUSE, a] += kd[a] * falling[a] * visible
+    if visible == 0.0 or not (ks[0] > 0.0 or ks[1] > 0.0 or ks[2] > 0.0):
+        return
+    reflected = sub(scale(n, 2.0 * n_dot_l), light_dir)
+    r_dot_v = min(dot(reflected, to_viewer), 1.0)
+    if r_dot_v > 0.0:
+        highlight = r_dot_v**shininess * visible * weight
+        for a in range(3):
+            terms[TERM_ROW_SPECULAR, a] += ks[a] * highlight * radiance[a]
 
 
 @inlined_kernel
@@ -199,16 +234,19 @@ def _light_point(area, pattern, samples, j, key, stream, shift):
 
 
 @kernel
-def local_colour(frame, lights, geo, stacks, point, phong, key, event):
+def local_colour(frame, lights, geo, stacks, point, phong, key, event, split):
     """Colour at a `ShadingPoint` of a surface with `Phong` terms. `key` and `event` select
-    the area lights' random numbers.
+    the area lights' random numbers. With `split` (a camera ray's first hit, passes made)
+    its lighting is also split into stacks.terms.
 
     Each light aims its points into stacks.light_targets, `shadow_visibility` casts their
     shadow rays, and only then are the Phong terms summed, in a loop with no call in it."""
     frame, lights = borrowed(frame), borrowed(lights)
     geo, stacks = borrowed(geo), borrowed(stacks)
-    targets, visibility = stacks.light_targets, stacks.visibility
+    targets, visibility, terms = stacks.light_targets, stacks.visibility, stacks.terms
     origin, n = point.origin, point.normal
+    if split:
+        terms[:] = 0.0
     colour = mul(phong.kd, as_tuple(frame.ambient))
     for light in range(lights.sun_toward.shape[0]):
         toward = row(lights.sun_toward, light)
@@ -217,12 +255,17 @@ def local_colour(frame, lights, geo, stacks, point, phong, key, event):
         shadow_visibility(geo, stacks, TRAVERSE_ALL, origin, n, 1)
         radiance = row(lights.sun_intensity, light)
         colour = add(colour, _phong_lit(toward, radiance, visibility[0], point, phong))
+        if split:
+            _split_lit(terms, toward, radiance, visibility[0], point, phong, 1.0)
     for light in range(lights.point_position.shape[0]):
         _aim(targets, 0, row(lights.point_position, light), origin)
         shadow_visibility(geo, stacks, TRAVERSE_ALL, origin, n, 1)
         intensity = row(lights.point_intensity, light)
         attenuation = row(lights.point_attenuation, light)
         colour = add(colour, _lit_by(targets, visibility, 0, intensity, attenuation, point, phong))
+        if split and targets[0, 3] != 0.0:
+            radiance = _radiance(intensity, attenuation, targets[0, 3])
+            _split_lit(terms, row(targets, 0), radiance, visibility[0], point, phong, 1.0)
     samples = frame.options[OPTION_SHADOW_SAMPLES]
     pattern = frame.options[OPTION_SHADOW_PATTERN]
     for light in range(lights.area_centre.shape[0]):
@@ -249,4 +292,11 @@ def local_colour(frame, lights, geo, stacks, point, phong, key, event):
                 total, _lit_by(targets, visibility, j, intensity, attenuation, point, phong)
             )
         colour = add(colour, scale(total, 1.0 / samples))
+        if split:
+            for j in range(samples):
+                distance = targets[j, 3]
+                if distance != 0.0:
+                    radiance = _radiance(intensity, attenuation, distance)
+                    light_dir = row(targets, j)
+                    _split_lit(terms, light_dir, radiance, visibility[j], point, phong, 1.0 / samples)
     return colour

@@ -9,6 +9,7 @@ from .bvh_build import MAX_TREE_DEPTH
 from .bvh_wide import WIDTH
 from .csg import CROSSING_CAPACITY, SPAN_CAPACITY
 from .light_pyramid import MAX_CANDIDATES, PYRAMID_ROWS
+from .pass_record import ACC_COUNT, REC_COUNT, TERM_ROWS
 
 # A wide node leaves at most WIDTH - 1 children waiting besides the one visited next,
 # and the wide tree is no deeper than the binary one
@@ -52,6 +53,8 @@ class Stacks(NamedTuple):
     # one light's points as seen from a shading point (see core.kernels.shading)
     light_targets: np.ndarray  # float64 (shadow samples, 4): unit direction xyz, distance
     visibility: np.ndarray  # float64 (shadow samples,): what reaches the point from each
+    # a shading point's lighting split into the passes' terms (core.kernels.pass_record)
+    terms: np.ndarray  # float64 (TERM_ROWS, 3)
 
 
 class RayStack(NamedTuple):
@@ -61,6 +64,8 @@ class RayStack(NamedTuple):
     direction: np.ndarray  # float64 (n, 3)
     weight: np.ndarray  # float64 (n, 3): what their colour is multiplied by
     depth: np.ndarray  # int64 (n,): bounces so far
+    # int64 (n,): the record slot of the term its colour adds to, when passes are made
+    branch: np.ndarray
 
 
 class Workspace(NamedTuple):
@@ -69,9 +74,19 @@ class Workspace(NamedTuple):
     # int64 (1,), shared by every tile of a render: non-zero once the render is cancelled,
     # which the tile kernel reads at every pixel and stops
     cancel: np.ndarray
+    # the passes (core.kernels.pass_record): a camera ray's record, a pixel's sums, and
+    # per camera ray of the pixel, (met something, object id, material id) for Cryptomatte
+    record: np.ndarray  # float64 (REC_COUNT,)
+    accum: np.ndarray  # float64 (ACC_COUNT,)
+    crypto_ids: np.ndarray  # float64 (camera rays per pixel, 3), or (1, 3) without Cryptomatte
+    crypto_distinct: np.ndarray  # float64 (the same rows, 2): scratch, (id, rays) per id
 
 
-def new_workspace(max_depth: int, shadow_samples: int = 1, cancel=None) -> Workspace:
+def new_workspace(
+    max_depth: int, shadow_samples: int = 1, cancel=None, crypto_rays: int = 1
+) -> Workspace:
+    """Scratch for one tile; `crypto_rays`: the camera rays per pixel when Cryptomatte is
+    made (each keeps its ids until the pixel is done), else 1."""
     # Depth-first, each shading point pops one ray and pushes at most two, so no more than
     # max_depth + 2 rays ever wait
     rays = max_depth + 2
@@ -96,9 +111,18 @@ def new_workspace(max_depth: int, shadow_samples: int = 1, cancel=None) -> Works
             np.full(2, -1, np.int64),
             np.zeros((max(shadow_samples, 1), 4)),
             np.zeros(max(shadow_samples, 1)),
+            np.zeros((TERM_ROWS, 3)),
         ),
         RayStack(
-            np.empty((rays, 3)), np.empty((rays, 3)), np.empty((rays, 3)), np.empty(rays, np.int64)
+            np.empty((rays, 3)),
+            np.empty((rays, 3)),
+            np.empty((rays, 3)),
+            np.empty(rays, np.int64),
+            np.zeros(rays, np.int64),
         ),
         np.zeros(1, np.int64) if cancel is None else cancel,
+        np.zeros(REC_COUNT),
+        np.zeros(ACC_COUNT),
+        np.zeros((max(crypto_rays, 1), 3)),
+        np.zeros((max(crypto_rays, 1), 2)),
     )

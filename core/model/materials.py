@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..checks import Vec3, check_number, check_vec3
+from ..checks import Vec3, check_count, check_number, check_vec3
 from ..errors import SceneError
 
 
@@ -54,6 +54,7 @@ class Material:
     outer_ior     -- index of refraction outside the surface (> 0)
     inner_ior     -- index of refraction inside it (> 0); glass is about 1.5
     texture       -- a `Texture` replacing `diffuse`, or None
+    pass_index    -- its value in the material index pass (Material > Settings > Pass Index)
     """
 
     diffuse: Vec3 = (0.8, 0.8, 0.8)
@@ -65,6 +66,7 @@ class Material:
     outer_ior: float = 1.0
     inner_ior: float = 1.0
     texture: Texture | None = None
+    pass_index: int = 0
 
     def validate(self, user: str) -> None:
         owner = f"material '{self.name}' (on {user})"
@@ -75,6 +77,7 @@ class Material:
         check_number(owner, "transparency", self.transparency, low=0.0, high=1.0)
         check_number(owner, "outer_ior", self.outer_ior, low=0.0, low_open=True)
         check_number(owner, "inner_ior", self.inner_ior, low=0.0, low_open=True)
+        check_count(owner, "pass_index", self.pass_index, high=32767)
         if self.texture is not None:
             if not isinstance(self.texture, Texture):
                 raise SceneError(owner, "texture", f"got {self.texture!r}; need a Texture")

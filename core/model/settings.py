@@ -4,8 +4,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..checks import check_choice, check_count, check_flag, machine_memory
+from ..checks import check_choice, check_count, check_flag, check_number, machine_memory
 from ..errors import SceneError
+from ..passes import DEFAULT_CRYPTO_LEVELS, MAX_CRYPTO_LEVELS, MIST_FALLOFFS, channels, check_passes
 from ..vocabulary import PIXEL_PATTERNS, SHADOW_PATTERNS
 
 PIXEL_SAMPLINGS = tuple(PIXEL_PATTERNS)
@@ -47,6 +48,13 @@ class RenderSettings:
                         fractional at edges, colour premultiplied (Blender's Film ›
                         Transparent); what mirrors and glass show still includes the
                         background, and a glass surface itself is opaque, as in Cycles
+    passes           -- names of the render passes to make beside Combined (see core.passes:
+                        depth, mist, normal, position, uv, object_index, material_index,
+                        diffuse_color, shadow, the terms of Combined, crypto_object, ...)
+    crypto_levels    -- Cryptomatte ranks kept per pixel (objects or materials), 1 to 16
+    mist_start, mist_depth, mist_falloff -- the mist pass: 0 at mist_start from the camera,
+                        1 at mist_start + mist_depth, the ramp raised to 2 ("QUADRATIC"), 1
+                        ("LINEAR") or 1/2 ("INVERSE_QUADRATIC"), as Blender's World > Mist Pass
     shadow_culling   -- an area light's shadow rays test only the shapes in the pyramid from
                         the shading point to the light, from 8 shadow rays per light up
                         (below, it costs more than it saves): exact, the same pixels either
@@ -66,6 +74,11 @@ class RenderSettings:
     seed: int = 0
     shadow_culling: bool = True
     transparent: bool = False
+    passes: tuple[str, ...] = ()
+    crypto_levels: int = DEFAULT_CRYPTO_LEVELS
+    mist_start: float = 5.0
+    mist_depth: float = 25.0
+    mist_falloff: str = "QUADRATIC"
 
     def validate(self) -> None:
         owner = "render settings"
@@ -84,6 +97,11 @@ class RenderSettings:
         check_choice(owner, "shadow_sampling", self.shadow_sampling, SHADOW_SAMPLINGS)
         check_flag(owner, "shadow_culling", self.shadow_culling)
         check_flag(owner, "transparent", self.transparent)
+        self.passes = check_passes(owner, self.passes)
+        check_count(owner, "crypto_levels", self.crypto_levels, low=1, high=MAX_CRYPTO_LEVELS)
+        check_number(owner, "mist_start", self.mist_start)
+        check_number(owner, "mist_depth", self.mist_depth, low=0.0)
+        check_choice(owner, "mist_falloff", self.mist_falloff, tuple(MIST_FALLOFFS))
         self._check_image_fits()
         if self.region is not None:
             x, y, w, h = self.region
@@ -96,10 +114,11 @@ class RenderSettings:
 
     def _check_image_fits(self) -> None:
         """Refuse, before allocating it, an image of more than half this machine's memory
-        (float32 RGBA, 16 bytes a pixel; Blender keeps a copy of its own): a 65536 x 65536
-        frame started and would have needed 64 GiB."""
+        (float32 RGBA, 16 bytes a pixel, and 4 a channel of each pass; Blender keeps a copy
+        of its own): a 65536 x 65536 frame started and would have needed 64 GiB."""
         memory = machine_memory()
-        needed = self.width * self.height * 16
+        pass_channels = sum(channels(name, self.crypto_levels) for name in self.passes)
+        needed = self.width * self.height * (16 + 4 * pass_channels)
         if memory is not None and needed > memory // 2:
             raise SceneError(
                 "render settings",

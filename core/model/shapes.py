@@ -21,7 +21,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..checks import check_affine, check_array, check_choice, check_flag, check_number
+from ..checks import (
+    check_affine,
+    check_array,
+    check_choice,
+    check_count,
+    check_flag,
+    check_number,
+)
 from ..errors import SceneError
 from ..vocabulary import (
     CSG_OPERATIONS,
@@ -36,6 +43,10 @@ from ..vocabulary import (
 from .materials import Material
 
 
+# Blender's largest Pass Index (objects and materials alike)
+MAX_PASS_INDEX = 32767
+
+
 def _identity() -> np.ndarray:
     return np.eye(4)
 
@@ -43,12 +54,19 @@ def _identity() -> np.ndarray:
 @dataclass(eq=False)
 class Shape:
     """casts_shadows -- False: light passes the shape as if it were not there (Blender's
-    Object > Visibility > Ray Visibility > Shadow). Of a CSG tree only the top node's counts."""
+    Object > Visibility > Ray Visibility > Shadow). Of a CSG tree only the top node's counts.
+    holdout       -- camera rays that meet it see a hole: no colour, alpha 0 (Blender's
+                     Object > Visibility > Holdout, and holdout collections); it still casts
+                     shadows and shows in mirrors and through glass, as in Cycles
+    pass_index    -- its value in the object index pass (Object > Relations > Pass Index)
+    Of a CSG tree, the top node's holdout and pass_index hold for all of it."""
 
     name: str = "Shape"
     material: Material = field(default_factory=Material)
     world_from_object: np.ndarray = field(default_factory=_identity)
     casts_shadows: bool = field(default=True, kw_only=True)
+    holdout: bool = field(default=False, kw_only=True)
+    pass_index: int = field(default=0, kw_only=True)
 
     kind_name = "shape"  # how messages name the kind
     kernel_kind = -1  # its code in the shape table (core.kernels.shapes)
@@ -65,6 +83,8 @@ class Shape:
         if id(self.world_from_object) not in checked:
             check_affine(self.owner, "world_from_object", self.world_from_object)
         check_flag(self.owner, "casts_shadows", self.casts_shadows)
+        check_flag(self.owner, "holdout", self.holdout)
+        check_count(self.owner, "pass_index", self.pass_index, high=MAX_PASS_INDEX)
         if not isinstance(self.material, Material):
             raise SceneError(
                 self.owner, "material", f"got {type(self.material).__name__}; need a Material"
