@@ -155,9 +155,9 @@ def render(
     """Render `scene`. Raises `SceneError` for bad input before any work starts.
 
     on_tile(tile, pixels, tiles_done, tiles_total) is called on this thread after each tile,
-    with pixels float32 (tile.height, tile.width, 4 + pass channels), row 0 at the top. should_cancel() is
-    polled between tiles; once it says True no new tile starts and render returns with
-    `cancelled` set and the unrendered pixels zero.
+    with pixels float32 (tile.height, tile.width, 4 + pass channels), row 0 at the top.
+    should_cancel() is polled between tiles; once it says True no new tile starts and render
+    returns with `cancelled` set and the unrendered pixels zero.
     """
     return render_compiled(compile_scene(scene, settings), settings, on_tile, should_cancel)
 

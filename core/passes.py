@@ -13,7 +13,8 @@ kernels also write, per pixel, from the same camera rays:
     uv              3  texture coordinates u, v of the surface, averaged, and the coverage
     object_index    1  Object > Relations > Pass Index of the nearest hit's object
     material_index  1  Material > Settings > Pass Index of the nearest hit's material
-    diffuse_color   3  the diffuse reflectance at the first hit, times its opacity (1 - transparency)
+    diffuse_color   3  the diffuse reflectance at the first hit, times its opacity
+                       (1 - transparency)
     shadow          3  share of the direct light reaching the first hit that its shadow rays
                        let through: 1 lit, 0 in full shadow, 1 where no light falls or nothing
                        was met

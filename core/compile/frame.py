@@ -42,11 +42,13 @@ def pack_frame(scene: Scene, settings: RenderSettings) -> Frame:
         background=np.asarray(scene.background, float),
         options=_options(scene, settings),
         pass_offset=layout(settings.passes, settings.crypto_levels)[0],
-        mist=np.array([
-            settings.mist_start,
-            1.0 / settings.mist_depth if settings.mist_depth > 0.0 else 0.0,
-            MIST_FALLOFFS[settings.mist_falloff],
-        ]),
+        mist=np.array(
+            [
+                settings.mist_start,
+                1.0 / settings.mist_depth if settings.mist_depth > 0.0 else 0.0,
+                MIST_FALLOFFS[settings.mist_falloff],
+            ]
+        ),
     )
 
 

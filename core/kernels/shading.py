@@ -21,7 +21,6 @@ from typing import NamedTuple
 from ..jit import inlined_kernel, kernel
 from .borrow import borrowed
 from .light_pyramid import TRAVERSE_ALL, build_pyramid, pyramid_candidates
-from .pass_record import TERM_ROW_DIFFUSE, TERM_ROW_LIT, TERM_ROW_SPECULAR, TERM_ROW_UNSHADOWED
 from .options import (
     OPTION_SHADOW_CULLING,
     OPTION_SHADOW_PATTERN,
@@ -29,6 +28,7 @@ from .options import (
     SHADOW_HALTON,
     SHADOW_STRATIFIED,
 )
+from .pass_record import TERM_ROW_DIFFUSE, TERM_ROW_LIT, TERM_ROW_SPECULAR, TERM_ROW_UNSHADOWED
 from .rng import PURPOSE_LIGHT, PURPOSE_LIGHT_SHIFT, uniform2
 from .trace import transmittance
 from .vec import add, as_tuple, dot, mul, row, scale, sub
@@ -298,5 +298,6 @@ def local_colour(frame, lights, geo, stacks, point, phong, key, event, split):
                 if distance != 0.0:
                     radiance = _radiance(intensity, attenuation, distance)
                     light_dir = row(targets, j)
-                    _split_lit(terms, light_dir, radiance, visibility[j], point, phong, 1.0 / samples)
+                    visible = visibility[j]
+                    _split_lit(terms, light_dir, radiance, visible, point, phong, 1.0 / samples)
     return colour

@@ -42,7 +42,6 @@ from ..vocabulary import (
 )
 from .materials import Material
 
-
 # Blender's largest Pass Index (objects and materials alike)
 MAX_PASS_INDEX = 32767
 

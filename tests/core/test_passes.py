@@ -97,7 +97,9 @@ def test_depth_position_and_indices_are_the_nearest_hits(geometry_passes):
             hits, close = nearest_hits(px, py, spheres)
             if close:
                 continue
-            met = [(float(np.dot(p - CAMERA.eye, FORWARD)), p, k) for k, p, _ in hits if k is not None]
+            met = [
+                (float(np.dot(p - CAMERA.eye, FORWARD)), p, k) for k, p, _ in hits if k is not None
+            ]
             if not met:
                 assert passes["depth"][py, px, 0] == np.float32(1e10)
                 assert passes["object_index"][py, px, 0] == 0.0
@@ -183,7 +185,7 @@ def test_the_manifest_and_ids_follow_the_cryptomatte_specification():
     assert prefix == "cryptomatte/" + f"{murmur3_32(b'ViewLayer.CryptoObject'):08x}"[:7]
     assert metadata[prefix + "/name"] == "ViewLayer.CryptoObject"
     assert metadata[prefix + "/manifest"] == (
-        '{"Ball": "%08x", "Small": "%08x"}' % (murmur3_32(b"Ball"), murmur3_32(b"Small"))
+        f'{{"Ball": "{murmur3_32(b"Ball"):08x}", "Small": "{murmur3_32(b"Small"):08x}"}}'
     )
     assert crypto_id("Ball") == hash_to_float(murmur3_32(b"Ball"))
 
@@ -226,8 +228,9 @@ def expected_terms(px, py, material, light):
 @pytest.mark.parametrize(
     "material",
     [
-        Material(diffuse=(0.6, 0.3, 0.2), specular=(0.4, 0.4, 0.4), shininess=10.0,
-                 reflectivity=0.25),  # fmt: skip
+        Material(
+            diffuse=(0.6, 0.3, 0.2), specular=(0.4, 0.4, 0.4), shininess=10.0, reflectivity=0.25
+        ),  # fmt: skip
         Material(diffuse=(0.6, 0.3, 0.2), transparency=1.0, inner_ior=1.0),
     ],
     ids=["mirror", "glass of index 1"],
