@@ -2,11 +2,13 @@
 
     python -m core render scene.lua [-o picture.png] [--threads N] [--allow-outside-files]
                                     [--script-seconds S] [--script-memory MIB]
+                                    [--passes depth,normal,...|all]
 
 The script runs first, to the end, in a child process within its time and memory limits;
 only then is anything rendered, so a script with an error anywhere writes nothing. Each
 image is written to a temporary file beside its target and renamed into place when complete:
-an error or Ctrl-C never leaves a partial PNG. Exit status:
+an error or Ctrl-C never leaves a partial PNG. `--passes` also writes each pass asked for to
+PICTURE.PASS.exr beside the PNG (core.pass_files), renamed into place with it. Exit status:
 0 done, 1 bad script or scene, 2 bad command line, 130 interrupted.
 """
 
@@ -14,6 +16,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import shutil
 import sys
 import tempfile
 import time
@@ -25,6 +28,8 @@ from .driver import render
 from .errors import SceneError
 from .image_io import save_png
 from .kernel_warmup import kernels_ready, warm_kernels
+from .pass_files import write_pass_files
+from .passes import PASS_NAMES, check_passes, crypto_names
 
 BAR_WIDTH = 30
 
@@ -44,6 +49,11 @@ def main(argv: list[str] | None = None) -> int:
         "--allow-outside-files", action="store_true",
         help="let the script read and write files outside its own folder",
     )  # fmt: skip
+    render_command.add_argument(
+        "--passes", type=_pass_list, default=(), metavar="LIST",
+        help="also write these passes, each to PICTURE.PASS.exr beside the PNG: a comma-"
+        f"separated list of {', '.join(PASS_NAMES)}, or 'all'",
+    )  # fmt: skip
     default = DEFAULT_LIMITS
     render_command.add_argument(
         "--script-seconds", type=_positive(float), default=default.seconds, metavar="S",
@@ -57,7 +67,7 @@ def main(argv: list[str] | None = None) -> int:
     limits = ScriptLimits(seconds=args.script_seconds, memory_mib=args.script_memory)
     try:
         return _render_script(
-            args.script, args.output, args.threads, args.allow_outside_files, limits
+            args.script, args.output, args.threads, args.allow_outside_files, limits, args.passes
         )
     except (ScriptError, SceneError) as error:
         print(f"error: {error}", file=sys.stderr)
@@ -81,8 +91,16 @@ def _positive(kind):
     return parse
 
 
+def _pass_list(text: str) -> tuple[str, ...]:
+    names = PASS_NAMES if text.strip() == "all" else tuple(n.strip() for n in text.split(","))
+    try:
+        return check_passes("--passes", names)
+    except SceneError as error:
+        raise argparse.ArgumentTypeError(error.problem) from None
+
+
 def _render_script(script: Path, output: Path | None, threads: int, anywhere: bool,
-                   limits: ScriptLimits) -> int:  # fmt: skip
+                   limits: ScriptLimits, passes: tuple[str, ...] = ()) -> int:  # fmt: skip
     calls = load_script(script, print_line=print, anywhere=anywhere, limits=limits)
     if not calls:
         raise ScriptError(f"{script.name}: the script never calls gr.render: nothing to render")
@@ -103,12 +121,13 @@ def _render_script(script: Path, output: Path | None, threads: int, anywhere: bo
         for warning in call.warnings:
             print(f"warning: {warning}", file=sys.stderr)
         call.settings.threads = threads
+        call.settings.passes = passes
         target = output if output is not None else call.output
         result = render(call.scene, call.settings, on_tile=_progress_bar())
         print(result.stats.summary())
         for warning in result.warnings:
             print(f"warning: {warning}", file=sys.stderr)
-        _write_whole(result.image, target)
+        _write_whole(result.image, target, result.passes, crypto_names(call.scene))
         print(f"wrote {target}")
     return 0
 
@@ -131,22 +150,20 @@ def _progress_bar():
     return on_tile
 
 
-def _write_whole(image, target: Path) -> None:
-    """Write beside the target, then rename: readers never see half a PNG."""
+def _write_whole(image, target: Path, passes=None, names=None) -> None:
+    """Write the PNG and its pass files beside their targets, then rename them all: readers
+    never see half a file, and a failure leaves none of them."""
     target.parent.mkdir(parents=True, exist_ok=True)
-    handle, temporary = tempfile.mkstemp(suffix=".png", prefix=".whitted-", dir=target.parent)
-    os.close(handle)
+    staging = Path(tempfile.mkdtemp(prefix=".whitted-", dir=target.parent))
     try:
-        save_png(image, temporary)
-        # As a file made by open() would be (0644 under the usual umask), not mkstemp's 0600
+        written = [save_png(image, staging / target.name)]
+        written += write_pass_files(staging / target.name, passes or {}, names or {})
+        # As files made by open() would be (0644 under the usual umask), not mkstemp's 0600
         umask = os.umask(0)
         os.umask(umask)
-        os.chmod(temporary, 0o666 & ~umask)
-        os.replace(temporary, target)
+        for path in written:
+            os.chmod(path, 0o666 & ~umask)
+        for path in written:
+            os.replace(path, target.parent / path.name)
     finally:
-        if os.path.exists(temporary):
-            os.unlink(temporary)
-
-
-if __name__ == "__main__":
-    sys.exit(main())
+        shutil.rmtree(staging, ignore_errors=True)

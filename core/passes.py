@@ -204,3 +204,19 @@ def crypto_mask(pass_pixels: np.ndarray, name: str) -> np.ndarray:
     whose id is the name's, as a compositor's Cryptomatte node reads it."""
     ids, coverage = pass_pixels[..., 0::2], pass_pixels[..., 1::2]
     return np.where(ids == np.float32(crypto_id(name)), coverage, 0.0).sum(axis=-1)
+
+
+def crypto_names(scene) -> dict[str, list[str]]:
+    """The names each Cryptomatte pass can hold, for its manifest: the scene shapes' names
+    (a CSG tree's is its top node's), and every material, CSG operands' included."""
+    from .model import Csg  # here: the model imports this module
+
+    objects = [shape.name for shape in scene.shapes]
+    materials, stack = [], list(scene.shapes)
+    while stack:
+        shape = stack.pop()
+        if isinstance(shape, Csg):
+            stack += [shape.left, shape.right]
+        else:
+            materials.append(shape.material.name)
+    return {"crypto_object": objects, "crypto_material": materials}

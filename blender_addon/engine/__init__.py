@@ -29,6 +29,9 @@ class WhittedRenderEngine(bpy.types.RenderEngine):
     def render(self, depsgraph):
         final.render(self, depsgraph)
 
+    def update_render_passes(self, scene=None, renderlayer=None):
+        final.register_passes(self, scene, renderlayer)
+
     def view_update(self, context, depsgraph):
         viewport.view_update(self, context, depsgraph)
 

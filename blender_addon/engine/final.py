@@ -28,18 +28,20 @@ def render(engine, depsgraph):
     preview = engine.is_preview
     try:
         start = time.perf_counter()
-        scene, settings, warnings = export.convert(depsgraph, PREVIEW_MESHES if preview else MESHES)
+        scene, settings, warnings = export.convert(
+            depsgraph, PREVIEW_MESHES if preview else MESHES, with_passes=not preview
+        )
         export_s = time.perf_counter() - start
         for warning in () if preview else warnings:
             engine.report({"WARNING"}, warning)
         if not _kernels_ready(engine):
             return
-        layer = depsgraph.view_layer.name
-
-        region = settings.pixel_region()
+        view_layer = depsgraph.view_layer
+        layer = view_layer.name
+        tile_writer = TileWriter(engine, layer, settings, export.passes.blender_passes(view_layer))
 
         def stream(tile, pixels, done, total):
-            write_tile(engine, layer, region, tile, pixels)
+            tile_writer.write(tile, pixels)
             engine.update_progress(done / total)
             engine.update_stats("", f"Whitted | Tile {done}/{total}")
 
@@ -68,6 +70,32 @@ def render(engine, depsgraph):
     if not preview:
         print(summary)
         keep_summary(engine, summary)
+        keep_cryptomatte_manifests(engine, view_layer, scene)
+
+
+def register_passes(engine, scene, view_layer) -> None:
+    """What `update_render_passes` registers for a view layer: Combined and the passes its
+    switches ask for, so that the Render Layers node offers them and the result holds them."""
+    engine.register_pass(scene, view_layer, "Combined", 4, "RGBA", "COLOR")
+    for blender_pass in export.passes.blender_passes(view_layer):
+        channels = len(blender_pass.chan_id)
+        engine.register_pass(
+            scene, view_layer, blender_pass.name, channels, blender_pass.chan_id, blender_pass.kind
+        )
+
+
+def keep_cryptomatte_manifests(engine, view_layer, scene) -> None:
+    """Each Cryptomatte layer's name, hash and manifest in the result's metadata, where
+    Blender's Cryptomatte node and other compositors look for them (and multilayer EXR files
+    carry them)."""
+    layers = export.passes.crypto_layers(view_layer)
+    result = engine.get_result()
+    if not layers or result is None:
+        return
+    names = core.passes.crypto_names(scene)
+    for core_name, layer_name in layers:
+        for key, value in core.passes.crypto_metadata(layer_name, names[core_name]).items():
+            result.stamp_data_add_field(key, value)
 
 
 def keep_summary(engine, summary: str) -> None:
@@ -108,13 +136,40 @@ def cancelled(engine) -> bool:
     return engine.test_break()
 
 
-def write_tile(engine, layer, region, tile, pixels):
-    """Hand one finished tile to Blender. Blender counts rows from the bottom, and from the
-    render border's corner when there is one; `region` is that border (y from the top)."""
-    region_x, region_y, _, region_height = region
-    x = tile.x - region_x
-    y = region_y + region_height - tile.y - tile.height
-    result = engine.begin_result(x, y, tile.width, tile.height, layer=layer)
-    flipped = np.ascontiguousarray(pixels[::-1]).reshape(-1, 4)
-    result.layers[0].passes["Combined"].rect = flipped
-    engine.end_result(result)
+class TileWriter:
+    """Hands finished tiles to Blender: Combined and every pass the view layer asked for.
+    Blender counts rows from the bottom, and from the render border's corner when there is
+    one; `settings.pixel_region()` is that border (y from the top)."""
+
+    def __init__(self, engine, layer: str, settings, blender_passes: list):
+        self.engine, self.layer = engine, layer
+        self.region = settings.pixel_region()
+        offsets, _ = core.passes.layout(settings.passes, settings.crypto_levels)
+        # (Blender's pass name, first channel after RGBA, channels) per pass
+        self.passes = [
+            (
+                p.name,
+                4 + int(offsets[core.passes.PASS_SLOT[p.core_name]]) + getattr(p, "first", 0),
+                len(p.chan_id),
+            )
+            for p in blender_passes
+        ]
+
+    def write(self, tile, pixels) -> None:
+        region_x, region_y, _, region_height = self.region
+        x = tile.x - region_x
+        y = region_y + region_height - tile.y - tile.height
+        result = self.engine.begin_result(x, y, tile.width, tile.height, layer=self.layer)
+        flipped = pixels[::-1]
+        render_passes = result.layers[0].passes
+        render_passes["Combined"].rect = _rows(flipped[..., :4])
+        for name, first, channels in self.passes:
+            render_pass = render_passes.get(name)
+            if render_pass is not None:
+                render_pass.rect = _rows(flipped[..., first : first + channels])
+        self.engine.end_result(result)
+
+
+def _rows(pixels: np.ndarray) -> np.ndarray:
+    """(h, w, c) as the (w h, c) contiguous float32 rows a RenderPass's rect takes."""
+    return np.ascontiguousarray(pixels, np.float32).reshape(-1, pixels.shape[2])

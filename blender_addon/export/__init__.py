@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import core
-from . import camera, light, settings, world
+from . import camera, light, passes, settings, world
 from . import view as view  # the viewport's reader of its 3D view, export.view
 from .instances import Exporter
 from .mesh import MeshCache
@@ -19,24 +19,35 @@ GEOMETRY_TYPES = {"MESH"}
 
 
 def convert(
-    depsgraph, mesh_cache: MeshCache | None = None, view_camera: core.Camera | None = None
+    depsgraph,
+    mesh_cache: MeshCache | None = None,
+    view_camera: core.Camera | None = None,
+    with_passes: bool = False,
 ) -> tuple[core.Scene, core.RenderSettings, list[str]]:
     """Export the evaluated scene. Returns (scene, settings, warnings); raises SceneError.
     `mesh_cache` is the caller's `MeshCache`, kept from one export to the next (the final
     render's, the viewport's); without one, every mesh is converted afresh. `view_camera`
-    (the viewport's, `view.camera`) stands for the scene camera, which need not exist."""
+    (the viewport's, `view.camera`) stands for the scene camera, which need not exist.
+    `with_passes`: the settings ask for the view layer's passes (the final render's)."""
     mesh_cache = MeshCache() if mesh_cache is None else mesh_cache
     scene = depsgraph.scene
     render = settings.convert(scene)
+    if with_passes:
+        passes.apply(render, depsgraph.view_layer, scene.world)
     ambient = world.convert(scene.world)
     exporter = Exporter(depsgraph, mesh_cache)
+    holdouts = holdout_objects(depsgraph.view_layer)
     lights, skipped = [], []
     for instance in depsgraph.object_instances:
         obj = instance.object
         tags = whitted_source(instance)
         matrix = np.array(instance.matrix_world, dtype=float)
         if obj.type in GEOMETRY_TYPES:
-            exporter.add_instance(obj, matrix, tags)
+            holdout = any(
+                o is not None and (o.original.is_holdout or o.original.name_full in holdouts)
+                for o in (obj, instance.parent if instance.is_instance else None)
+            )
+            exporter.add_instance(obj, matrix, tags, holdout)
         elif obj.type == "LIGHT":
             converted = light.convert(obj, instance.matrix_world)
             if converted is None:
@@ -66,6 +77,19 @@ def convert(
         background=ambient,
     )
     return result, render, warnings
+
+
+def holdout_objects(view_layer) -> set[str]:
+    """Names (name_full) of the objects in the view layer's holdout collections (the
+    Outliner's Holdout switch), with their child collections' objects."""
+    found, stack = set(), [view_layer.layer_collection]
+    while stack:
+        layer_collection = stack.pop()
+        if layer_collection.holdout:
+            found.update(o.name_full for o in layer_collection.collection.all_objects)
+        else:
+            stack.extend(layer_collection.children)
+    return found
 
 
 def whitted_source(instance):

@@ -29,13 +29,16 @@ class Exporter:
     def warn(self, text: str) -> None:
         self.warnings.append(text)
 
-    def add_instance(self, obj, matrix: np.ndarray, tags=None) -> None:
+    def add_instance(self, obj, matrix: np.ndarray, tags=None, holdout=False) -> None:
         """One object instance (evaluated) placed by `matrix`; `tags` is the object whose
-        Whitted settings it has, when not `obj` itself (see `whitted_source`)."""
+        Whitted settings it has, when not `obj` itself (see `whitted_source`); `holdout`:
+        camera rays see a hole there (Object > Visibility > Holdout, holdout collections)."""
         original = obj.original
         settings = (tags or obj).whitted
         # Object > Visibility > Ray Visibility > Shadow (Blender 3.0+; older files lack it)
         casts_shadows = bool(getattr(original, "visible_shadow", True))
+        # What the passes say of it: Object > Relations > Pass Index, and the holdout
+        marks = dict(casts_shadows=casts_shadows, holdout=holdout, pass_index=original.pass_index)
         if obj.type == "MESH" and csg.boolean_modifiers(original):
             shape = csg.convert(original, self, self.depsgraph)
         elif obj.type == "MESH" and settings.shape != "MESH":
@@ -45,12 +48,12 @@ class Exporter:
                 if len(part.triangles):
                     slot_material = self.material(obj, slot)
                     self.shapes.append(
-                        core.Mesh(obj.name, slot_material, matrix, mesh=part,
-                                  casts_shadows=casts_shadows)
-                    )  # fmt: skip
+                        core.Mesh(obj.name, slot_material, matrix, mesh=part, **marks)
+                    )
             return
         shape.world_from_object = matrix
-        shape.casts_shadows = casts_shadows
+        for name, value in marks.items():
+            setattr(shape, name, value)
         self.shapes.append(shape)
 
     def base_shape(self, obj, settings=None) -> core.Shape:

@@ -62,6 +62,7 @@ def convert(material) -> core.Material:
             outer_ior=settings.outer_ior,
             inner_ior=settings.inner_ior,
             texture=texture,
+            pass_index=material.pass_index,
         )
     base = np.array(_base_colour(material, principled))
     metallic = float(_input(principled, "Metallic"))
@@ -80,6 +81,7 @@ def convert(material) -> core.Material:
         outer_ior=1.0,
         inner_ior=ior if ior > 0.0 else 1.0,
         texture=texture,
+        pass_index=material.pass_index,
     )
 
 

@@ -11,12 +11,14 @@ from .light import WhittedLightSettings
 from .material import WhittedMaterialSettings
 from .object import WhittedObjectSettings
 from .scene import WhittedSceneSettings
+from .view_layer import WhittedViewLayerSettings
 
 _owners = (
     (bpy.types.Object, WhittedObjectSettings),
     (bpy.types.Material, WhittedMaterialSettings),
     (bpy.types.Light, WhittedLightSettings),
     (bpy.types.Scene, WhittedSceneSettings),
+    (bpy.types.ViewLayer, WhittedViewLayerSettings),
 )
 
 

@@ -14,6 +14,7 @@ from .light import WHITTED_PT_light
 from .material import WHITTED_PT_material
 from .object import WHITTED_PT_object_shape
 from .render import WHITTED_PT_render
+from .view_layer import PANELS as VIEW_LAYER_PANELS
 from .world import WHITTED_PT_world
 
 # Blender's panels open to Whitted, as Cycles opens them: every panel open to BLENDER_RENDER
@@ -64,6 +65,7 @@ _classes = (
     WHITTED_PT_material,
     WHITTED_PT_light,
     WHITTED_PT_world,
+    *VIEW_LAYER_PANELS,
 )
 
 

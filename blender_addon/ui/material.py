@@ -17,6 +17,8 @@ class WHITTED_PT_material(WhittedPanel, bpy.types.Panel):
         material = context.material
         settings = material.whitted
         principled = find_node(material, "BSDF_PRINCIPLED")
+        # The Material Index pass's value (Cycles shows it in its material Settings)
+        layout.prop(material, "pass_index")
         if principled is not None:
             layout.prop(settings, "use_whitted")
         if principled is not None and not settings.use_whitted:

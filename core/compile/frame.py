@@ -20,6 +20,9 @@ from ..kernels.options import (
     OPTION_SHADOW_PATTERN,
     OPTION_SHADOW_SAMPLES,
     OPTION_TRANSPARENT,
+    PASSES_ANY,
+    PASSES_LIGHT_SPLIT,
+    PASSES_UV,
     PIXEL_PATTERNS,
     PROJECTION_ORTHOGRAPHIC,
     PROJECTIONS,
@@ -62,12 +65,24 @@ def _options(scene: Scene, settings: RenderSettings) -> np.ndarray:
     options[OPTION_SHADOW_PATTERN] = SHADOW_PATTERNS[settings.shadow_sampling]
     options[OPTION_SEED] = settings.seed
     options[OPTION_TRANSPARENT] = settings.transparent
-    options[OPTION_PASSES] = len(settings.passes) > 0
+    options[OPTION_PASSES] = pass_bits(settings.passes)
     options[OPTION_CRYPTO_LEVELS] = settings.crypto_levels
     options[OPTION_SHADOW_CULLING] = (
         settings.shadow_culling and settings.shadow_samples >= SHADOW_CULLING_MIN_SAMPLES
     )
     return options
+
+
+def pass_bits(passes: tuple[str, ...]) -> int:
+    """OPTION_PASSES: which costly parts of the passes the kernels must compute."""
+    if not passes:
+        return 0
+    bits = PASSES_ANY
+    if {"diffuse", "specular", "shadow"} & set(passes):
+        bits |= PASSES_LIGHT_SPLIT
+    if "uv" in passes:
+        bits |= PASSES_UV
+    return bits
 
 
 def _camera(scene: Scene, settings: RenderSettings) -> np.ndarray:

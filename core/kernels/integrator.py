@@ -16,7 +16,13 @@ after `max_depth` bounces, or once their weight can no longer show (MIN_WEIGHT).
 import math
 
 from ..jit import inlined_kernel, kernel
-from .options import OPTION_MAX_DEPTH, OPTION_PASSES, OPTION_TRANSPARENT
+from .options import (
+    OPTION_MAX_DEPTH,
+    OPTION_PASSES,
+    OPTION_TRANSPARENT,
+    PASSES_LIGHT_SPLIT,
+    PASSES_UV,
+)
 from .pass_record import (
     REC_ENVIRONMENT,
     REC_REFLECTION,
@@ -80,7 +86,10 @@ def trace_ray(ps, o, d, key, ws):
     frame, geo, surf, mats, lights = ps
     stacks, rays, record = ws.stacks, ws.rays, ws.record
     max_depth = frame.options[OPTION_MAX_DEPTH]
-    recording = frame.options[OPTION_PASSES] != 0
+    passes = frame.options[OPTION_PASSES]
+    recording = passes != 0
+    split = (passes & PASSES_LIGHT_SPLIT) != 0
+    with_uv = (passes & PASSES_UV) != 0
     if recording:
         clear(record, 0.0)
     colour = (0.0, 0.0, 0.0)
@@ -109,7 +118,7 @@ def trace_ray(ps, o, d, key, ws):
         first = recording and depth == 0
         textured = mats.texture[material] >= 0
         p, n_geometric, n_shading, u, v = surface_at(
-            geo, surf, shape, part, b1, b2, o, d, t, textured or first
+            geo, surf, shape, part, b1, b2, o, d, t, textured or (first and with_uv)
         )
         tau = mats.transparency[material]
         rho = mats.reflectivity[material]
@@ -124,12 +133,15 @@ def trace_ray(ps, o, d, key, ws):
             record_hit(record, surf, mats, shape, material, p, n_shading, u, v, 1.0 - tau, kd)
         if tau < 1.0:
             point = ShadingPoint(outside, n_shading, scale(d, -1.0))
-            phong = Phong(kd, row(mats.specular, material), mats.shininess[material])
-            local = local_colour(frame, lights, geo, stacks, point, phong, key, event, first)
+            ks = row(mats.specular, material)
+            phong = Phong(kd, ks, mats.shininess[material])
+            splitting = first and split
+            local = local_colour(frame, lights, geo, stacks, point, phong, key, event, splitting)
             seen = mul(w, scale(local, 1.0 - tau))
             colour = add(colour, seen)
             if first:
-                record_lighting(record, stacks.terms, kd, frame.ambient, 1.0 - tau)
+                terms = stacks.terms
+                record_lighting(record, terms, local, kd, ks, frame.ambient, 1.0 - tau, split)
             elif recording:
                 add_to(record, branch, seen)
         event += 1

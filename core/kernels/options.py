@@ -11,9 +11,15 @@ OPTION_PROJECTION = 7  # one of PROJECTION_*
 # 1: a camera ray that meets nothing is transparent (alpha 0, no background colour; Blender's
 # Film > Transparent); reflected and refracted rays still see the background, as in Cycles
 OPTION_TRANSPARENT = 8
-OPTION_PASSES = 9  # 1: some pass beside Combined is asked for (Frame.pass_offset says which)
+# PASSES_* bits: passes beside Combined are asked for (Frame.pass_offset says which), and
+# whether they need the lighting split or texture coordinates, which cost the most
+OPTION_PASSES = 9
 OPTION_CRYPTO_LEVELS = 10  # Cryptomatte ranks kept per pixel
 OPTION_COUNT = 11
+
+PASSES_ANY = 1
+PASSES_LIGHT_SPLIT = 2  # the diffuse, specular and shadow passes
+PASSES_UV = 4
 
 # The patterns' and projections' codes, listed with their names in core.vocabulary
 from ..vocabulary import (  # noqa: E402, F401

@@ -51,9 +51,10 @@ ACC_OBJECT_INDEX = 35
 ACC_MATERIAL_INDEX = 36
 ACC_COUNT = 37
 
-# Rows of Stacks.terms: one shading point's lighting, split (see shading.local_colour)
-TERM_ROW_DIFFUSE, TERM_ROW_SPECULAR, TERM_ROW_LIT, TERM_ROW_UNSHADOWED = 0, 1, 2, 3
-TERM_ROWS = 4
+# Rows of Stacks.terms: the light falling on one shading point (N.L-weighted), through its
+# shadows and without them (see shading.local_colour)
+TERM_ROW_LIT, TERM_ROW_UNSHADOWED = 0, 1
+TERM_ROWS = 2
 
 BACKGROUND_DEPTH = 1e10
 
@@ -98,15 +99,22 @@ def record_hit(record, surf, mats, shape, material, p, n, u, v, opacity, kd):
 
 
 @kernel
-def record_lighting(record, terms, kd, ambient, opacity):
-    """The first hit's own colour, split: ambient, direct diffuse and specular, each times
-    the opacity as Combined takes them; and the light reaching it, with and without shadows."""
+def record_lighting(record, terms, local, kd, ks, ambient, opacity, split):
+    """The first hit's own colour `local`, split: ambient, direct diffuse (kd times the light
+    falling through the shadows) and specular (what remains: the Phong highlights, exactly
+    what the colour holds beyond the other two, so the terms add up to it), each times the
+    opacity as Combined takes them; and the light reaching it, with and without shadows.
+    Without `split` (no diffuse, specular or shadow pass asked for) only ambient is known."""
     for a in range(3):
-        record[REC_AMBIENT + a] += kd[a] * ambient[a] * opacity
-        record[REC_DIFFUSE + a] += terms[TERM_ROW_DIFFUSE, a] * opacity
-        record[REC_SPECULAR + a] += terms[TERM_ROW_SPECULAR, a] * opacity
-        record[REC_LIT + a] = terms[TERM_ROW_LIT, a]
-        record[REC_UNSHADOWED + a] = terms[TERM_ROW_UNSHADOWED, a]
+        ambient_part = kd[a] * ambient[a]
+        record[REC_AMBIENT + a] += ambient_part * opacity
+        if split:
+            diffuse_part = kd[a] * terms[TERM_ROW_LIT, a]
+            record[REC_DIFFUSE + a] += diffuse_part * opacity
+            if ks[a] > 0.0:
+                record[REC_SPECULAR + a] += (local[a] - ambient_part - diffuse_part) * opacity
+            record[REC_LIT + a] = terms[TERM_ROW_LIT, a]
+            record[REC_UNSHADOWED + a] = terms[TERM_ROW_UNSHADOWED, a]
 
 
 @kernel

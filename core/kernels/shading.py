@@ -28,7 +28,7 @@ from .options import (
     SHADOW_HALTON,
     SHADOW_STRATIFIED,
 )
-from .pass_record import TERM_ROW_DIFFUSE, TERM_ROW_LIT, TERM_ROW_SPECULAR, TERM_ROW_UNSHADOWED
+from .pass_record import TERM_ROW_LIT, TERM_ROW_UNSHADOWED
 from .rng import PURPOSE_LIGHT, PURPOSE_LIGHT_SHIFT, uniform2
 from .trace import transmittance
 from .vec import add, as_tuple, dot, mul, row, scale, sub
@@ -130,30 +130,17 @@ def _radiance(intensity, attenuation, distance):
     return scale(intensity, falloff)
 
 
-@kernel
-def _split_lit(terms, light_dir, radiance, visible, point, phong, weight):
-    """`_phong_lit`'s light split into the passes' terms, each times `weight`, added to
-    `terms` (see core.kernels.pass_record): its diffuse and specular parts, and the light
-    falling on the point with and without its shadow. Only for a first hit when passes are
-    made: the colour itself is `_phong_lit`'s, computed as ever."""
-    n, to_viewer = point.normal, point.to_viewer
-    kd, ks, shininess = phong
+@inlined_kernel
+def _add_falling(terms, light_dir, radiance, visible, n, weight):
+    """Add to `terms` (core.kernels.pass_record) the light falling on the point (times N.L
+    and `weight`) with and without what its shadow ray let through. For the shadow and
+    diffuse passes of a first hit only: the colour itself is `_phong_lit`'s, as ever."""
     n_dot_l = dot(n, light_dir)
-    if n_dot_l <= 0.0:
-        return
-    falling = scale(radiance, n_dot_l * weight)
-    for a in range(3):
-        terms[TERM_ROW_UNSHADOWED, a] += falling[a]
-        terms[TERM_ROW_LIT, a] += falling[a] * visible
-        terms[TERM_ROW_DIFFUSE, a] += kd[a] * falling[a] * visible
-    if visible == 0.0 or not (ks[0] > 0.0 or ks[1] > 0.0 or ks[2] > 0.0):
-        return
-    reflected = sub(scale(n, 2.0 * n_dot_l), light_dir)
-    r_dot_v = min(dot(reflected, to_viewer), 1.0)
-    if r_dot_v > 0.0:
-        highlight = r_dot_v**shininess * visible * weight
+    if n_dot_l > 0.0:
         for a in range(3):
-            terms[TERM_ROW_SPECULAR, a] += ks[a] * highlight * radiance[a]
+            falling = radiance[a] * n_dot_l * weight
+            terms[TERM_ROW_UNSHADOWED, a] += falling
+            terms[TERM_ROW_LIT, a] += falling * visible
 
 
 @inlined_kernel
@@ -236,8 +223,9 @@ def _light_point(area, pattern, samples, j, key, stream, shift):
 @kernel
 def local_colour(frame, lights, geo, stacks, point, phong, key, event, split):
     """Colour at a `ShadingPoint` of a surface with `Phong` terms. `key` and `event` select
-    the area lights' random numbers. With `split` (a camera ray's first hit, passes made)
-    its lighting is also split into stacks.terms.
+    the area lights' random numbers. With `split` (a camera ray's first hit, when the
+    diffuse, specular or shadow pass is made) stacks.terms also gets the light falling on
+    the point, with and without shadows.
 
     Each light aims its points into stacks.light_targets, `shadow_visibility` casts their
     shadow rays, and only then are the Phong terms summed, in a loop with no call in it."""
@@ -256,7 +244,7 @@ def local_colour(frame, lights, geo, stacks, point, phong, key, event, split):
         radiance = row(lights.sun_intensity, light)
         colour = add(colour, _phong_lit(toward, radiance, visibility[0], point, phong))
         if split:
-            _split_lit(terms, toward, radiance, visibility[0], point, phong, 1.0)
+            _add_falling(terms, toward, radiance, visibility[0], n, 1.0)
     for light in range(lights.point_position.shape[0]):
         _aim(targets, 0, row(lights.point_position, light), origin)
         shadow_visibility(geo, stacks, TRAVERSE_ALL, origin, n, 1)
@@ -265,7 +253,7 @@ def local_colour(frame, lights, geo, stacks, point, phong, key, event, split):
         colour = add(colour, _lit_by(targets, visibility, 0, intensity, attenuation, point, phong))
         if split and targets[0, 3] != 0.0:
             radiance = _radiance(intensity, attenuation, targets[0, 3])
-            _split_lit(terms, row(targets, 0), radiance, visibility[0], point, phong, 1.0)
+            _add_falling(terms, row(targets, 0), radiance, visibility[0], n, 1.0)
     samples = frame.options[OPTION_SHADOW_SAMPLES]
     pattern = frame.options[OPTION_SHADOW_PATTERN]
     for light in range(lights.area_centre.shape[0]):
@@ -298,6 +286,5 @@ def local_colour(frame, lights, geo, stacks, point, phong, key, event, split):
                 if distance != 0.0:
                     radiance = _radiance(intensity, attenuation, distance)
                     light_dir = row(targets, j)
-                    visible = visibility[j]
-                    _split_lit(terms, light_dir, radiance, visible, point, phong, 1.0 / samples)
+                    _add_falling(terms, light_dir, radiance, visibility[j], n, 1.0 / samples)
     return colour

@@ -53,13 +53,13 @@ def test_sample_scene_pixels_match_the_reference(sample_scene, bpy_with_whitted,
 def test_every_pixel_is_written_by_exactly_one_tile(sample_scene, bpy_with_whitted, monkeypatch):
     final = final_render()
     written = np.zeros((120, 160), int)
-    original = final.write_tile
+    original = final.TileWriter.write
 
-    def record(engine, layer, region, tile, pixels):
+    def record(writer, tile, pixels):
         written[tile.y : tile.y + tile.height, tile.x : tile.x + tile.width] += 1
-        original(engine, layer, region, tile, pixels)
+        original(writer, tile, pixels)
 
-    monkeypatch.setattr(final, "write_tile", record)
+    monkeypatch.setattr(final.TileWriter, "write", record)
     sample_scene.whitted.tile_size = 24  # does not divide 160 x 120: edge tiles are partial
     bpy_with_whitted.ops.render.render()
     assert np.all(written == 1)
@@ -80,13 +80,13 @@ def test_render_border_is_rendered_in_place(sample_scene, bpy_with_whitted, tmp_
 def test_cancel_from_test_break_stops_within_one_tile(sample_scene, bpy_with_whitted, monkeypatch):
     final = final_render()
     tiles = []
-    original = final.write_tile
+    original = final.TileWriter.write
 
-    def record(engine, layer, region, tile, pixels):
+    def record(writer, tile, pixels):
         tiles.append(tile)
-        original(engine, layer, region, tile, pixels)
+        original(writer, tile, pixels)
 
-    monkeypatch.setattr(final, "write_tile", record)
+    monkeypatch.setattr(final.TileWriter, "write", record)
     # Blender's own test_break cannot be overridden from Python; patch the hook that calls it
     monkeypatch.setattr(final, "cancelled", lambda engine: len(tiles) >= 1)
     sample_scene.whitted.tile_size = 8
