@@ -11,6 +11,7 @@ from PIL import Image
 from tests.blender.conftest import ROOT, SAMPLE
 from tests.support.blender34 import blender_34
 from tests.support.blender_reference import expected_pixels, sample_grid
+from tests.support.exr import read_exr
 
 pytestmark = pytest.mark.blender34
 
@@ -53,7 +54,7 @@ def test_the_in_process_blender_tests_pass_inside_blender_34_too():
     and every sample file opens in both."""
     files = [
         "test_export.py", "test_bpy_engine.py", "test_csg_silhouettes.py",
-        "test_sample_scenes.py",
+        "test_sample_scenes.py", "test_passes.py",
     ]  # fmt: skip
     paths = [str(ROOT / "tests" / "blender" / name) for name in files]
     code = (
@@ -64,6 +65,39 @@ def test_the_in_process_blender_tests_pass_inside_blender_34_too():
     run = blender_34("--addons", "whitted", "--python-expr", code, timeout=900)
     assert run.returncode == 0, run.stdout[-4000:] + run.stderr[-2000:]
     assert "Blender 3.4" in run.stdout and " passed" in run.stdout
+
+
+def test_a_farm_render_writes_every_pass_to_a_multilayer_exr(tmp_path):
+    """`blender -b ... -F OPEN_EXR_MULTILAYER`: Combined, every pass the view layer asks for
+    and the Cryptomatte manifests in one file (read back by tests/support/exr)."""
+    switches = ("use_pass_z", "use_pass_mist", "use_pass_normal", "use_pass_position",
+                "use_pass_uv", "use_pass_object_index", "use_pass_material_index",
+                "use_pass_diffuse_color", "use_pass_shadow", "use_pass_environment",
+                "use_pass_cryptomatte_object", "use_pass_cryptomatte_material")  # fmt: skip
+    enable = (
+        "import bpy; layer = bpy.context.scene.view_layers[0]; "
+        f"[setattr(layer, name, True) for name in {switches!r}]; "
+        "layer.whitted.use_pass_terms = True"
+    )
+    run = blender_34(
+        str(SAMPLE), "--addons", "whitted", "-E", "WHITTED", "--python-expr", enable,
+        "-o", f"{tmp_path}/out_####", "-F", "OPEN_EXR_MULTILAYER", "-f", "1",
+    )  # fmt: skip
+    assert run.returncode == 0 and "Traceback" not in run.stdout + run.stderr, run.stdout
+    channels, metadata = read_exr(tmp_path / "out_0001.exr")
+    passes = {name.split(".")[1] for name in channels}
+    assert passes == {
+        "Combined", "Depth", "Mist", "Normal", "Position", "UV", "IndexOB", "IndexMA",
+        "DiffCol", "Shadow", "Env", "Whitted Ambient", "Whitted Diffuse", "Whitted Specular",
+        "Whitted Reflection", "Whitted Refraction", "CryptoObject00", "CryptoObject01",
+        "CryptoObject02", "CryptoMaterial00", "CryptoMaterial01", "CryptoMaterial02",
+    }  # fmt: skip
+    layer = next(name.split(".")[0] for name in channels)
+    terms = ("Env", "Whitted Ambient", "Whitted Diffuse", "Whitted Specular",
+             "Whitted Reflection", "Whitted Refraction")  # fmt: skip
+    total = sum(channels[f"{layer}.{term}.G"] for term in terms)
+    np.testing.assert_allclose(total, channels[f"{layer}.Combined.G"], rtol=2e-3, atol=2e-3)
+    assert any(key.endswith("/manifest") and '"Red"' in value for key, value in metadata.items())
 
 
 def test_an_animation_renders_frame_by_frame(tmp_path):

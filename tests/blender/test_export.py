@@ -31,8 +31,8 @@ def exported(bpy, monkeypatch):
     captured = []
     original = export.convert
 
-    def capture(depsgraph, mesh_cache=None):
-        captured.append(original(depsgraph, mesh_cache))
+    def capture(depsgraph, mesh_cache=None, **options):
+        captured.append(original(depsgraph, mesh_cache, **options))
         return captured[-1]
 
     monkeypatch.setattr(export, "convert", capture)

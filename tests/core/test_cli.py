@@ -16,6 +16,7 @@ from core.cli import main
 from core.cs488 import load_script
 from core.image_io import to_bytes
 from tests.core.cs488.test_scenes import SCENES
+from tests.support.exr import read_exr
 
 ROOT = SCENES.parent.parent
 
@@ -138,3 +139,36 @@ def test_the_png_is_readable_by_others_as_any_new_file_is(scenes):
         os.umask(previous)
     assert run.returncode == 0, run.stderr
     assert (elsewhere / "x.png").stat().st_mode & 0o777 == 0o644
+
+
+def test_passes_are_written_as_exr_files_beside_the_png(scenes):
+    folder, elsewhere = scenes
+    out = elsewhere / "picture.png"
+    result = run_cli("render", folder / "every_command.lua", "-o", out,
+                     "--passes", "depth,normal,crypto_object", cwd=elsewhere)  # fmt: skip
+    assert result.returncode == 0, result.stderr
+    assert sorted(p.name for p in elsewhere.iterdir()) == [
+        "picture.crypto_object.exr", "picture.depth.exr", "picture.normal.exr", "picture.png",
+    ]  # fmt: skip
+    # The file's values are the render's (a check of the writing: test_passes checks the
+    # values themselves against closed forms); read by an EXR reader of the tests' own
+    (call,) = load_script(folder / "every_command.lua", print_line=lambda line: None)
+    call.settings.passes = ("depth", "normal", "crypto_object")
+    here = core.render(call.scene, call.settings).passes
+    depth, _ = read_exr(elsewhere / "picture.depth.exr")
+    np.testing.assert_array_equal(depth["Y"], here["depth"][..., 0])
+    normal, _ = read_exr(elsewhere / "picture.normal.exr")
+    np.testing.assert_array_equal(np.stack([normal[c] for c in "RGB"], -1), here["normal"])
+    crypto, metadata = read_exr(elsewhere / "picture.crypto_object.exr")
+    assert sorted(crypto)[:2] == ["CryptoObject00.A", "CryptoObject00.B"]
+    (manifest,) = [v for k, v in metadata.items() if k.endswith("/manifest")]
+    assert all(f'"{shape.name}"' in manifest for shape in call.scene.shapes)
+
+
+def test_an_unknown_pass_is_refused_before_anything_runs(scenes):
+    folder, elsewhere = scenes
+    result = run_cli("render", folder / "every_command.lua", "--passes", "depth,zdepth",
+                     cwd=elsewhere)  # fmt: skip
+    assert result.returncode == 2
+    assert "--passes: unknown pass 'zdepth'; use any of depth, mist" in result.stderr
+    assert not (folder / "every_command.png").exists() and list(elsewhere.iterdir()) == []

@@ -40,13 +40,9 @@ def _unzip(data: bytes, size: int) -> bytes:
     return out.tobytes()
 
 
-def read_exr(path: str | Path) -> tuple[dict[str, np.ndarray], dict[str, str]]:
-    """(channel name -> float (height, width) array with row 0 at the top, the string
-    attributes of the header)."""
-    data = Path(path).read_bytes()
-    magic, version = struct.unpack_from("<ii", data, 0)
-    assert magic == 20000630 and version & 0xFF == 2 and not version & 0x1200, "scanline only"
-    at, attributes, strings = 8, {}, {}
+def _header(data: bytes, at: int) -> tuple[dict, dict, int]:
+    """(attributes, string attributes, the offset after the header's closing null)."""
+    attributes, strings = {}, {}
     while data[at] != 0:
         name, at = _cstring(data, at)
         kind, at = _cstring(data, at)
@@ -56,17 +52,49 @@ def read_exr(path: str | Path) -> tuple[dict[str, np.ndarray], dict[str, str]]:
         attributes[name] = value
         if kind == "string":
             strings[name] = value.decode()
-    at += 1
+    return attributes, strings, at + 1
+
+
+def read_exr(path: str | Path) -> tuple[dict[str, np.ndarray], dict[str, str]]:
+    """(channel name -> float (height, width) array with row 0 at the top, the string
+    attributes of the header). A multi-part file's channels are gathered from all its parts
+    (Blender 5 writes a part per pass, its channels named in full, "ViewLayer.Depth.Z"), and
+    the string attributes of all its parts merged."""
+    data = Path(path).read_bytes()
+    magic, version = struct.unpack_from("<ii", data, 0)
+    assert magic == 20000630 and version & 0xFF == 2 and not version & 0x200, "scanline only"
+    multipart = bool(version & 0x1000)
+    at, headers = 8, []
+    while True:
+        attributes, strings, at = _header(data, at)
+        headers.append((attributes, strings))
+        if not multipart or data[at] == 0:
+            break
+    at += 1 if multipart else 0
+    images, metadata = {}, {}
+    tables = []
+    for attributes, strings in headers:
+        metadata.update(strings)
+        x0, y0, x1, y1 = struct.unpack("<iiii", attributes["dataWindow"])
+        rows = ROWS[attributes["compression"][0]]
+        blocks = -(-(y1 - y0 + 1) // rows)
+        tables.append(struct.unpack_from(f"<{blocks}Q", data, at))
+        at += 8 * blocks
+    for (attributes, _), offsets in zip(headers, tables, strict=True):
+        images.update(_part_pixels(data, attributes, offsets, multipart))
+    return images, metadata
+
+
+def _part_pixels(data: bytes, attributes: dict, offsets, multipart: bool) -> dict:
     channels = sorted(_channels(attributes["channels"]))
     x0, y0, x1, y1 = struct.unpack("<iiii", attributes["dataWindow"])
     width, height = x1 - x0 + 1, y1 - y0 + 1
     compression = attributes["compression"][0]
     rows = ROWS[compression]
-    blocks = -(-height // rows)
-    offsets = struct.unpack_from(f"<{blocks}Q", data, at)
     images = {name: np.zeros((height, width)) for name, _ in channels}
     row_bytes = sum(width * np.dtype(DTYPES[t]).itemsize for _, t in channels)
     for offset in offsets:
+        offset += 4 if multipart else 0  # the part's number
         y, size = struct.unpack_from("<ii", data, offset)
         block = data[offset + 8 : offset + 8 + size]
         count = min(rows, y1 + 1 - y)
@@ -79,4 +107,4 @@ def read_exr(path: str | Path) -> tuple[dict[str, np.ndarray], dict[str, str]]:
                 values = np.frombuffer(block, dtype, width, position)
                 images[name][y - y0 + r] = values
                 position += width * dtype.itemsize
-    return images, strings
+    return images
