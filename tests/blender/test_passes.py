@@ -51,7 +51,16 @@ def ball_scene(bpy_with_whitted):
     balls.objects.link(ball)
     bpy.ops.mesh.primitive_plane_add(size=12.0, location=(0.0, 0.0, FLOOR_Z))
     bpy.context.active_object.name = "Floor"
-    return scene
+    yield scene
+    # What the tests changed that outlives clear_scene: the compositor, the file format
+    if hasattr(scene, "compositing_node_group"):
+        scene.compositing_node_group = None
+    else:
+        scene.use_nodes = False
+    settings = scene.render.image_settings
+    if hasattr(settings, "media_type"):
+        settings.media_type = "IMAGE"
+    settings.file_format = "PNG"
 
 
 def pixel_ground(px, py):
@@ -96,10 +105,6 @@ def test_the_render_layers_node_offers_the_passes_the_view_layer_asks_for(ball_s
         "CryptoMaterial02", *TERMS[1:],
     }  # fmt: skip
     assert "Normal" not in offered and "CryptoObject00" not in offered
-    if hasattr(ball_scene, "compositing_node_group"):
-        ball_scene.compositing_node_group = None
-    else:
-        ball_scene.use_nodes = False
 
 
 def test_the_passes_reach_blenders_multilayer_exr_exactly(ball_scene, tmp_path):
@@ -108,9 +113,14 @@ def test_the_passes_reach_blenders_multilayer_exr_exactly(ball_scene, tmp_path):
     layer = ball_scene.view_layers[0]
     for switch in ("use_pass_z", "use_pass_normal", "use_pass_object_index",
                    "use_pass_material_index", "use_pass_cryptomatte_object",
-                   "use_pass_cryptomatte_material", "use_pass_environment"):  # fmt: skip
+                   "use_pass_cryptomatte_material", "use_pass_environment",
+                   "use_pass_mist"):  # fmt: skip
         setattr(layer, switch, True)
     layer.whitted.use_pass_terms = True
+    if ball_scene.world is None:
+        ball_scene.world = bpy.data.worlds.new("World")
+    mist = ball_scene.world.mist_settings
+    mist.start, mist.depth, mist.falloff = 3.0, 4.0, "LINEAR"
     channels, metadata = render_exr(bpy, ball_scene, tmp_path / "passes.exr")
 
     def get(name):
@@ -129,6 +139,9 @@ def test_the_passes_reach_blenders_multilayer_exr_exactly(ball_scene, tmp_path):
                 depth, index, material, normal = CAMERA_Z - z, 3, 6, (x, y, z)
                 on_ball += 1
             assert get("Depth.Z")[py, px] == pytest.approx(depth, rel=1e-6), (px, py)
+            # Mist from the World's Mist Pass settings: orthographic, along the view
+            expected_mist = min(1.0, max(0.0, (depth - 3.0) / 4.0))
+            assert get("Mist.Z")[py, px] == pytest.approx(expected_mist, abs=1e-6)
             assert get("IndexOB.X")[py, px] == index and get("IndexMA.X")[py, px] == material
             got = [get(f"Normal.{axis}")[py, px] for axis in "XYZ"]
             np.testing.assert_allclose(got, normal, atol=1e-5)
@@ -177,6 +190,26 @@ def test_each_view_layer_renders_its_own_collections_holdouts_and_passes(ball_sc
     np.testing.assert_allclose(depth[floor], CAMERA_Z - FLOOR_Z, rtol=1e-6)
 
 
+def test_a_transparent_film_carries_alpha_into_png_and_exr(ball_scene, tmp_path):
+    import bpy
+    from PIL import Image
+
+    ball_scene.render.film_transparent = True
+    ball_scene.objects["Floor"].hide_render = True
+    ball_scene.whitted.pixel_samples = 3
+    channels, _ = render_exr(bpy, ball_scene, tmp_path / "film.exr")
+    expected = np.array([[sample_coverage(px, py) for px in range(WIDTH)] for py in range(HEIGHT)])
+    np.testing.assert_array_equal(channels["ViewLayer.Combined.A"], expected.astype(np.float32))
+    settings = ball_scene.render.image_settings
+    if hasattr(settings, "media_type"):
+        settings.media_type = "IMAGE"
+    settings.file_format, settings.color_mode = "PNG", "RGBA"
+    ball_scene.render.filepath = str(tmp_path / "film.png")
+    bpy.ops.render.render(write_still=True)
+    alpha = np.asarray(Image.open(tmp_path / "film.png"))[..., 3]
+    np.testing.assert_allclose(alpha / 255.0, expected, atol=0.5 / 255.0 + 1e-9)
+
+
 def test_show_in_renders_and_object_holdouts_are_honoured(ball_scene, tmp_path):
     import bpy
 
@@ -190,3 +223,45 @@ def test_show_in_renders_and_object_holdouts_are_honoured(ball_scene, tmp_path):
     ball.hide_render = True
     channels, _ = render_exr(bpy, ball_scene, tmp_path / "hidden.exr")
     np.testing.assert_allclose(channels["ViewLayer.Depth.Z"], CAMERA_Z - FLOOR_Z, rtol=1e-6)
+
+
+def sample_coverage(px, py, n=3):
+    """Share of pixel (px, py)'s n x n grid rays that meet the ball (straight down)."""
+    inside = 0
+    for s in range(n * n):
+        x = -2.0 + 0.1 * (px + (s % n + 0.5) / n)
+        y = 1.5 - 0.1 * (py + (s // n + 0.5) / n)
+        inside += x * x + y * y < 1.0
+    return inside / (n * n)
+
+
+def test_blenders_cryptomatte_node_picks_an_object_by_its_name(ball_scene, tmp_path):
+    """Blender's own Cryptomatte node, reading Whitted's passes and manifest from the render
+    result, gives the ball's exact anti-aliased coverage as its matte."""
+    import bpy
+
+    ball_scene.whitted.pixel_samples = 3
+    ball_scene.view_layers[0].use_pass_cryptomatte_object = True
+    tree = compositor(bpy, ball_scene)
+    for node in list(tree.nodes):
+        tree.nodes.remove(node)
+    if hasattr(ball_scene, "compositing_node_group"):  # Blender 5: the group's output
+        tree.interface.new_socket("Image", in_out="OUTPUT", socket_type="NodeSocketColor")
+        output = tree.nodes.new("NodeGroupOutput").inputs[0]
+    else:
+        output = tree.nodes.new("CompositorNodeComposite").inputs["Image"]
+    layers = tree.nodes.new("CompositorNodeRLayers")
+    crypto = tree.nodes.new("CompositorNodeCryptomatteV2")
+    crypto.source, crypto.scene, crypto.matte_id = "RENDER", ball_scene, "Ball"
+    tree.links.new(layers.outputs["Image"], crypto.inputs["Image"])
+    tree.links.new(crypto.outputs["Matte"], output)
+    settings = ball_scene.render.image_settings
+    if hasattr(settings, "media_type"):
+        settings.media_type = "IMAGE"
+    settings.file_format, settings.color_depth = "OPEN_EXR", "32"
+    ball_scene.render.filepath = str(tmp_path / "matte.exr")
+    bpy.ops.render.render(write_still=True)
+    matte = read_exr(tmp_path / "matte.exr")[0]["R"]
+    expected = np.array([[sample_coverage(px, py) for px in range(WIDTH)] for py in range(HEIGHT)])
+    np.testing.assert_allclose(matte, expected, atol=1e-6)
+    assert ((expected > 0) & (expected < 1)).sum() > 20  # the rim is in it
