@@ -158,7 +158,7 @@ def test_a_checkout_link_loads_core_as_the_add_ons_own_and_keeps_kernels_in_the_
         ("import bpy; bpy.data.objects['Blue'].scale = (0, 1, 1)",
          ["Error: Whitted: sphere 'Blue': world_from_object: is singular", "non-zero scale"]),
         # Whitted's own failure (here the export raises), not a scene error
-        ("import sys; sys.modules['whitted.export'].convert = lambda *a: 1 / 0",
+        ("import sys; sys.modules['whitted.export'].convert = lambda *a, **k: 1 / 0",
          ["Whitted: the render failed: ZeroDivisionError: division by zero"]),
     ],
     ids=["scene error", "engine exception"],
