@@ -39,7 +39,7 @@ $(VENV)/.installed: pyproject.toml
 	  { echo "Whitted needs Python 3.11 (Blender's Python); set PYTHON=python3.11"; exit 1; }
 	$(PYTHON) -m venv $(VENV)
 	$(VENV)/bin/pip install --quiet --upgrade pip
-	$(VENV)/bin/pip install --quiet -e ".[test,bench]"
+	$(VENV)/bin/pip install --quiet -e ".[test,bench,farm]"
 	touch $@
 
 # $(call debian_package,COMMAND,PACKAGE,MESSAGE): install Debian's PACKAGE when COMMAND is

@@ -26,6 +26,7 @@ from .cs488 import ScriptError, ScriptLimits, load_script
 from .cs488.sandbox import DEFAULT_LIMITS
 from .driver import render
 from .errors import SceneError
+from .farm import command as farm_command
 from .image_io import save_png
 from .kernel_warmup import kernels_ready, warm_kernels
 from .pass_files import write_pass_files
@@ -54,6 +55,11 @@ def main(argv: list[str] | None = None) -> int:
         help="also write these passes, each to PICTURE.PASS.exr beside the PNG: a comma-"
         f"separated list of {', '.join(PASS_NAMES)}, or 'all'",
     )  # fmt: skip
+    render_command.add_argument(
+        "--region", type=_region, default=None, metavar="X,Y,W,H",
+        help="render only this part of the image, in pixels from the top left, and write it "
+        "cropped (a farm's border task); its pixels are those of the whole render",
+    )  # fmt: skip
     default = DEFAULT_LIMITS
     render_command.add_argument(
         "--script-seconds", type=_positive(float), default=default.seconds, metavar="S",
@@ -63,12 +69,18 @@ def main(argv: list[str] | None = None) -> int:
         "--script-memory", type=_positive(int), default=default.memory_mib, metavar="MIB",
         help=f"memory the scene script may take, in MiB (default {default.memory_mib})",
     )  # fmt: skip
+    farm_command.add_arguments(
+        commands.add_parser("farm", help="render a .blend or .lua scene on a Dask cluster")
+    )
     args = parser.parse_args(argv)
+    if args.command == "farm":
+        return farm_command.run(args)
     limits = ScriptLimits(seconds=args.script_seconds, memory_mib=args.script_memory)
     try:
         return _render_script(
-            args.script, args.output, args.threads, args.allow_outside_files, limits, args.passes
-        )
+            args.script, args.output, args.threads, args.allow_outside_files, limits, args.passes,
+            args.region,
+        )  # fmt: skip
     except (ScriptError, SceneError) as error:
         print(f"error: {error}", file=sys.stderr)
         return 1
@@ -99,8 +111,17 @@ def _pass_list(text: str) -> tuple[str, ...]:
         raise argparse.ArgumentTypeError(error.problem) from None
 
 
+def _region(text: str) -> tuple[int, int, int, int]:
+    try:
+        x, y, w, h = (int(v) for v in text.split(","))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"got {text!r}; give X,Y,WIDTH,HEIGHT in pixels") from None
+    return x, y, w, h
+
+
 def _render_script(script: Path, output: Path | None, threads: int, anywhere: bool,
-                   limits: ScriptLimits, passes: tuple[str, ...] = ()) -> int:  # fmt: skip
+                   limits: ScriptLimits, passes: tuple[str, ...] = (),
+                   region: tuple[int, int, int, int] | None = None) -> int:  # fmt: skip
     calls = load_script(script, print_line=print, anywhere=anywhere, limits=limits)
     if not calls:
         raise ScriptError(f"{script.name}: the script never calls gr.render: nothing to render")
@@ -122,12 +143,18 @@ def _render_script(script: Path, output: Path | None, threads: int, anywhere: bo
             print(f"warning: {warning}", file=sys.stderr)
         call.settings.threads = threads
         call.settings.passes = passes
+        call.settings.region = region
         target = output if output is not None else call.output
         result = render(call.scene, call.settings, on_tile=_progress_bar())
         print(result.stats.summary())
         for warning in result.warnings:
             print(f"warning: {warning}", file=sys.stderr)
-        _write_whole(result.image, target, result.passes, crypto_names(call.scene))
+        image, pass_images = result.image, result.passes
+        if region is not None:  # the part rendered, alone
+            x, y, w, h = region
+            image = image[y : y + h, x : x + w]
+            pass_images = {name: p[y : y + h, x : x + w] for name, p in pass_images.items()}
+        _write_whole(image, target, pass_images, crypto_names(call.scene))
         print(f"wrote {target}")
     return 0
 

@@ -100,6 +100,25 @@ def test_a_farm_render_writes_every_pass_to_a_multilayer_exr(tmp_path):
     assert any(key.endswith("/manifest") and '"Red"' in value for key, value in metadata.items())
 
 
+def test_a_farm_managers_tile_job_gets_its_log_lines_and_cropped_border(tmp_path):
+    """What Flamenco, Deadline or a shell loop parse from plain `blender -b`: `Fra:` lines with
+    the tile progress, the `Saved:` line; and a tile job's border (set by a script, with
+    Crop to Render Region) is honoured, the file cropped to it."""
+    border = (
+        "import bpy; r = bpy.context.scene.render; r.use_border = r.use_crop_to_border = True; "
+        "r.border_min_x, r.border_max_x, r.border_min_y, r.border_max_y = 0.5, 1.0, 0.0, 0.5"
+    )
+    run = blender_34(
+        str(SAMPLE), "--addons", "whitted", "-E", "WHITTED", "--python-expr", border,
+        "-o", f"{tmp_path}/tile_####", "-F", "PNG", "-f", "1",
+    )  # fmt: skip
+    assert run.returncode == 0, run.stdout
+    tiles = [line for line in run.stdout.splitlines() if line.startswith("Fra:1 ")]
+    assert any("| Whitted | Tile 1/" in line for line in tiles), run.stdout[-2000:]
+    assert f"Saved: '{tmp_path}/tile_0001.png'" in run.stdout
+    assert Image.open(tmp_path / "tile_0001.png").size == (160, 120)  # half of 320 x 240
+
+
 def test_an_animation_renders_frame_by_frame(tmp_path):
     run = blender_34(
         str(SAMPLE), "--addons", "whitted", "-E", "WHITTED", "-o", f"{tmp_path}/frame_####",

@@ -1,0 +1,158 @@
+"""The farm job from the submitting side: connect to the scheduler (or start a LocalCluster),
+submit a task per border or chunk of frames, report progress, write each frame once all of
+it is back, and on Ctrl-C or a failed task cancel everything still running."""
+
+from __future__ import annotations
+
+import os
+import time
+import uuid
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from .jobs import FarmError, frame_path, plan
+from .stitch import png_bytes, stitch, write_whole
+from .worker import TaskError, probe_scene, run_task
+
+CONNECT_TIMEOUT_S = 10
+SCENE_RANGE = "scene"
+
+
+@dataclass
+class Job:
+    scene: Path
+    output: str  # Blender's naming: out_####.png
+    scheduler: str  # tcp://HOST:8786, or "local"
+    split: tuple[int, int] = (1, 1)
+    # None: the scene's current frame, as F12 renders it; SCENE_RANGE: its frame range (a
+    # CS488 script has one image, frame 1)
+    frames: tuple[int, ...] | str | None = None
+    chunk: int = 1
+    blender: tuple[str, ...] = ("blender",)
+    workers: int = 0  # of a local cluster (0: one per core)
+    threads: int = 1  # render threads per task
+    addon: str = "whitted"
+
+
+@dataclass
+class JobReport:
+    written: list[Path] = field(default_factory=list)
+    tasks: int = 0
+    workers: int = 0
+    wall_s: float = 0.0
+    rays: float = 0.0
+    busiest_worker_s: float = 0.0  # the most task time one worker spent
+
+
+def connect(scheduler: str, workers: int):
+    """(client, cluster or None). A scheduler that cannot be reached is a FarmError."""
+    from distributed import Client, LocalCluster
+
+    if scheduler == "local":
+        count = workers or len(os.sched_getaffinity(0))
+        cluster = LocalCluster(n_workers=count, threads_per_worker=1, processes=True,
+                               dashboard_address=None)  # fmt: skip
+        return Client(cluster), cluster
+    try:
+        return Client(scheduler, timeout=CONNECT_TIMEOUT_S), None
+    except (OSError, TimeoutError, ValueError) as error:
+        raise FarmError(
+            f"--scheduler {scheduler}: cannot reach a Dask scheduler there ({error}); start "
+            "one with `dask scheduler` on that host, or use --scheduler local"
+        ) from None
+
+
+def _size_and_frames(client, job: Job) -> tuple[tuple[int, int], tuple[int, ...]]:
+    if job.scene.suffix == ".lua":
+        from ..cs488 import load_script
+
+        calls = load_script(job.scene, print_line=lambda line: None)
+        if len(calls) != 1:
+            raise FarmError(f"{job.scene.name}: the farm renders scripts that call gr.render once")
+        settings = calls[0].settings
+        return (settings.width, settings.height), (1,)
+    future = client.submit(probe_scene, str(job.scene), job.blender, pure=False)
+    try:
+        width, height, first, last, current = future.result()
+    except TaskError as error:
+        raise FarmError(str(error)) from None
+    if job.frames == SCENE_RANGE:
+        return (width, height), tuple(range(first, last + 1))
+    return (width, height), job.frames or (current,)
+
+
+def run_job(job: Job, say: Callable[[str], None] = print) -> JobReport:
+    """Render `job`; raises FarmError (nothing of the failed frames written) or, on Ctrl-C,
+    KeyboardInterrupt after cancelling every task."""
+    from distributed import Event, as_completed
+
+    started = time.perf_counter()
+    client, cluster = connect(job.scheduler, job.workers)
+    try:
+        size, frames = _size_and_frames(client, job)
+        tasks = plan(str(job.scene.resolve()), frames, size, job.split, job.chunk, job.blender,
+                     job.threads)  # fmt: skip
+        if len(frames) > 1 and "#" not in job.output:
+            raise FarmError(f"-o {job.output}: name the frames with #### (Blender's convention)")
+        workers = len(client.scheduler_info(n_workers=-1)["workers"])
+        say(f"Farm: {len(tasks)} tasks on {workers} workers ({tasks[0].describe()}, ...)")
+        cancel = Event(f"whitted-cancel-{uuid.uuid4().hex}", client=client)
+        futures = {
+            client.submit(run_task, task, cancel.name, job.addon, key=task.key, pure=False): task
+            for task in tasks
+        }
+        report = JobReport(tasks=len(tasks), workers=workers)
+        try:
+            _collect(futures, size, job, report, started, say, as_completed)
+        except BaseException:
+            cancel.set()
+            client.cancel(list(futures), force=True)
+            raise
+        report.wall_s = time.perf_counter() - started
+        return report
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+
+
+def _collect(futures, size, job, report, started, say, as_completed) -> None:
+    remaining: dict[int, int] = {}  # frame -> its tasks not yet back
+    parts: dict[int, dict] = {}
+    for task in futures.values():
+        for frame in task.frames:
+            remaining[frame] = remaining.get(frame, 0) + 1
+    busy: dict[str, float] = {}
+    for done, future in enumerate(as_completed(futures), start=1):
+        task = futures[future]
+        try:
+            result = future.result()
+        except TaskError as error:
+            raise FarmError(str(error)) from None
+        except Exception as error:  # the scheduler's: a task whose workers kept dying
+            raise FarmError(f"{task.describe()}: {type(error).__name__}: {error}") from None
+        report.rays += result.rays
+        busy[result.worker] = busy.get(result.worker, 0.0) + result.wall_s
+        for frame, data in result.frames.items():
+            if task.border is None:
+                parts[frame] = data
+            else:
+                parts.setdefault(frame, {})[task.border] = data
+            remaining[frame] -= 1
+            if remaining[frame] == 0:
+                report.written.append(_write_frame(job, frame, size, parts.pop(frame), say))
+        elapsed = time.perf_counter() - started
+        left = elapsed / done * (len(futures) - done)
+        say(f"Farm: {done}/{len(futures)} tasks | {report.rays / elapsed / 1e6:.2f} M rays/s "
+            f"across workers | about {left:.0f} s left")  # fmt: skip
+    report.busiest_worker_s = max(busy.values(), default=0.0)
+
+
+def _write_frame(job: Job, frame: int, size, data, say) -> Path:
+    path = frame_path(job.output, frame)
+    if isinstance(data, dict):
+        data = png_bytes(stitch(*size, data))
+    write_whole(path, data)
+    say(f"Saved: '{path}'")
+    return path

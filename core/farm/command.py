@@ -1,0 +1,118 @@
+"""`python -m core farm`: the command line of a farm job (see core.farm)."""
+
+from __future__ import annotations
+
+import argparse
+import shlex
+import sys
+from pathlib import Path
+
+from .jobs import FarmError, parse_frames, parse_split
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "scene",
+        type=Path,
+        help="the .blend file or .lua script, as the "
+        "workers see it (a shared folder, or the same path on every host)",
+    )
+    parser.add_argument(
+        "-o", "--output", required=True, help="the frames' files, Blender's way: out_####.png"
+    )
+    parser.add_argument(
+        "--scheduler",
+        default="local",
+        help="tcp://HOST:8786 (a running `dask scheduler`), or 'local': a "
+        "cluster of worker processes on this machine (default)",
+    )
+    parser.add_argument(
+        "--split",
+        type=_split,
+        default=(1, 1),
+        metavar="COLSxROWS",
+        help="render each frame as this many borders, a task each (4x4)",
+    )
+    parser.add_argument(
+        "--frames",
+        type=_frames,
+        default=None,
+        metavar="LIST",
+        help="frames to render, such as 1-250 (default: the scene's range)",
+    )
+    parser.add_argument(
+        "--chunk",
+        type=int,
+        default=1,
+        metavar="N",
+        help="frames per task when frames are not split (default 1)",
+    )
+    parser.add_argument(
+        "--workers",
+        type=int,
+        default=0,
+        metavar="N",
+        help="worker processes of a local cluster (default: one per core)",
+    )
+    parser.add_argument(
+        "--threads",
+        type=int,
+        default=1,
+        metavar="N",
+        help="render threads per task (default 1: one task per core)",
+    )
+    parser.add_argument(
+        "--blender",
+        default="blender",
+        metavar="COMMAND",
+        help="how workers start Blender, e.g. '/opt/blender/blender' or "
+        "'blender --python-use-system-env' (default: blender)",
+    )
+    parser.add_argument("--addon", default="whitted",
+                        help="the add-on's module name in the workers' Blender (default "
+                        "whitted; an extension is bl_ext.user_default.whitted)")  # fmt: skip
+
+
+def _split(text: str):
+    try:
+        return parse_split(text)
+    except FarmError as error:
+        raise argparse.ArgumentTypeError(str(error)) from None
+
+
+def _frames(text: str):
+    if text.strip() == "scene":
+        return "scene"
+    try:
+        return parse_frames(text)
+    except FarmError as error:
+        raise argparse.ArgumentTypeError(str(error)) from None
+
+
+def run(args) -> int:
+    try:
+        from .client import Job, run_job
+    except ImportError as error:  # distributed is the farm command's alone
+        print(f"error: the farm needs Dask's distributed ({error.name} is missing): "
+              "pip install 'distributed==2026.8.0'", file=sys.stderr)  # fmt: skip
+        return 1
+    job = Job(
+        scene=args.scene, output=args.output, scheduler=args.scheduler, split=args.split,
+        frames=args.frames, chunk=args.chunk, blender=tuple(shlex.split(args.blender)),
+        workers=args.workers, threads=args.threads, addon=args.addon,
+    )  # fmt: skip
+    if not args.scene.is_file():
+        print(f"error: {args.scene}: no such scene file", file=sys.stderr)
+        return 1
+    try:
+        report = run_job(job, say=lambda line: print(line, flush=True))
+    except FarmError as error:
+        print(f"error: {error}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        print("\ninterrupted: every task cancelled; unfinished frames not written",
+              file=sys.stderr)  # fmt: skip
+        return 130
+    print(f"Farm: {len(report.written)} frames in {report.wall_s:.1f} s on "
+          f"{report.workers} workers, busiest worker {report.busiest_worker_s:.1f} s")  # fmt: skip
+    return 0

@@ -1,0 +1,159 @@
+"""The farm on a real Dask LocalCluster of two worker processes on this machine, running the
+real `blender -b` (Debian's 3.4) and the CS488 command line: stitched borders equal the
+single-machine render bit for bit, a frame range renders every frame once, a worker killed
+mid-job changes nothing, a failing scene fails the job with the worker's message and writes
+nothing, an unreachable scheduler and Ctrl-C are reported cleanly."""
+
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import threading
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from core.farm import client as farm_client
+from core.farm.jobs import FarmError
+from tests.support import ROOT
+from tests.support.blender34 import blender_34
+
+distributed = pytest.importorskip("distributed")
+
+SAMPLE = ROOT / "sample_blends" / "spheres.blend"
+LUA = ROOT / "tests" / "cs488_scenes" / "every_command.lua"
+SITE = ROOT / ".venv" / "lib" / "python3.11" / "site-packages"
+BLENDER = ("blender", "--python-use-system-env")
+
+
+@pytest.fixture(scope="module")
+def cluster():
+    """Two single-threaded worker processes, with Blender's environment as `make render`
+    sets it (the add-on from BLENDER_USER_SCRIPTS, numba from the project's venv)."""
+    if shutil.which("blender") is None:
+        pytest.skip("no blender on PATH: run `make setup`")
+    saved = dict(os.environ)
+    os.environ["PYTHONPATH"] = f"{ROOT}{os.pathsep}{SITE}"
+    os.environ.setdefault("BLENDER_USER_SCRIPTS", str(ROOT / ".build" / "blender_scripts"))
+    local = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                     dashboard_address=None)  # fmt: skip
+    yield local
+    local.close()
+    os.environ.clear()
+    os.environ.update(saved)
+
+
+def job(cluster, scene, output, **changes):
+    base = dict(scene=scene, output=str(output), scheduler=cluster.scheduler_address,
+                blender=BLENDER)  # fmt: skip
+    return farm_client.Job(**{**base, **changes})
+
+
+@pytest.fixture(scope="module")
+def single_render(tmp_path_factory):
+    """The sample rendered whole by one `blender -b`, as a farm-less user does."""
+    folder = tmp_path_factory.mktemp("single")
+    run = blender_34(str(SAMPLE), "--addons", "whitted", "-E", "WHITTED",
+                     "-o", f"{folder}/single_####", "-F", "PNG", "-f", "1")  # fmt: skip
+    assert run.returncode == 0, run.stdout[-2000:]
+    return np.asarray(Image.open(folder / "single_0001.png"))
+
+
+def pixels(path):
+    return np.asarray(Image.open(path))
+
+
+def test_a_4x4_split_stitches_to_the_single_render_bit_for_bit(cluster, single_render, tmp_path):
+    lines = []
+    report = farm_client.run_job(job(cluster, SAMPLE, tmp_path / "out_####.png", split=(4, 4)),
+                                 say=lines.append)  # fmt: skip
+    assert report.tasks == 16 and report.written == [tmp_path / "out_0001.png"]
+    np.testing.assert_array_equal(pixels(tmp_path / "out_0001.png"), single_render)
+    assert any(line.startswith("Farm: 16/16 tasks") and "s left" in line for line in lines)
+    assert f"Saved: '{tmp_path / 'out_0001.png'}'" in lines
+
+
+def test_a_lua_scene_splits_and_stitches_too(cluster, tmp_path):
+    scenes = tmp_path / "scenes"
+    shutil.copytree(LUA.parent, scenes)
+    farm_client.run_job(job(cluster, scenes / LUA.name, tmp_path / "farm.png", split=(4, 4)),
+                        say=lambda line: None)  # fmt: skip
+    single = [sys.executable, "-m", "core", "render", scenes / LUA.name, "-o",
+              tmp_path / "single.png"]  # fmt: skip
+    subprocess.run(single, check=True, capture_output=True, cwd=ROOT)
+    np.testing.assert_array_equal(pixels(tmp_path / "farm.png"), pixels(tmp_path / "single.png"))
+
+
+def test_a_frame_range_renders_every_frame_once(cluster, single_render, tmp_path):
+    report = farm_client.run_job(
+        job(cluster, SAMPLE, tmp_path / "frame_####.png", frames=(1, 2, 3), chunk=2),
+        say=lambda line: None,
+    )
+    assert report.tasks == 2  # frames 1-2, then 3
+    names = sorted(p.name for p in tmp_path.iterdir())
+    assert names == ["frame_0001.png", "frame_0002.png", "frame_0003.png"]
+    for name in names:  # the sample does not move: every frame is the single render
+        np.testing.assert_array_equal(pixels(tmp_path / name), single_render)
+
+
+def test_a_worker_killed_mid_job_changes_nothing(cluster, single_render, tmp_path):
+    with distributed.Client(cluster.scheduler_address) as client:
+        pids = list(client.run(os.getpid).values())
+    killed = threading.Event()
+
+    def say(line):
+        if line.startswith("Farm: 2/") and not killed.is_set():
+            os.kill(pids[0], signal.SIGKILL)  # a worker process, and the render it runs
+            killed.set()
+
+    report = farm_client.run_job(job(cluster, SAMPLE, tmp_path / "out_####.png", split=(3, 3)),
+                                 say=say)  # fmt: skip
+    assert killed.is_set() and report.tasks == 9
+    np.testing.assert_array_equal(pixels(tmp_path / "out_0001.png"), single_render)
+
+
+def test_a_failing_scene_fails_the_job_with_the_workers_message(cluster, tmp_path):
+    broken = tmp_path / "broken.blend"
+    spoil = ("import bpy; bpy.data.objects['Blue'].scale = (0, 1, 1); "
+             f"bpy.ops.wm.save_as_mainfile(filepath={str(broken)!r})")  # fmt: skip
+    assert blender_34(str(SAMPLE), "--python-expr", spoil).returncode == 0
+    with pytest.raises(FarmError) as error:
+        farm_client.run_job(job(cluster, broken, tmp_path / "out_####.png", split=(2, 1)),
+                            say=lambda line: None)  # fmt: skip
+    message = str(error.value)
+    assert "border x " in message and "failed on worker tcp://" in message
+    assert "sphere 'Blue'" in message and "non-zero scale" in message
+    assert not list(tmp_path.glob("out_*"))
+
+
+def test_an_unreachable_scheduler_is_a_clear_error(tmp_path):
+    run = subprocess.run(
+        [sys.executable, "-m", "core", "farm", str(SAMPLE), "-o", str(tmp_path / "x.png"),
+         "--scheduler", "tcp://127.0.0.1:9"],
+        capture_output=True, text=True, cwd=ROOT, timeout=120,
+    )  # fmt: skip
+    assert run.returncode == 1
+    assert "--scheduler tcp://127.0.0.1:9: cannot reach a Dask scheduler there" in run.stderr
+    assert "Traceback" not in run.stderr
+
+
+def test_ctrl_c_cancels_every_task_and_writes_nothing(tmp_path):
+    env = dict(os.environ, PYTHONPATH=f"{ROOT}{os.pathsep}{SITE}")
+    env.setdefault("BLENDER_USER_SCRIPTS", str(ROOT / ".build" / "blender_scripts"))
+    farm = subprocess.Popen(
+        [sys.executable, "-m", "core", "farm", str(SAMPLE), "--split", "4x4", "--workers", "2",
+         "--blender", " ".join(BLENDER), "-o", str(tmp_path / "out_####.png")],
+        cwd=ROOT, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+    )  # fmt: skip
+    for line in farm.stdout:
+        if line.startswith("Farm: 1/16"):
+            break
+    farm.send_signal(signal.SIGINT)
+    _, stderr = farm.communicate(timeout=120)
+    assert farm.returncode == 130, stderr
+    assert "every task cancelled" in stderr and "Traceback" not in stderr
+    assert not list(tmp_path.glob("out_*"))
+    left = subprocess.run(["pgrep", "-f", "whitted-task-"], capture_output=True, text=True)
+    assert left.stdout == ""  # no render left running
