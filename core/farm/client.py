@@ -63,7 +63,10 @@ def connect(scheduler: str, workers: int):
         ) from None
 
 
-def _size_and_frames(client, job: Job) -> tuple[tuple[int, int], tuple[int, ...]]:
+def _size_and_frames(client, job: Job) -> tuple[tuple[int, int] | None, tuple[int, ...]]:
+    """The frame's size when known here (a CS488 script's; a .blend's borders are cut by the
+    workers) and the frames to render: reading a .blend's current frame or frame range
+    costs a Blender start on a worker, done only when --frames does not say."""
     if job.scene.suffix == ".lua":
         from ..cs488 import load_script
 
@@ -72,14 +75,16 @@ def _size_and_frames(client, job: Job) -> tuple[tuple[int, int], tuple[int, ...]
             raise FarmError(f"{job.scene.name}: the farm renders scripts that call gr.render once")
         settings = calls[0].settings
         return (settings.width, settings.height), (1,)
+    if isinstance(job.frames, tuple):
+        return None, job.frames
     future = client.submit(probe_scene, str(job.scene), job.blender, pure=False)
     try:
         width, height, first, last, current = future.result()
     except TaskError as error:
         raise FarmError(str(error)) from None
     if job.frames == SCENE_RANGE:
-        return (width, height), tuple(range(first, last + 1))
-    return (width, height), job.frames or (current,)
+        return None, tuple(range(first, last + 1))
+    return None, (current,)
 
 
 def run_job(job: Job, say: Callable[[str], None] = print) -> JobReport:
@@ -120,6 +125,7 @@ def run_job(job: Job, say: Callable[[str], None] = print) -> JobReport:
 def _collect(futures, size, job, report, started, say, as_completed) -> None:
     remaining: dict[int, int] = {}  # frame -> its tasks not yet back
     parts: dict[int, dict] = {}
+    sizes: dict[int, tuple[int, int]] = {}  # frame -> its size, as the workers found it
     for task in futures.values():
         for frame in task.frames:
             remaining[frame] = remaining.get(frame, 0) + 1
@@ -135,13 +141,15 @@ def _collect(futures, size, job, report, started, say, as_completed) -> None:
         report.rays += result.rays
         busy[result.worker] = busy.get(result.worker, 0.0) + result.wall_s
         for frame, data in result.frames.items():
-            if task.border is None:
+            if result.border is None:
                 parts[frame] = data
             else:
-                parts.setdefault(frame, {})[task.border] = data
+                parts.setdefault(frame, {})[result.border] = data
+                sizes[frame] = result.size or size
             remaining[frame] -= 1
             if remaining[frame] == 0:
-                report.written.append(_write_frame(job, frame, size, parts.pop(frame), say))
+                frame_size = sizes.pop(frame, size)
+                report.written.append(_write_frame(job, frame, frame_size, parts.pop(frame), say))
         elapsed = time.perf_counter() - started
         left = elapsed / done * (len(futures) - done)
         say(f"Farm: {done}/{len(futures)} tasks | {report.rays / elapsed / 1e6:.2f} M rays/s "

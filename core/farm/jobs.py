@@ -32,7 +32,10 @@ class Task:
 
     scene: str  # the .blend or .lua file, as the workers see it
     frames: tuple[int, ...]
-    border: Border | None = None  # None: the whole frame
+    border: Border | None = None  # in pixels, or None: the whole frame (or `part`'s)
+    # (column, row, columns, rows): a border the worker works out from the frame's size, as
+    # `borders` cuts it, so that the client need not read the .blend (a Blender start-up)
+    part: tuple[int, int, int, int] | None = None
     # the command that starts Blender on the workers ("blender", or the binary and options
     # such as --python-use-system-env), as words
     blender: tuple[str, ...] = ("blender",)
@@ -45,12 +48,18 @@ class Task:
     def describe(self) -> str:
         frames = (f"frame {self.frames[0]}" if len(self.frames) == 1
                   else f"frames {self.frames[0]}-{self.frames[-1]}")  # fmt: skip
+        if self.part is not None:
+            column, row, columns, rows = self.part
+            return f"border {row * columns + column + 1} of {columns * rows} (column " \
+                   f"{column + 1}, row {row + 1} from the top) of {frames}"  # fmt: skip
         return frames if self.border is None else f"{self.border.describe()} of {frames}"
 
     @property
     def key(self) -> str:
         """Dask's key for it: unique in the job, readable on the dashboard."""
         where = "" if self.border is None else f"-{self.border.x}-{self.border.y}"
+        if self.part is not None:
+            where = f"-part-{self.part[0]}-{self.part[1]}"
         return f"whitted-{self.frames[0]}-{self.frames[-1]}{where}"
 
 
@@ -111,11 +120,13 @@ def plan(scene: str, frames: tuple[int, ...], size: tuple[int, int] | None,
          split: tuple[int, int], chunk: int, blender: tuple[str, ...] = ("blender",),
          threads: int = 0) -> list[Task]:  # fmt: skip
     """The tasks of a job: per frame, a task per border when the split has more than one
-    part (`size` the frame's width and height then); else a task per chunk of frames."""
+    part, in pixels when the frame's `size` is known, else as parts the workers resolve;
+    without a split, a task per chunk of frames."""
     columns, rows = split
     if columns * rows > 1:
         if size is None:
-            raise FarmError("a split frame needs its size")
+            return [Task(scene, (f,), None, (c, r, columns, rows), blender, threads)
+                    for f in frames for r in range(rows) for c in range(columns)]  # fmt: skip
         parts = borders(*size, columns, rows)
-        return [Task(scene, (f,), b, blender, threads) for f in frames for b in parts]
-    return [Task(scene, c, None, blender, threads) for c in chunks(frames, chunk)]
+        return [Task(scene, (f,), b, None, blender, threads) for f in frames for b in parts]
+    return [Task(scene, c, None, None, blender, threads) for c in chunks(frames, chunk)]

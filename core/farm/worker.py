@@ -22,7 +22,7 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-from .jobs import Task
+from .jobs import Border, Task
 
 # The engine's summary line, printed by `blender -b` and the command line alike
 SUMMARY = re.compile(r"render (?P<seconds>[\d.]+) s \| (?P<rays>[\d.]+) M rays")
@@ -37,6 +37,8 @@ class TaskError(Exception):
 @dataclass
 class TaskResult:
     frames: dict[int, bytes]  # frame -> its PNG (the border's, cropped, for a border task)
+    border: Border | None  # the border rendered, in pixels (None: whole frames)
+    size: tuple[int, int] | None  # the frame's width and height, when a border was rendered
     rays: float  # rays the render cast
     render_s: float  # seconds it spent rendering (its own summary)
     wall_s: float  # seconds the task took, start-up included
@@ -44,25 +46,36 @@ class TaskResult:
 
 
 def _render_border_code(task: Task) -> str:
-    """Python for Blender: render only the task's border, cropped, with its threads. The
-    border's fractions sit half a pixel inside each edge, so Blender's float32 arithmetic
-    (fraction x size, truncated) gives exactly the pixels asked for."""
+    """Python for Blender: render only the task's border, cropped, with its threads, and print
+    the border in pixels and the frame's size. The border's fractions sit half a pixel inside
+    each edge, so Blender's float32 arithmetic (fraction x size, truncated) gives exactly the
+    pixels asked for. A `part` is cut from the frame's size as `jobs.borders` cuts it."""
     lines = ["import bpy", "r = bpy.context.scene.render",
              "w = int(r.resolution_x * r.resolution_percentage / 100)",
              "h = int(r.resolution_y * r.resolution_percentage / 100)"]  # fmt: skip
     if task.threads:
         lines.append(f"r.threads_mode = 'FIXED'; r.threads = {task.threads}")
-    if task.border is not None:
+    if task.part is not None:
+        c, r, columns, rows = task.part
+        lines += [f"x0, x1 = w * {c} // {columns}, w * {c + 1} // {columns}",
+                  f"y0, y1 = h * {r} // {rows}, h * {r + 1} // {rows}"]  # fmt: skip
+    elif task.border is not None:
         b = task.border
+        lines += [f"x0, x1, y0, y1 = {b.x}, {b.x + b.width}, {b.y}, {b.y + b.height}"]
+    if task.part is not None or task.border is not None:
         lines += [
             "r.use_border = True; r.use_crop_to_border = True",
-            f"r.border_min_x = ({b.x} + 0.5) / w",
-            f"r.border_max_x = min(1.0, ({b.x + b.width} + 0.5) / w)",
+            "r.border_min_x = (x0 + 0.5) / w",
+            "r.border_max_x = min(1.0, (x1 + 0.5) / w)",
             # Blender counts rows from the bottom
-            f"r.border_min_y = (h - {b.y + b.height} + 0.5) / h",
-            f"r.border_max_y = min(1.0, (h - {b.y} + 0.5) / h)",
+            "r.border_min_y = (h - y1 + 0.5) / h",
+            "r.border_max_y = min(1.0, (h - y0 + 0.5) / h)",
+            "print('WHITTED_FARM_BORDER', x0, y0, x1 - x0, y1 - y0, w, h, flush=True)",
         ]
     return "; ".join(lines)
+
+
+BORDER_LINE = re.compile(r"WHITTED_FARM_BORDER (\d+) (\d+) (\d+) (\d+) (\d+) (\d+)")
 
 
 def command(task: Task, folder: Path, addon: str = "whitted") -> list[str]:
@@ -135,8 +148,15 @@ def run_task(task: Task, cancel_event: str | None = None, addon: str = "whitted"
                 f"{task.describe()} failed on worker {worker} (exit {render.returncode}):\n{tail}"
             )
     summaries = [m.groupdict() for m in SUMMARY.finditer(text)]
+    border, size = task.border, None
+    found = BORDER_LINE.search(text)
+    if found is not None:
+        x, y, w, h, width, height = (int(g) for g in found.groups())
+        border, size = Border(x, y, w, h), (width, height)
     return TaskResult(
         frames=frames,
+        border=border,
+        size=size,
         rays=sum(float(s["rays"]) * 1e6 for s in summaries),
         render_s=sum(float(s["seconds"]) for s in summaries),
         wall_s=time.perf_counter() - started,

@@ -5,6 +5,7 @@ mid-job changes nothing, a failing scene fails the job with the worker's message
 nothing, an unreachable scheduler and Ctrl-C are reported cleanly."""
 
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -123,7 +124,11 @@ def test_a_failing_scene_fails_the_job_with_the_workers_message(cluster, tmp_pat
         farm_client.run_job(job(cluster, broken, tmp_path / "out_####.png", split=(2, 1)),
                             say=lambda line: None)  # fmt: skip
     message = str(error.value)
-    assert "border x " in message and "failed on worker tcp://" in message
+    assert re.search(
+        r"border \d of 2 \(column \d, row 1 from the top\) of frame 1 failed on "
+        r"worker tcp://",
+        message,
+    )
     assert "sphere 'Blue'" in message and "non-zero scale" in message
     assert not list(tmp_path.glob("out_*"))
 
