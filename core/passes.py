@@ -207,16 +207,7 @@ def crypto_mask(pass_pixels: np.ndarray, name: str) -> np.ndarray:
 
 
 def crypto_names(scene) -> dict[str, list[str]]:
-    """The names each Cryptomatte pass can hold, for its manifest: the scene shapes' names
-    (a CSG tree's is its top node's), and every material, CSG operands' included."""
-    from .model import Csg  # here: the model imports this module
-
-    objects = [shape.name for shape in scene.shapes]
-    materials, stack = [], list(scene.shapes)
-    while stack:
-        shape = stack.pop()
-        if isinstance(shape, Csg):
-            stack += [shape.left, shape.right]
-        else:
-            materials.append(shape.material.name)
+    """The names each Cryptomatte pass can hold, for its manifest: the scene's objects
+    (a CSG tree's is its top node's) and every material, CSG operands' included."""
+    objects, materials = scene.object_and_material_names()
     return {"crypto_object": objects, "crypto_material": materials}

@@ -10,7 +10,7 @@ from ..checks import Vec3, check_vec3, valid_affine
 from ..errors import SceneError
 from .camera import Camera
 from .lights import AreaLight, DirectionalLight, PointLight
-from .shapes import Shape
+from .shapes import Csg, Shape
 
 
 @dataclass
@@ -44,6 +44,18 @@ class Scene:
             shape.validate(checked)
         check_vec3("scene", "ambient", self.ambient, nonnegative=True)
         check_vec3("scene", "background", self.background, nonnegative=True)
+
+    def object_and_material_names(self) -> tuple[list[str], list[str]]:
+        """The names of the scene's shapes (a CSG tree named by its top node) and of every
+        material, CSG operands' included: what object and material ids can name."""
+        materials, stack = [], list(self.shapes)
+        while stack:
+            shape = stack.pop()
+            if isinstance(shape, Csg):
+                stack += [shape.left, shape.right]
+            else:
+                materials.append(shape.material.name)
+        return [shape.name for shape in self.shapes], materials
 
     def _checked_transforms(self) -> set:
         """Ids of the shapes' transforms found valid, all checked at once (thousands of
