@@ -16,6 +16,7 @@ from .stitch import png_bytes, stitch, write_whole
 from .worker import TaskError, probe_scene, run_task
 
 CONNECT_TIMEOUT_S = 10
+CANCEL_WAIT_S = 5  # for running tasks to stop their renders
 SCENE_RANGE = "scene"
 
 
@@ -33,6 +34,7 @@ class Job:
     workers: int = 0  # of a local cluster (0: one per core)
     threads: int = 1  # render threads per task
     addon: str = "whitted"
+    fresh_blender: bool = False  # a Blender per task, not the workers' warm ones
 
 
 @dataclass
@@ -77,7 +79,8 @@ def _size_and_frames(client, job: Job) -> tuple[tuple[int, int] | None, tuple[in
         return (settings.width, settings.height), (1,)
     if isinstance(job.frames, tuple):
         return None, job.frames
-    future = client.submit(probe_scene, str(job.scene), job.blender, pure=False)
+    future = client.submit(probe_scene, str(job.scene.resolve()), job.blender, job.addon,
+                           pure=False)  # fmt: skip
     try:
         width, height, first, last, current = future.result()
     except TaskError as error:
@@ -90,7 +93,7 @@ def _size_and_frames(client, job: Job) -> tuple[tuple[int, int] | None, tuple[in
 def run_job(job: Job, say: Callable[[str], None] = print) -> JobReport:
     """Render `job`; raises FarmError (nothing of the failed frames written) or, on Ctrl-C,
     KeyboardInterrupt after cancelling every task."""
-    from distributed import Event, as_completed
+    from distributed import Event, as_completed, wait
 
     started = time.perf_counter()
     client, cluster = connect(job.scheduler, job.workers)
@@ -104,7 +107,9 @@ def run_job(job: Job, say: Callable[[str], None] = print) -> JobReport:
         say(f"Farm: {len(tasks)} tasks on {workers} workers ({tasks[0].describe()}, ...)")
         cancel = Event(f"whitted-cancel-{uuid.uuid4().hex}", client=client)
         futures = {
-            client.submit(run_task, task, cancel.name, job.addon, key=task.key, pure=False): task
+            client.submit(
+                run_task, task, cancel.name, job.addon, job.fresh_blender, key=task.key, pure=False
+            ): task  # fmt: skip
             for task in tasks
         }
         report = JobReport(tasks=len(tasks), workers=workers)
@@ -112,6 +117,9 @@ def run_job(job: Job, say: Callable[[str], None] = print) -> JobReport:
             _collect(futures, size, job, report, started, say, as_completed)
         except BaseException:
             cancel.set()
+            # The running tasks see the flag within a poll and end by themselves: waited
+            # for, a local cluster's workers then close with nothing in flight
+            wait(list(futures), timeout=CANCEL_WAIT_S)
             client.cancel(list(futures), force=True)
             raise
         report.wall_s = time.perf_counter() - started
@@ -138,6 +146,8 @@ def _collect(futures, size, job, report, started, say, as_completed) -> None:
             raise FarmError(str(error)) from None
         except Exception as error:  # the scheduler's: a task whose workers kept dying
             raise FarmError(f"{task.describe()}: {type(error).__name__}: {error}") from None
+        if result is None:  # the task saw the job's cancel flag
+            raise FarmError(f"{task.describe()}: cancelled")
         report.rays += result.rays
         busy[result.worker] = busy.get(result.worker, 0.0) + result.wall_s
         for frame, data in result.frames.items():

@@ -68,6 +68,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="how workers start Blender, e.g. '/opt/blender/blender' or "
         "'blender --python-use-system-env' (default: blender)",
     )
+    parser.add_argument(
+        "--fresh-blender",
+        action="store_true",
+        help="start a blender -b for every task and stop it after, as a farm manager "
+        "would (default: each worker keeps its Blender running, the scene open, between "
+        "tasks, and a task costs only its render)",
+    )
     parser.add_argument("--addon", default="whitted",
                         help="the add-on's module name in the workers' Blender (default "
                         "whitted; an extension is bl_ext.user_default.whitted)")  # fmt: skip
@@ -100,6 +107,7 @@ def run(args) -> int:
         scene=args.scene, output=args.output, scheduler=args.scheduler, split=args.split,
         frames=args.frames, chunk=args.chunk, blender=tuple(shlex.split(args.blender)),
         workers=args.workers, threads=args.threads, addon=args.addon,
+        fresh_blender=args.fresh_blender,
     )  # fmt: skip
     if not args.scene.is_file():
         print(f"error: {args.scene}: no such scene file", file=sys.stderr)

@@ -1,10 +1,14 @@
-"""What runs on a worker: one task's real render, in a folder of its own, by the same command
-a user or a farm manager runs (`blender -b scene.blend -E WHITTED ...`, or
-`python -m core render scene.lua`), its frames handed back as the bytes of their PNG files.
+"""What runs on a worker: one task's real render, by the same Blender or command line a user
+runs, its frames handed back as the bytes of their PNG files.
+
+A .blend's task goes to a warm Blender of this worker (warm_blender.py: `blender -b` with
+the add-on, kept between tasks, the scene open), which renders with Blender's own render
+operator as `-f` does; `fresh=True` starts and stops one for the task alone. A CS488
+script's task runs `python -m core render SCENE.lua --region ...` in a folder of its own.
 
 A task polls the job's cancel flag (a Dask Event) while its render runs and kills the render
 when it is set; a render that fails raises `TaskError` with the task, the worker and the
-end of the render's own log. The render dies with the worker process that started it
+end of the render's own log. Renders die with the worker process that started them
 (Linux: PR_SET_PDEATHSIG), so a lost worker leaves no render running.
 """
 
@@ -22,10 +26,13 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
+from . import warm_blender
 from .jobs import Border, Task
 
-# The engine's summary line, printed by `blender -b` and the command line alike
-SUMMARY = re.compile(r"render (?P<seconds>[\d.]+) s \| (?P<rays>[\d.]+) M rays")
+# The engine's summary line, printed by `blender -b` and the command line alike (Blender
+# repeats it after "Fra:" and "Info:", hence the line's start)
+SUMMARY = re.compile(r"^Whitted \| .*?render (?P<seconds>[\d.]+) s \| (?P<rays>[\d.]+) M rays",
+                     re.MULTILINE)  # fmt: skip
 POLL_S = 0.2
 LOG_LINES = 12  # of a failed render's log, in its error
 
@@ -45,55 +52,15 @@ class TaskResult:
     worker: str
 
 
-def _render_border_code(task: Task) -> str:
-    """Python for Blender: render only the task's border, cropped, with its threads, and print
-    the border in pixels and the frame's size. The border's fractions sit half a pixel inside
-    each edge, so Blender's float32 arithmetic (fraction x size, truncated) gives exactly the
-    pixels asked for. A `part` is cut from the frame's size as `jobs.borders` cuts it."""
-    lines = ["import bpy", "r = bpy.context.scene.render",
-             "w = int(r.resolution_x * r.resolution_percentage / 100)",
-             "h = int(r.resolution_y * r.resolution_percentage / 100)"]  # fmt: skip
+def lua_command(task: Task, folder: Path) -> list[str]:
+    """The CS488 command line of a script's task, writing its image into `folder`."""
+    line = [sys.executable, "-m", "core", "render", task.scene, "-o", str(folder / "frame.png")]
     if task.threads:
-        lines.append(f"r.threads_mode = 'FIXED'; r.threads = {task.threads}")
-    if task.part is not None:
-        c, r, columns, rows = task.part
-        lines += [f"x0, x1 = w * {c} // {columns}, w * {c + 1} // {columns}",
-                  f"y0, y1 = h * {r} // {rows}, h * {r + 1} // {rows}"]  # fmt: skip
-    elif task.border is not None:
+        line += ["--threads", str(task.threads)]
+    if task.border is not None:
         b = task.border
-        lines += [f"x0, x1, y0, y1 = {b.x}, {b.x + b.width}, {b.y}, {b.y + b.height}"]
-    if task.part is not None or task.border is not None:
-        lines += [
-            "r.use_border = True; r.use_crop_to_border = True",
-            "r.border_min_x = (x0 + 0.5) / w",
-            "r.border_max_x = min(1.0, (x1 + 0.5) / w)",
-            # Blender counts rows from the bottom
-            "r.border_min_y = (h - y1 + 0.5) / h",
-            "r.border_max_y = min(1.0, (h - y0 + 0.5) / h)",
-            "print('WHITTED_FARM_BORDER', x0, y0, x1 - x0, y1 - y0, w, h, flush=True)",
-        ]
-    return "; ".join(lines)
-
-
-BORDER_LINE = re.compile(r"WHITTED_FARM_BORDER (\d+) (\d+) (\d+) (\d+) (\d+) (\d+)")
-
-
-def command(task: Task, folder: Path, addon: str = "whitted") -> list[str]:
-    """The render command of a task, writing its frames into `folder`."""
-    if task.kind == "lua":
-        line = [sys.executable, "-m", "core", "render", task.scene, "-o", str(folder / "frame.png")]
-        if task.threads:
-            line += ["--threads", str(task.threads)]
-        if task.border is not None:
-            b = task.border
-            line += ["--region", f"{b.x},{b.y},{b.width},{b.height}"]
-        return line
-    frames = ",".join(str(f) for f in task.frames)
-    return [
-        *task.blender, "-b", task.scene, "--addons", addon, "-E", "WHITTED",
-        "--python-expr", _render_border_code(task),
-        "-o", str(folder / "frame_######"), "-F", "PNG", "-f", frames,
-    ]  # fmt: skip
+        line += ["--region", f"{b.x},{b.y},{b.width},{b.height}"]
+    return line
 
 
 def _environment() -> dict:
@@ -110,49 +77,30 @@ def _die_with_parent() -> None:
         ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
 
 
-def run_task(task: Task, cancel_event: str | None = None, addon: str = "whitted") -> TaskResult:
-    """Run `task`'s render here; `cancel_event` names the job's Dask Event."""
+def run_task(task: Task, cancel_event: str | None = None, addon: str = "whitted",
+             fresh: bool = False) -> TaskResult | None:  # fmt: skip
+    """Run `task`'s render here; `cancel_event` names the job's Dask Event; `fresh`: a
+    Blender of the task's own, not a warm one. None when the job was cancelled: quietly,
+    not as an error each worker would log."""
     started = time.perf_counter()
     event = None
     if cancel_event is not None:
         from distributed import Event
 
         event = Event(cancel_event)
-    worker = _worker_name()
-    with tempfile.TemporaryDirectory(prefix="whitted-task-") as name:
-        folder = Path(name)
-        log_path = folder / "render.log"
-        with open(log_path, "w") as log:
-            render = subprocess.Popen(
-                command(task, folder, addon), stdout=log, stderr=subprocess.STDOUT,
-                stdin=subprocess.DEVNULL, preexec_fn=_die_with_parent, env=_environment(),
-                cwd=os.path.dirname(os.path.abspath(task.scene)) or None,
-            )  # fmt: skip
-            try:
-                while render.poll() is None:
-                    if event is not None and event.is_set():
-                        render.kill()
-                        render.wait()
-                        raise TaskError(f"{task.describe()}: cancelled")
-                    time.sleep(POLL_S)
-            finally:
-                if render.poll() is None:
-                    render.kill()
-                    render.wait()
-        text = log_path.read_text(errors="replace")
-        frames = _frames(task, folder)
-        failed = render.returncode != 0 or len(frames) != len(task.frames)
-        if failed:
-            tail = "\n".join(text.strip().splitlines()[-LOG_LINES:])
-            raise TaskError(
-                f"{task.describe()} failed on worker {worker} (exit {render.returncode}):\n{tail}"
-            )
+    cancelled = (lambda: False) if event is None else event.is_set
+    try:
+        with tempfile.TemporaryDirectory(prefix="whitted-task-") as name:
+            if cancelled():  # a task the job's cancel found still queued
+                raise warm_blender.JobCancelledError()
+            if task.kind == "lua":
+                frames, text, border, size = _run_script(task, Path(name), cancelled)
+            else:
+                frames, text, border, size = _run_blend(task, Path(name), cancelled, addon,
+                                                        fresh)  # fmt: skip
+    except warm_blender.JobCancelledError:
+        return None
     summaries = [m.groupdict() for m in SUMMARY.finditer(text)]
-    border, size = task.border, None
-    found = BORDER_LINE.search(text)
-    if found is not None:
-        x, y, w, h, width, height = (int(g) for g in found.groups())
-        border, size = Border(x, y, w, h), (width, height)
     return TaskResult(
         frames=frames,
         border=border,
@@ -160,8 +108,68 @@ def run_task(task: Task, cancel_event: str | None = None, addon: str = "whitted"
         rays=sum(float(s["rays"]) * 1e6 for s in summaries),
         render_s=sum(float(s["seconds"]) for s in summaries),
         wall_s=time.perf_counter() - started,
-        worker=worker,
+        worker=_worker_name(),
     )
+
+
+def _failed(task: Task, log: str, why: str) -> TaskError:
+    tail = "\n".join(log.strip().splitlines()[-LOG_LINES:])
+    return TaskError(f"{task.describe()} failed on worker {_worker_name()} ({why}):\n{tail}")
+
+
+def _run_blend(task: Task, folder: Path, cancelled, addon: str, fresh: bool):
+    """(frames, log, border, frame size) of a .blend's task, rendered by a warm Blender."""
+    request = {"scene": task.scene, "stamp": warm_blender.stamp(task.scene),
+               "frames": list(task.frames), "part": task.part, "threads": task.threads,
+               "border": None if task.border is None else list(vars(task.border).values()),
+               "folder": str(folder)}  # fmt: skip
+    try:
+        blender = warm_blender.borrow(task.blender, addon, _environment(), _die_with_parent)
+    except warm_blender.BlenderError as error:
+        raise _failed(task, "", f"Blender did not start: {error}") from None
+    try:
+        answer, printed = blender.render(request, cancelled, POLL_S)
+    except warm_blender.BlenderError as error:
+        blender.kill()  # never lent again: its state is unknown
+        raise _failed(task, "\n".join([*blender.tail, str(error)]), "Blender's render") from None
+    if fresh:
+        blender.kill()
+    else:
+        warm_blender.give_back(blender, task.blender, addon)
+    frames = _frames(task, folder)
+    if len(frames) != len(task.frames):
+        raise _failed(task, "\n".join(printed), "frames missing")
+    border, size = task.border, None
+    if answer["border"] is not None:
+        x, y, w, h, width, height = answer["border"]
+        border, size = Border(x, y, w, h), (width, height)
+    return frames, "\n".join(printed), border, size
+
+
+def _run_script(task: Task, folder: Path, cancelled):
+    """(frames, log, border, None) of a CS488 script's task: its command line, run from the
+    script's folder (scripts name their meshes and textures from there)."""
+    log_path = folder / "render.log"
+    with open(log_path, "w") as log:
+        render = subprocess.Popen(
+            lua_command(task, folder), stdout=log, stderr=subprocess.STDOUT,
+            stdin=subprocess.DEVNULL, preexec_fn=_die_with_parent, env=_environment(),
+            cwd=os.path.dirname(os.path.abspath(task.scene)) or None,
+        )  # fmt: skip
+        try:
+            while render.poll() is None:
+                if cancelled():
+                    raise warm_blender.JobCancelledError()
+                time.sleep(POLL_S)
+        finally:
+            if render.poll() is None:
+                render.kill()
+                render.wait()
+    text = log_path.read_text(errors="replace")
+    frames = _frames(task, folder)
+    if render.returncode != 0 or len(frames) != len(task.frames):
+        raise _failed(task, text, f"exit {render.returncode}")
+    return frames, text, task.border, None
 
 
 def _frames(task: Task, folder: Path) -> dict[int, bytes]:
@@ -185,21 +193,20 @@ def _worker_name() -> str:
         return socket.gethostname()
 
 
-PROBE = (
-    "import bpy; s = bpy.context.scene; r = s.render; "
-    "print('WHITTED_FARM_SIZE', int(r.resolution_x * r.resolution_percentage / 100), "
-    "int(r.resolution_y * r.resolution_percentage / 100), s.frame_start, s.frame_end, "
-    "s.frame_current)"
-)
-
-
-def probe_scene(scene: str, blender: tuple[str, ...] = ("blender",)) -> tuple[int, ...]:
+def probe_scene(scene: str, blender: tuple[str, ...] = ("blender",),
+                addon: str = "whitted") -> tuple[int, ...]:  # fmt: skip
     """(width, height, first frame, last frame, current frame) of a .blend file, as a
-    worker's Blender reads it: the client may have no Blender of its own."""
-    done = subprocess.run([*blender, "-b", scene, "--python-expr", PROBE],
-                          capture_output=True, text=True, timeout=300)  # fmt: skip
-    match = re.search(r"WHITTED_FARM_SIZE (\d+) (\d+) (-?\d+) (-?\d+) (-?\d+)", done.stdout)
-    if done.returncode != 0 or match is None:
-        tail = "\n".join((done.stdout + done.stderr).strip().splitlines()[-LOG_LINES:])
-        raise TaskError(f"{scene}: Blender on worker {_worker_name()} could not read it:\n{tail}")
-    return tuple(int(g) for g in match.groups())
+    worker's Blender reads it (the client may have no Blender of its own); the Blender
+    stays warm, the scene open, for the job's tasks."""
+    request = {"scene": scene, "stamp": warm_blender.stamp(scene), "probe": True}
+    warm = None
+    try:
+        warm = warm_blender.borrow(blender, addon, _environment(), _die_with_parent)
+        answer, _ = warm.render(request, lambda: False, POLL_S)
+    except warm_blender.BlenderError as error:
+        if warm is not None:
+            warm.kill()
+        raise TaskError(f"{scene}: Blender on worker {_worker_name()} could not read it: "
+                        f"{error}") from None  # fmt: skip
+    warm_blender.give_back(warm, blender, addon)
+    return tuple(answer["probe"])

@@ -11,6 +11,7 @@ import signal
 import subprocess
 import sys
 import threading
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -115,6 +116,41 @@ def test_a_worker_killed_mid_job_changes_nothing(cluster, single_render, tmp_pat
     np.testing.assert_array_equal(pixels(tmp_path / "out_0001.png"), single_render)
 
 
+def test_a_warm_blender_opens_the_scene_again_when_its_file_changes(cluster, tmp_path):
+    scene = tmp_path / "scene.blend"
+    shutil.copy(SAMPLE, scene)
+    farm_client.run_job(job(cluster, scene, tmp_path / "before_####.png", split=(2, 1)),
+                        say=lambda line: None)  # fmt: skip
+    move = ("import bpy; bpy.data.objects['Blue'].location.x += 0.5; "
+            f"bpy.ops.wm.save_as_mainfile(filepath={str(scene)!r})")  # fmt: skip
+    assert blender_34(str(scene), "--python-expr", move).returncode == 0
+    farm_client.run_job(job(cluster, scene, tmp_path / "after_####.png", split=(2, 1)),
+                        say=lambda line: None)  # fmt: skip
+    run = blender_34(str(scene), "--addons", "whitted", "-E", "WHITTED",
+                     "-o", f"{tmp_path}/single_####", "-F", "PNG", "-f", "1")  # fmt: skip
+    assert run.returncode == 0, run.stdout[-2000:]
+    after = pixels(tmp_path / "after_0001.png")
+    np.testing.assert_array_equal(after, pixels(tmp_path / "single_0001.png"))
+    assert not np.array_equal(after, pixels(tmp_path / "before_0001.png"))
+
+
+def test_a_blender_per_task_gives_the_same_image(cluster, single_render, tmp_path):
+    report = farm_client.run_job(
+        job(cluster, SAMPLE, tmp_path / "out_####.png", split=(2, 2), fresh_blender=True),
+        say=lambda line: None,
+    )
+    assert report.tasks == 4
+    np.testing.assert_array_equal(pixels(tmp_path / "out_0001.png"), single_render)
+
+
+def test_a_blender_that_cannot_start_fails_the_job_clearly(cluster, tmp_path):
+    with pytest.raises(FarmError) as error:
+        farm_client.run_job(job(cluster, SAMPLE, tmp_path / "out_####.png", frames=(1,),
+                                blender=("no-such-blender",)), say=lambda line: None)  # fmt: skip
+    assert "cannot run 'no-such-blender'" in str(error.value)
+    assert "frame 1 failed on worker tcp://" in str(error.value)
+
+
 def test_a_failing_scene_fails_the_job_with_the_workers_message(cluster, tmp_path):
     broken = tmp_path / "broken.blend"
     spoil = ("import bpy; bpy.data.objects['Blue'].scale = (0, 1, 1); "
@@ -144,8 +180,21 @@ def test_an_unreachable_scheduler_is_a_clear_error(tmp_path):
     assert "Traceback" not in run.stderr
 
 
+def processes_with(variable: str) -> list[int]:
+    """Processes whose environment holds `variable`: those the farm started, and theirs."""
+    found = []
+    for environ in Path("/proc").glob("[0-9]*/environ"):
+        try:
+            if variable.encode() in environ.read_bytes().split(b"\0"):
+                found.append(int(environ.parent.name))
+        except OSError:  # ended meanwhile, or not ours to read
+            pass
+    return found
+
+
 def test_ctrl_c_cancels_every_task_and_writes_nothing(tmp_path):
-    env = dict(os.environ, PYTHONPATH=f"{ROOT}{os.pathsep}{SITE}")
+    mark = f"WHITTED_TEST_FARM={tmp_path.name}"
+    env = dict(os.environ, PYTHONPATH=f"{ROOT}{os.pathsep}{SITE}", WHITTED_TEST_FARM=tmp_path.name)
     env.setdefault("BLENDER_USER_SCRIPTS", str(ROOT / ".build" / "blender_scripts"))
     farm = subprocess.Popen(
         [sys.executable, "-m", "core", "farm", str(SAMPLE), "--split", "4x4", "--workers", "2",
@@ -160,5 +209,4 @@ def test_ctrl_c_cancels_every_task_and_writes_nothing(tmp_path):
     assert farm.returncode == 130, stderr
     assert "every task cancelled" in stderr and "Traceback" not in stderr
     assert not list(tmp_path.glob("out_*"))
-    left = subprocess.run(["pgrep", "-f", "whitted-task-"], capture_output=True, text=True)
-    assert left.stdout == ""  # no render left running
+    assert processes_with(mark) == []  # no worker, no Blender left running
