@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import contextlib
+import hashlib
 import os
 import threading
 import warnings
@@ -56,10 +57,7 @@ def srgb_to_linear(c: np.ndarray) -> np.ndarray:
 def load_texture(texture: Texture, owner: str) -> np.ndarray:
     """(h, w, 3) float32 linear RGB, row 0 at the top. Raises SceneError naming `owner`."""
     if texture.pixels is not None:
-        rgb = np.asarray(texture.pixels, np.float64)[:, :, :3]
-        if not np.all(np.isfinite(rgb)):
-            raise SceneError(owner, "texture", "pixels contain NaN or infinity")
-        return _linear(rgb, texture.srgb)
+        return _load_pixels(texture, owner)
     try:
         stat = os.stat(texture.path)
         key = (os.path.abspath(texture.path), stat.st_mtime_ns, stat.st_size, texture.srgb)
@@ -73,6 +71,28 @@ def load_texture(texture: Texture, owner: str) -> np.ndarray:
     pixels.flags.writeable = False  # shared by every compile that uses the file
     if key is not None:
         _remember(key, pixels)
+    return pixels
+
+
+def _load_pixels(texture: Texture, owner: str) -> np.ndarray:
+    """A texture given as pixels (Blender's images): kept by their content, since Blender
+    hands over a fresh copy of the same pixels for every render (linearising the final
+    scene's images again was 40 of a farm border's 100 ms beyond its render)."""
+    given = np.ascontiguousarray(texture.pixels)
+    if given.dtype.kind not in "biuf":  # not numbers: converting says what is wrong
+        given = np.ascontiguousarray(given, np.float64)
+    digest = hashlib.blake2b(given.view(np.uint8), digest_size=16).digest()
+    key = ("pixels", given.shape, given.dtype.str, texture.srgb, digest)
+    with _decoded_lock:
+        if key in _decoded:
+            _decoded.move_to_end(key)
+            return _decoded[key]
+    rgb = np.asarray(given, np.float64)[:, :, :3]
+    if not np.all(np.isfinite(rgb)):
+        raise SceneError(owner, "texture", "pixels contain NaN or infinity")
+    pixels = _linear(rgb, texture.srgb)
+    pixels.flags.writeable = False
+    _remember(key, pixels)
     return pixels
 
 
