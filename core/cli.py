@@ -24,11 +24,9 @@ from pathlib import Path
 
 from .cs488 import ScriptError, ScriptLimits, load_script
 from .cs488.sandbox import DEFAULT_LIMITS
-from .driver import render
 from .errors import SceneError
 from .farm import command as farm_command
 from .image_io import save_png
-from .kernel_warmup import kernels_ready, warm_kernels
 from .pass_files import write_pass_files
 from .passes import PASS_NAMES, check_passes, crypto_names
 
@@ -135,6 +133,11 @@ def _render_script(script: Path, output: Path | None, threads: int, anywhere: bo
         target = output if output is not None else call.output
         if target.is_dir():
             raise ScriptError(f"{target} is a folder; name a .png file to write the image to")
+    # Here, not at the top: the farm command, which renders nothing itself, starts without
+    # numba's import (a quarter of a second)
+    from .driver import render
+    from .kernel_warmup import kernels_ready, warm_kernels
+
     if not kernels_ready():
         # The first render on a machine: say what it is waiting for, step by step
         warm_kernels(lambda line: print(line, file=sys.stderr, flush=True))

@@ -124,7 +124,11 @@ def _run_blend(task: Task, folder: Path, cancelled, addon: str, fresh: bool):
                "border": None if task.border is None else list(vars(task.border).values()),
                "folder": str(folder)}  # fmt: skip
     try:
-        blender = warm_blender.borrow(task.blender, addon, _environment(), _die_with_parent)
+        if fresh:  # never an idle one: this task's Blender starts, and stops, with it
+            blender = warm_blender.WarmBlender(task.blender, addon, _environment(),
+                                               _die_with_parent)  # fmt: skip
+        else:
+            blender = warm_blender.borrow(task.blender, addon, _environment(), _die_with_parent)
     except warm_blender.BlenderError as error:
         raise _failed(task, "", f"Blender did not start: {error}") from None
     try:
