@@ -22,6 +22,11 @@ IDLE_S = float(os.environ.get("WHITTED_FARM_IDLE_S", "600"))  # then give the me
 DONE, FAILED, READY = "WHITTED_FARM_DONE", "WHITTED_FARM_FAILED", "WHITTED_FARM_READY"
 
 
+class RequestError(Exception):
+    """A request this scene cannot honour, said in the user's terms: answered without a
+    traceback, which only unexpected failures get."""
+
+
 def answer(kind: str, **fields) -> None:
     print(kind, json.dumps(fields), flush=True)
 
@@ -38,7 +43,11 @@ def open_scene(request: dict, opened: dict):
     unchanged on disk, else with what earlier requests changed put back."""
     stamp = [request["scene"], *request["stamp"]]
     if opened.get("stamp") != stamp:
-        bpy.ops.wm.open_mainfile(filepath=request["scene"], load_ui=False)
+        try:
+            bpy.ops.wm.open_mainfile(filepath=request["scene"], load_ui=False)
+        except RuntimeError as error:
+            opened.clear()  # whatever is open now is not a scene of ours
+            raise RequestError(f"{request['scene']}: Blender cannot open it: {error}") from None
         scene = bpy.context.scene
         opened.update(stamp=stamp, frame=scene.frame_current,
                       format=scene.render.image_settings.file_format,
@@ -66,9 +75,15 @@ def set_border(render, request: dict) -> tuple | None:
     elif request.get("border"):
         x, y, width, height = request["border"]
         x0, x1, y0, y1 = x, x + width, y, y + height
+        columns, rows = 1, 1
     else:
         render.use_border = False
         return None
+    if x1 <= x0 or y1 <= y0:  # more parts than pixels: some parts would be empty
+        raise RequestError(
+            f"--split {columns}x{rows}: the frame is only {w} x {h} pixels; "
+            "split it into fewer parts"
+        )
     render.use_border = True
     render.use_crop_to_border = True
     render.border_min_x = (x0 + 0.5) / w
@@ -94,7 +109,7 @@ def render_request(request: dict, opened: dict) -> dict:
     try:
         render.engine = "WHITTED"  # as -E WHITTED
     except TypeError:
-        raise RuntimeError(
+        raise RequestError(
             "Blender has no WHITTED render engine: the Whitted add-on is not installed or "
             "not enabled on this worker (--addon names its module)"
         ) from None
@@ -110,10 +125,14 @@ def render_request(request: dict, opened: dict) -> dict:
         base = os.path.join(request["folder"], f"frame_{frame:06d}")
         render.filepath = base
         # The engine reports its errors (a scene it cannot render) to the operator, which
-        # raises them here as RuntimeError: the request fails with Whitted's message
-        bpy.ops.render.render(write_still=True)
+        # raises them here as RuntimeError: the request fails with Whitted's message, as
+        # -f's exit status and log would
+        try:
+            bpy.ops.render.render(write_still=True)
+        except RuntimeError as error:
+            raise RequestError(f"frame {frame}: {error}".strip()) from None
         if not os.path.exists(base + ".png"):
-            raise RuntimeError(f"frame {frame}: Blender wrote no image")
+            raise RequestError(f"frame {frame}: Blender wrote no image")
         written.append(frame)
     return {"frames": written, "border": border}
 
@@ -128,6 +147,8 @@ def serve() -> None:
             return
         try:
             answer(DONE, **render_request(json.loads(line), opened))
+        except RequestError as error:
+            answer(FAILED, error=str(error))
         except Exception as error:  # noqa: BLE001 - each request's failure is its answer
             traceback.print_exc(file=sys.stdout)
             answer(FAILED, error=f"{type(error).__name__}: {error}".strip())

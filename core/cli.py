@@ -114,6 +114,10 @@ def _region(text: str) -> tuple[int, int, int, int]:
         x, y, w, h = (int(v) for v in text.split(","))
     except ValueError:
         raise argparse.ArgumentTypeError(f"got {text!r}; give X,Y,WIDTH,HEIGHT in pixels") from None
+    if x < 0 or y < 0 or w < 1 or h < 1:
+        raise argparse.ArgumentTypeError(
+            f"got {text!r}; X and Y count from 0 (the top-left pixel), WIDTH and HEIGHT from 1"
+        )
     return x, y, w, h
 
 
@@ -133,6 +137,14 @@ def _render_script(script: Path, output: Path | None, threads: int, anywhere: bo
         target = output if output is not None else call.output
         if target.is_dir():
             raise ScriptError(f"{target} is a folder; name a .png file to write the image to")
+        if region is not None:  # here, not after a first render's kernel compile
+            x, y, w, h = region
+            width, height = call.settings.width, call.settings.height
+            if x + w > width or y + h > height:
+                raise ScriptError(
+                    f"--region {x},{y},{w},{h}: it must lie inside {script.name}'s "
+                    f"{width} x {height} image (gr.render's size)"
+                )
     # Here, not at the top: the farm command, which renders nothing itself, starts without
     # numba's import (a quarter of a second)
     from .driver import render

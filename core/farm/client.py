@@ -55,7 +55,11 @@ def connect(scheduler: str, workers: int):
         count = workers or len(os.sched_getaffinity(0))
         cluster = LocalCluster(n_workers=count, threads_per_worker=1, processes=True,
                                dashboard_address=None)  # fmt: skip
-        return Client(cluster), cluster
+        client = Client(cluster)
+        from .quiet_workers import QuietTaskFailures
+
+        client.register_plugin(QuietTaskFailures())
+        return client, cluster
     try:
         return Client(scheduler, timeout=CONNECT_TIMEOUT_S), None
     except (OSError, TimeoutError, ValueError) as error:
@@ -75,12 +79,17 @@ def _size_and_frames(client, job: Job) -> tuple[tuple[int, int] | None, tuple[in
         calls = load_script(job.scene, print_line=lambda line: None)
         if len(calls) != 1:
             raise FarmError(f"{job.scene.name}: the farm renders scripts that call gr.render once")
+        if job.frames not in (None, (1,), SCENE_RANGE):
+            raise FarmError(
+                f"--frames: {job.scene.name} is a CS488 script, one image (frame 1); "
+                "leave --frames out for it"
+            )
         settings = calls[0].settings
         return (settings.width, settings.height), (1,)
     if isinstance(job.frames, tuple):
         return None, job.frames
     future = client.submit(probe_scene, str(job.scene.resolve()), job.blender, job.addon,
-                           pure=False)  # fmt: skip
+                           key=f"whitted-probe-{uuid.uuid4().hex}")  # fmt: skip
     try:
         width, height, first, last, current = future.result()
     except TaskError as error:

@@ -38,7 +38,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         type=_frames,
         default=None,
         metavar="LIST",
-        help="frames to render, such as 1-250 (default: the scene's range)",
+        help="frames to render, such as 1-250, or scene for its frame range (default: the "
+        "current frame, as F12 renders it)",
     )
     parser.add_argument(
         "--chunk",

@@ -135,7 +135,9 @@ def _run_blend(task: Task, folder: Path, cancelled, addon: str, fresh: bool):
         answer, printed = blender.render(request, cancelled, POLL_S)
     except warm_blender.BlenderError as error:
         blender.kill()  # never lent again: its state is unknown
-        raise _failed(task, "\n".join([*blender.tail, str(error)]), "Blender's render") from None
+        # The log's lines the error repeats (Blender prints the engine's error too) once
+        log = [line for line in blender.tail if line.strip() not in str(error)]
+        raise _failed(task, "\n".join([*log, str(error)]), "Blender's render") from None
     if fresh:
         blender.kill()
     else:

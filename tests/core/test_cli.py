@@ -84,6 +84,20 @@ def test_o_names_another_file_and_errors_leave_nothing(scenes):
     assert run_cli("paint", "x.lua", cwd=elsewhere).returncode == 2
 
 
+def test_a_region_outside_the_image_names_the_option_before_rendering(scenes):
+    folder, elsewhere = scenes
+    script = folder / "every_command.lua"
+    result = run_cli("render", script, "--region", "0,0,5000,5", cwd=elsewhere)
+    assert result.returncode == 1
+    assert result.stderr.strip() == (
+        "error: --region 0,0,5000,5: it must lie inside every_command.lua's 48 x 36 image "
+        "(gr.render's size)"
+    )
+    result = run_cli("render", script, "--region", "3,2,0,5", cwd=elsewhere)
+    assert result.returncode == 2 and "WIDTH and HEIGHT from 1" in result.stderr
+    assert sorted(p.name for p in folder.glob("*.png")) == ["checker.png"]
+
+
 def test_ctrl_c_stops_the_render_and_writes_nothing(scenes):
     folder, elsewhere = scenes
     slow = folder / "slow.lua"

@@ -166,6 +166,41 @@ def test_a_failing_scene_fails_the_job_with_the_workers_message(cluster, tmp_pat
         message,
     )
     assert "sphere 'Blue'" in message and "non-zero scale" in message
+    assert message.count("non-zero scale") == 1  # Blender's log repeats it: said once
+    assert not list(tmp_path.glob("out_*"))
+    # From the command line, on a cluster of its own: the error alone, not first as Dask's
+    # record of a failed task in the workers' log
+    run = subprocess.run(
+        [sys.executable, "-m", "core", "farm", str(broken), "-o", str(tmp_path / "out_####.png"),
+         "--scheduler", "local", "--workers", "1", "--blender", " ".join(BLENDER)],
+        capture_output=True, text=True, cwd=ROOT, timeout=300,
+    )  # fmt: skip
+    assert run.returncode == 1
+    assert "error: frame 1 failed on worker" in run.stderr and "non-zero scale" in run.stderr
+    assert "Compute Failed" not in run.stderr and "Traceback" not in run.stderr
+    assert not list(tmp_path.glob("out_*"))
+
+
+def test_a_split_finer_than_the_frames_pixels_is_a_clear_error(cluster, tmp_path):
+    tiny = tmp_path / "tiny.blend"
+    shrink = ("import bpy; r = bpy.context.scene.render; r.resolution_percentage = 100; "
+              "r.resolution_x, r.resolution_y = 4, 4; "
+              f"bpy.ops.wm.save_as_mainfile(filepath={str(tiny)!r})")  # fmt: skip
+    assert blender_34(str(SAMPLE), "--python-expr", shrink).returncode == 0
+    with pytest.raises(FarmError) as error:
+        farm_client.run_job(job(cluster, tiny, tmp_path / "out_####.png", frames=(1,),
+                                split=(5, 1)), say=lambda line: None)  # fmt: skip
+    assert "--split 5x1: the frame is only 4 x 4 pixels; split it into fewer parts" in str(
+        error.value
+    )
+    assert not list(tmp_path.glob("out_*"))
+
+
+def test_frames_of_a_lua_script_beyond_its_one_image_are_refused(cluster, tmp_path):
+    with pytest.raises(FarmError) as error:
+        farm_client.run_job(job(cluster, LUA, tmp_path / "out_####.png", frames=(1, 2, 3)),
+                            say=lambda line: None)  # fmt: skip
+    assert "--frames: every_command.lua is a CS488 script, one image (frame 1)" in str(error.value)
     assert not list(tmp_path.glob("out_*"))
 
 
