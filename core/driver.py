@@ -76,9 +76,15 @@ class RenderStats:
         rate = self.rays_cast / self.render_s / 1e6 if self.render_s > 0 else 0.0
         return (
             f"kernels {self.kernel_source} {self.kernel_s:.2f} s | render {self.render_s:.2f} s"
-            f" | {self.rays_cast / 1e6:.1f} M rays ({self.shadow_rays / 1e6:.1f} M shadow), "
+            f" | {_millions(self.rays_cast)} M rays ({_millions(self.shadow_rays)} M shadow), "
             f"{rate:.2f} M rays/s | {self.threads} threads"
         )
+
+
+def _millions(count: int) -> str:
+    """A count in millions, with the digits a small render needs (the farm adds its tasks'
+    counts: 0.0 each would sum to nothing)."""
+    return f"{count / 1e6:.1f}" if count >= 1e6 else f"{count / 1e6:.3f}"
 
 
 @dataclass

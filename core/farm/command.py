@@ -122,6 +122,7 @@ def run(args) -> int:
         print("\ninterrupted: every task cancelled; unfinished frames not written",
               file=sys.stderr)  # fmt: skip
         return 130
-    print(f"Farm: {len(report.written)} frames in {report.wall_s:.1f} s on "
+    frames = len(report.written)
+    print(f"Farm: {frames} frame{'s' * (frames != 1)} in {report.wall_s:.1f} s on "
           f"{report.workers} workers, busiest worker {report.busiest_worker_s:.1f} s")  # fmt: skip
     return 0

@@ -19,6 +19,7 @@ from PIL import Image
 
 from core.farm import client as farm_client
 from core.farm.jobs import FarmError
+from core.farm.worker import SUMMARY
 from tests.support import ROOT
 from tests.support.blender34 import blender_34
 
@@ -54,25 +55,36 @@ def job(cluster, scene, output, **changes):
 
 
 @pytest.fixture(scope="module")
-def single_render(tmp_path_factory):
-    """The sample rendered whole by one `blender -b`, as a farm-less user does."""
+def single_run(tmp_path_factory):
+    """The sample rendered whole by one `blender -b`, as a farm-less user does: (its image,
+    its log)."""
     folder = tmp_path_factory.mktemp("single")
     run = blender_34(str(SAMPLE), "--addons", "whitted", "-E", "WHITTED",
                      "-o", f"{folder}/single_####", "-F", "PNG", "-f", "1")  # fmt: skip
     assert run.returncode == 0, run.stdout[-2000:]
-    return np.asarray(Image.open(folder / "single_0001.png"))
+    return np.asarray(Image.open(folder / "single_0001.png")), run.stdout
+
+
+@pytest.fixture(scope="module")
+def single_render(single_run):
+    return single_run[0]
 
 
 def pixels(path):
     return np.asarray(Image.open(path))
 
 
-def test_a_4x4_split_stitches_to_the_single_render_bit_for_bit(cluster, single_render, tmp_path):
+def test_a_4x4_split_stitches_to_the_single_render_bit_for_bit(cluster, single_run, tmp_path):
     lines = []
     report = farm_client.run_job(job(cluster, SAMPLE, tmp_path / "out_####.png", split=(4, 4)),
                                  say=lines.append)  # fmt: skip
     assert report.tasks == 16 and report.written == [tmp_path / "out_0001.png"]
-    np.testing.assert_array_equal(pixels(tmp_path / "out_0001.png"), single_render)
+    np.testing.assert_array_equal(pixels(tmp_path / "out_0001.png"), single_run[0])
+    # Every pixel's rays are the same wherever it renders: the borders' counts, each to the
+    # thousand its summary prints, add up to the whole frame's
+    (whole,) = {float(m["rays"]) * 1e6 for m in SUMMARY.finditer(single_run[1])}
+    whole_rounding = 500 if whole < 1e6 else 50_000  # 0.137 M rays; 2.5 M rays
+    assert abs(report.rays - whole) <= 16 * 500 + whole_rounding, (report.rays, whole)
     assert any(line.startswith("Farm: 16/16 tasks") and "s left" in line for line in lines)
     assert f"Saved: '{tmp_path / 'out_0001.png'}'" in lines
 
