@@ -11,7 +11,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .jobs import FarmError, frame_path, plan
+from .jobs import TASK_KEY_PREFIX, FarmError, frame_path, plan
 from .stitch import png_bytes, stitch, write_whole
 from .worker import TaskError, probe_scene, run_task
 
@@ -89,7 +89,7 @@ def _size_and_frames(client, job: Job) -> tuple[tuple[int, int] | None, tuple[in
     if isinstance(job.frames, tuple):
         return None, job.frames
     future = client.submit(probe_scene, str(job.scene.resolve()), job.blender, job.addon,
-                           key=f"whitted-probe-{uuid.uuid4().hex}")  # fmt: skip
+                           key=f"{TASK_KEY_PREFIX}probe-{uuid.uuid4().hex}")  # fmt: skip
     try:
         width, height, first, last, current = future.result()
     except TaskError as error:

@@ -7,6 +7,8 @@ import re
 from dataclasses import dataclass
 from pathlib import Path
 
+TASK_KEY_PREFIX = "whitted-"  # of every task's Dask key, the probe's too
+
 
 class FarmError(Exception):
     """A job that cannot run as asked: bad arguments, a failed task, no scheduler."""
@@ -60,7 +62,7 @@ class Task:
         where = "" if self.border is None else f"-{self.border.x}-{self.border.y}"
         if self.part is not None:
             where = f"-part-{self.part[0]}-{self.part[1]}"
-        return f"whitted-{self.frames[0]}-{self.frames[-1]}{where}"
+        return f"{TASK_KEY_PREFIX}{self.frames[0]}-{self.frames[-1]}{where}"
 
 
 def parse_split(text: str) -> tuple[int, int]:

@@ -7,7 +7,7 @@ import logging
 
 from distributed import WorkerPlugin
 
-TASK_PREFIX = "whitted-"
+from .jobs import TASK_KEY_PREFIX
 
 
 class _TaskFailures(logging.Filter):
@@ -15,7 +15,7 @@ class _TaskFailures(logging.Filter):
         message = str(record.msg)
         if not message.startswith("Compute Failed") or not record.args:
             return True
-        return not str(record.args[0]).startswith(TASK_PREFIX)  # args[0]: the task's key
+        return not str(record.args[0]).startswith(TASK_KEY_PREFIX)  # args[0]: the task's key
 
 
 class QuietTaskFailures(WorkerPlugin):
