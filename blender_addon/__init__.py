@@ -30,9 +30,12 @@ def _share_checkout_core(core_module) -> None:
     prefix = f"{__name__}.core"
     sys.modules[prefix] = core_module
     for found in pkgutil.walk_packages(core_module.__path__, "core."):
-        if not found.name.endswith("__main__"):  # the command line: running it would render
-            module = importlib.import_module(found.name)
-            sys.modules[prefix + found.name[len("core") :]] = module
+        if found.name.endswith("__main__"):  # the command line: running it would render
+            continue
+        if found.name.startswith("core.farm."):  # the farm command's, some needing Dask's
+            continue  # `distributed`, which Blender's Python need not have: never run here
+        module = importlib.import_module(found.name)
+        sys.modules[prefix + found.name[len("core") :]] = module
 
 
 def _make_core_importable() -> None:
