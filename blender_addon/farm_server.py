@@ -72,18 +72,17 @@ def set_border(render, request: dict) -> tuple | None:
         c, r, columns, rows = request["part"]
         x0, x1 = w * c // columns, w * (c + 1) // columns
         y0, y1 = h * r // rows, h * (r + 1) // rows
+        if x1 <= x0 or y1 <= y0:  # more parts than pixels: some parts would be empty
+            raise RequestError(
+                f"--split {columns}x{rows}: the frame is only {w} x {h} pixels; "
+                "split it into fewer parts"
+            )
     elif request.get("border"):
         x, y, width, height = request["border"]
         x0, x1, y0, y1 = x, x + width, y, y + height
-        columns, rows = 1, 1
     else:
         render.use_border = False
         return None
-    if x1 <= x0 or y1 <= y0:  # more parts than pixels: some parts would be empty
-        raise RequestError(
-            f"--split {columns}x{rows}: the frame is only {w} x {h} pixels; "
-            "split it into fewer parts"
-        )
     render.use_border = True
     render.use_crop_to_border = True
     render.border_min_x = (x0 + 0.5) / w

@@ -114,11 +114,7 @@ def _region(text: str) -> tuple[int, int, int, int]:
         x, y, w, h = (int(v) for v in text.split(","))
     except ValueError:
         raise argparse.ArgumentTypeError(f"got {text!r}; give X,Y,WIDTH,HEIGHT in pixels") from None
-    if x < 0 or y < 0 or w < 1 or h < 1:
-        raise argparse.ArgumentTypeError(
-            f"got {text!r}; X and Y count from 0 (the top-left pixel), WIDTH and HEIGHT from 1"
-        )
-    return x, y, w, h
+    return x, y, w, h  # checked against the image by the render settings, before rendering
 
 
 def _render_script(script: Path, output: Path | None, threads: int, anywhere: bool,
@@ -137,14 +133,17 @@ def _render_script(script: Path, output: Path | None, threads: int, anywhere: bo
         target = output if output is not None else call.output
         if target.is_dir():
             raise ScriptError(f"{target} is a folder; name a .png file to write the image to")
-        if region is not None:  # here, not after a first render's kernel compile
-            x, y, w, h = region
-            width, height = call.settings.width, call.settings.height
-            if x + w > width or y + h > height:
-                raise ScriptError(
-                    f"--region {x},{y},{w},{h}: it must lie inside {script.name}'s "
-                    f"{width} x {height} image (gr.render's size)"
-                )
+        call.settings.threads = threads
+        call.settings.passes = passes
+        call.settings.region = region
+        try:  # here, not after a first render's kernel compile
+            call.settings.validate()
+        except SceneError as error:
+            if error.field != "region":
+                raise
+            raise ScriptError(
+                f"--region: {error.problem} ({script.name}'s gr.render size)"
+            ) from None
     # Here, not at the top: the farm command, which renders nothing itself, starts without
     # numba's import (a quarter of a second)
     from .driver import render
@@ -156,9 +155,6 @@ def _render_script(script: Path, output: Path | None, threads: int, anywhere: bo
     for call in calls:
         for warning in call.warnings:
             print(f"warning: {warning}", file=sys.stderr)
-        call.settings.threads = threads
-        call.settings.passes = passes
-        call.settings.region = region
         target = output if output is not None else call.output
         result = render(call.scene, call.settings, on_tile=_progress_bar())
         print(result.stats.summary())
