@@ -1,5 +1,5 @@
 """Differences between the Blender versions Whitted supports (3.4, and 4.2 to 5.2), in one
-place. 4.2, 4.5 and 5.2 needed nothing beyond what 3.4 and 5.0 did."""
+place."""
 
 import bpy
 
@@ -39,3 +39,24 @@ def auto_smooth(mesh) -> tuple:
     if not NEEDS_CALC_NORMALS_SPLIT:
         return ()
     return (mesh.use_auto_smooth, mesh.auto_smooth_angle)
+
+
+# Cycles' lights before Blender 4.0 (measured against Cycles in 3.4 and 4.2): a point or spot
+# light's radius was always a disk facing the lit point, a spot's cone also fell off with the
+# cosine from its axis, a sun's angle spread its light over a disk one unit away, and a disk
+# or ellipse area light spread its power as if it filled its bounding rectangle
+LIGHTS_BEFORE_4 = bpy.app.version < (4, 0, 0)
+
+
+def cast_shadow_setting(light) -> tuple:
+    """(data, property) of Light > Cast Shadow: Cycles' own before Blender 4.0, Blender's
+    from 4.0."""
+    cycles = getattr(light, "cycles", None)
+    if cycles is not None and hasattr(cycles, "cast_shadow"):
+        return cycles, "cast_shadow"
+    return light, "use_shadow"
+
+
+def light_casts_shadow(light) -> bool:
+    owner, name = cast_shadow_setting(light)
+    return bool(getattr(owner, name))

@@ -46,9 +46,11 @@ def warmup_scene():
         Cylinder,
         Material,
         Mesh,
+        PanelLight,
         PointLight,
         Scene,
         Sphere,
+        SphereLight,
         Texture,
         Torus,
         TriangleMesh,
@@ -76,6 +78,8 @@ def warmup_scene():
         lights=[
             PointLight((0.0, -4.0, 4.0), (1.0, 1.0, 1.0)),
             AreaLight((0.0, 0.0, 4.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (5.0, 5.0, 5.0)),
+            SphereLight(position=(1.0, -3.0, 4.0), power=(100.0, 100.0, 100.0), radius=0.5),
+            PanelLight(centre=(0.0, 0.0, 5.0), power=(100.0, 100.0, 100.0)),
         ],
     )
 

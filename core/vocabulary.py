@@ -42,3 +42,16 @@ PASS_NAMES = ("depth", "mist", "normal", "position", "uv", "object_index", "mate
               "diffuse_color", "shadow", "environment", "ambient", "diffuse", "specular",
               "reflection", "refraction", "crypto_object", "crypto_material")  # fmt: skip
 PASS_SLOT = {name: slot for slot, name in enumerate(PASS_NAMES)}
+
+# Lights in Blender's units (core.model.emitters), one row each of the emitter table, by the
+# way their shadow rays are aimed (core.kernels.emitters). A point or spot light with a radius
+# is a sphere, or, with Blender's Soft Falloff (and in every Blender before 4.0), a disk of that
+# radius turned towards the lit point; a sun's directions fill a cone (Blender 4.0 on) or, as in
+# Blender 3.x, a disk one unit away. The kernels test kinds by range: spheres and disks first,
+# then panels, then suns
+EMITTER_SPHERE, EMITTER_FACING_DISK = 0, 1
+EMITTER_RECTANGLE, EMITTER_ELLIPSE = 2, 3
+EMITTER_SUN_CONE, EMITTER_SUN_DISK = 4, 5
+EMITTER_KINDS = {"sphere": EMITTER_SPHERE, "facing_disk": EMITTER_FACING_DISK,
+                 "rectangle": EMITTER_RECTANGLE, "ellipse": EMITTER_ELLIPSE,
+                 "sun_cone": EMITTER_SUN_CONE, "sun_disk": EMITTER_SUN_DISK}  # fmt: skip

@@ -129,6 +129,7 @@ def point_light(name, location, intensity=1.0, attenuation=(1.0, 0.0, 0.0), coll
     data = bpy.data.lights.new(name, "POINT")
     data.energy = intensity * WATTS_PER_INTENSITY
     data.shadow_soft_size = 0.0
+    data.whitted.model = "CS488"
     data.whitted.attenuation = attenuation
     return _link(bpy.data.objects.new(name, data), location, collection)
 
@@ -140,6 +141,7 @@ def area_light(name, location, size, intensity=1.0, attenuation=(1.0, 0.0, 0.0),
     data.shape = "SQUARE"
     data.size = size
     data.energy = intensity * WATTS_PER_INTENSITY
+    data.whitted.model = "CS488"
     data.whitted.attenuation = attenuation
     obj = _link(bpy.data.objects.new(name, data), location, collection)
     obj.rotation_euler = [math.radians(a) for a in rotation]

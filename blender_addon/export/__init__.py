@@ -37,7 +37,7 @@ def convert(
     ambient = world.convert(scene.world)
     exporter = Exporter(depsgraph, mesh_cache)
     holdouts = holdout_objects(depsgraph.view_layer)
-    lights, skipped = [], []
+    lights = []
     for instance in depsgraph.object_instances:
         obj = instance.object
         tags = whitted_source(instance)
@@ -49,24 +49,15 @@ def convert(
             )
             exporter.add_instance(obj, matrix, tags, holdout)
         elif obj.type == "LIGHT":
-            converted = light.convert(obj, instance.matrix_world)
-            if converted is None:
-                skipped.append(obj.name)
-            else:
-                lights.append(converted)
+            lights.append(light.convert(obj, instance.matrix_world, exporter.warn))
         elif obj.type == "EMPTY" and tags.whitted.shape != "MESH":
             exporter.warn(
                 f"object '{obj.name}' is an Empty tagged {tags.whitted.shape.title()}: only "
                 "mesh objects can carry a Whitted shape; it is not rendered"
             )
     mesh_cache.keep_only(exporter.meshes.keys())
-    warnings = list(exporter.warnings)
-    if skipped:
-        names = ", ".join(f"'{name}'" for name in sorted(set(skipped))[:5])
-        warnings.append(
-            f"Whitted skipped {len(skipped)} light(s) it cannot render ({names}): it renders "
-            "point and sun lights and square or rectangular area lights"
-        )
+    # A light instanced many times warns once
+    warnings = list(dict.fromkeys(exporter.warnings))
     if view_camera is None:
         view_camera = camera.convert(scene, depsgraph, render)
     result = core.Scene(

@@ -99,6 +99,7 @@ def _light(spec, name, collection, root):
     data = bpy.data.lights.new(name, kind)
     data.color = tuple(colour / brightest) if brightest > 0 else (1.0, 1.0, 1.0)
     data.energy = brightest / WATTS_TO_INTENSITY  # the export's conversion, inverted
+    data.whitted.model = "CS488"  # the script's lights, as the command line renders them
     data.whitted.attenuation = spec.falloff
     local = np.eye(4)
     local[:3, 3] = spec.position

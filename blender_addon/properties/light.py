@@ -1,12 +1,35 @@
-"""Light Properties › Light: the report's attenuation, drawn by ui.light."""
+"""Light Properties › Light: which light model a light follows, and the report's attenuation
+for those that follow the report's, drawn by ui.light."""
 
 import bpy
 from bpy.props import (
+    EnumProperty,
     FloatVectorProperty,
 )
 
+MODELS = [
+    (
+        "BLENDER",
+        "Blender",
+        "As Cycles lights it: power in watts, the inverse square law, soft shadows from the "
+        "light's Radius, Angle or area, area lights shining from their -Z side",
+    ),
+    (
+        "CS488",
+        "CS488",
+        "The course project's lights: intensity / (c0 + c1 d + c2 d^2) with the attenuation "
+        "below, area lights shining both ways as points spread over the rectangle",
+    ),
+]
+
 
 class WhittedLightSettings(bpy.types.PropertyGroup):
+    model: EnumProperty(
+        name="Light Model",
+        description="How the light's brightness falls off with distance",
+        items=MODELS,
+        default="BLENDER",
+    )
     attenuation: FloatVectorProperty(
         name="Attenuation",
         description=(

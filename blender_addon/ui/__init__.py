@@ -28,7 +28,8 @@ _IGNORED_PREFIXES = (
 )  # fmt: skip
 _IGNORED = {
     "RENDER_PT_stereoscopy", "RENDER_PT_output_views", "DATA_PT_camera_stereoscopy",  # one view
-    "DATA_PT_spot", "DATA_PT_falloff_curve",  # spot lights are not rendered
+    "DATA_PT_falloff_curve",  # EEVEE's
+    "DATA_PT_spot",  # Whitted's own Light panel draws the spot's size and blend
     "DATA_PT_volume_render",  # nor volumes
     "NODE_DATA_PT_light",  # a light's node tree is not read
     # Whitted's own Light panel draws the type, colour, power and area shape it reads, once

@@ -1,9 +1,11 @@
-"""Light Properties › Light, Whitted's: the type, colour, power and area shape it reads (in
-place of Blender's Light and Area Shape panels, so each shows once), and the report's
-attenuation."""
+"""Light Properties › Light, Whitted's: what it reads of every light type (in place of
+Blender's Light, Area Shape and Spot Shape panels, so each field shows once), the light model,
+the report's attenuation for CS488 lights, and what Whitted cannot honour."""
 
 import bpy
 
+from ..compat import cast_shadow_setting
+from ..export.light import unsupported
 from .base import WhittedPanel
 
 ATTENUATION_LABELS = ("Constant", "Linear", "Quadratic")
@@ -19,25 +21,50 @@ class WHITTED_PT_light(WhittedPanel, bpy.types.Panel):
         light = context.light
         layout.row().prop(light, "type", expand=True)
         layout.use_property_split = True
-        if light.type not in {"POINT", "SUN", "AREA"}:
-            layout.label(text="Whitted renders point, sun and area lights", icon="ERROR")
-            return
         col = layout.column()
         col.prop(light, "color")
+        if getattr(light, "use_temperature", None) is not None:
+            row = col.row(heading="Temperature")
+            row.prop(light, "use_temperature", text="")
+            row.prop(light, "temperature", text="")
         col.prop(light, "energy")
-        if light.type == "SUN":
-            col.label(text="Parallel light along the object's -Z axis", icon="INFO")
-            return
-        if light.type == "AREA":
-            col.prop(light, "shape")
-            if light.shape not in {"SQUARE", "RECTANGLE"}:
-                col.label(text="Area lights must be square or rectangular", icon="ERROR")
-            elif light.shape == "SQUARE":
-                col.prop(light, "size")
-            else:
-                col.prop(light, "size", text="Size X")
-                col.prop(light, "size_y", text="Y")
-        # intensity / (c0 + c1 d + c2 d^2): each coefficient under its own name
-        attenuation = layout.column(align=True, heading="Attenuation")
-        for index, label in enumerate(ATTENUATION_LABELS):
-            attenuation.prop(light.whitted, "attenuation", index=index, text=label)
+        if hasattr(light, "exposure"):
+            col.prop(light, "exposure")
+        cs488 = light.type in {"POINT", "AREA"} and light.whitted.model == "CS488"
+        if light.type in {"POINT", "AREA"}:
+            col.prop(light.whitted, "model")
+        if light.type in {"POINT", "SPOT"}:
+            col.prop(light, "shadow_soft_size", text="Radius")
+            if hasattr(light, "use_soft_falloff") and not cs488:
+                col.prop(light, "use_soft_falloff")
+        elif light.type == "SUN":
+            col.prop(light, "angle")
+        else:
+            self._draw_area(col, light, cs488)
+        if light.type == "SPOT":
+            col.prop(light, "spot_size", text="Spot Size")
+            col.prop(light, "spot_blend", text="Blend")
+        col.prop(*cast_shadow_setting(light), text="Cast Shadow")
+        if cs488:
+            # intensity / (c0 + c1 d + c2 d^2): each coefficient under its own name
+            attenuation = layout.column(align=True, heading="Attenuation")
+            for index, label in enumerate(ATTENUATION_LABELS):
+                attenuation.prop(light.whitted, "attenuation", index=index, text=label)
+        obj = context.object
+        if obj is not None and obj.data == light:
+            for text in unsupported(obj):
+                layout.label(text=text.split(": ", 1)[1], icon="ERROR")
+
+    @staticmethod
+    def _draw_area(col, light, cs488):
+        col.prop(light, "shape")
+        if light.shape in {"SQUARE", "DISK"}:
+            col.prop(light, "size")
+        else:
+            col.prop(light, "size", text="Size X")
+            col.prop(light, "size_y", text="Y")
+        if not cs488:
+            if hasattr(light, "normalize"):
+                col.prop(light, "normalize")
+            if hasattr(light, "spread"):
+                col.prop(light, "spread")

@@ -16,6 +16,7 @@ after `max_depth` bounces, or once their weight can no longer show (MIN_WEIGHT).
 import math
 
 from ..jit import inlined_kernel, kernel
+from .emitters import emitted_colour
 from .options import (
     OPTION_MAX_DEPTH,
     OPTION_PASSES,
@@ -137,6 +138,11 @@ def trace_ray(ps, o, d, key, ws):
             phong = Phong(kd, ks, mats.shininess[material])
             splitting = first and split
             local = local_colour(frame, lights, geo, stacks, point, phong, key, event, splitting)
+            if lights.emitter_kind.shape[0] > 0:  # lights in Blender's units
+                emitted = emitted_colour(
+                    frame, lights, geo, stacks, point, phong, key, event, splitting
+                )
+                local = add(local, emitted)
             seen = mul(w, scale(local, 1.0 - tau))
             colour = add(colour, seen)
             if first:

@@ -102,6 +102,25 @@ class Lights(NamedTuple):
     area_attenuation: np.ndarray  # float64 (a, 3)
     sun_toward: np.ndarray  # float64 (s, 3): unit vector towards a directional light
     sun_intensity: np.ndarray  # float64 (s, 3)
+    # lights in Blender's units (core.model.emitters), a row each (core.kernels.emitters)
+    emitter_kind: np.ndarray  # int32 (e,): EMITTER_* (core.vocabulary)
+    emitter_flags: np.ndarray  # int32 (e,): EMITS_* bits
+    emitter_position: np.ndarray  # float64 (e, 3): position, centre, or unit vector to a sun
+    # float64 (e, 3, 3): a panel's edge_u, edge_v and unit emitting normal; a spot light's
+    # world-to-light rows
+    emitter_frame: np.ndarray
+    # float64 (e, 4): a sphere's radius, a spot's cos of its half angle and the width of its
+    # blend in cos; a sun's 1 - cos and tan of its half angle
+    emitter_param: np.ndarray
+    emitter_radiance: np.ndarray  # float64 (e, 3): see core.kernels.emitters
+
+
+# EMITS_* bits of Lights.emitter_flags
+EMITS_SHADOW = 1  # casts shadows
+EMITS_DIFFUSE = 2  # lights diffuse surfaces
+EMITS_SPECULAR = 4  # makes highlights
+EMITS_SPOT = 8  # masked to a cone (a spot light)
+EMITS_SPOT_COSINE = 16  # and scaled by the cosine from its axis (Blender before 4.0)
 
 
 class PackedScene(NamedTuple):

@@ -21,8 +21,14 @@ PASSES_ANY = 1
 PASSES_LIGHT_SPLIT = 2  # the diffuse, specular and shadow passes
 PASSES_UV = 4
 
-# The patterns' and projections' codes, listed with their names in core.vocabulary
+# The patterns', projections' and emitters' codes, listed with their names in core.vocabulary
 from ..vocabulary import (  # noqa: E402, F401
+    EMITTER_ELLIPSE,
+    EMITTER_FACING_DISK,
+    EMITTER_RECTANGLE,
+    EMITTER_SPHERE,
+    EMITTER_SUN_CONE,
+    EMITTER_SUN_DISK,
     PIXEL_GRID,
     PIXEL_JITTERED,
     PIXEL_PATTERNS,

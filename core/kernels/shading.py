@@ -21,15 +21,15 @@ from typing import NamedTuple
 from ..jit import inlined_kernel, kernel
 from .borrow import borrowed
 from .light_pyramid import TRAVERSE_ALL, build_pyramid, pyramid_candidates
+from .light_samples import square_point
 from .options import (
     OPTION_SHADOW_CULLING,
     OPTION_SHADOW_PATTERN,
     OPTION_SHADOW_SAMPLES,
     SHADOW_HALTON,
-    SHADOW_STRATIFIED,
 )
 from .pass_record import TERM_ROW_LIT, TERM_ROW_UNSHADOWED
-from .rng import PURPOSE_LIGHT, PURPOSE_LIGHT_SHIFT, uniform2
+from .rng import PURPOSE_LIGHT_SHIFT, uniform2
 from .trace import transmittance
 from .vec import add, as_tuple, dot, mul, row, scale, sub
 from .workspace import (
@@ -178,45 +178,11 @@ def light_candidates(geo, stacks, origin, area):
     return count
 
 
-@kernel
-def radical_inverse(i, base):
-    """The digits of i in `base` mirrored about the point: the Halton sequence's i-th
-    coordinate in that base, in [0, 1)."""
-    inverse, scale_ = 0.0, 1.0 / base
-    while i > 0:
-        inverse += (i % base) * scale_
-        i //= base
-        scale_ /= base
-    return inverse
-
-
-@kernel
-def stratified_cell(j, count):
-    """Cell j of `count` equal-area cells tiling the unit square: (x0, y0, width, height).
-
-    Rows of ceil(sqrt(count)) cells; a short last row gets wider cells and a taller row, so
-    every cell has area 1/count and the cells cover the square exactly once."""
-    columns = int(math.ceil(math.sqrt(count)))
-    rows = (count + columns - 1) // columns
-    r = j // columns
-    in_row = columns if r < rows - 1 else count - columns * (rows - 1)
-    height = in_row / count
-    y0 = columns * r / count
-    return (j - r * columns) / in_row, y0, 1.0 / in_row, height
-
-
 @inlined_kernel
 def _light_point(area, pattern, samples, j, key, stream, shift):
     """Point j of an area light's `samples` (see the module's docstring); `shift` is the
     shading point's Halton offset."""
-    if pattern == SHADOW_HALTON:
-        a = (radical_inverse(j + 1, 2) + shift[0]) % 1.0
-        b = (radical_inverse(j + 1, 3) + shift[1]) % 1.0
-    else:
-        a, b = uniform2(key, PURPOSE_LIGHT, stream, j)
-    if pattern == SHADOW_STRATIFIED:
-        x0, y0, w, h = stratified_cell(j, samples)
-        a, b = x0 + a * w, y0 + b * h
+    a, b = square_point(pattern, samples, j, key, stream, shift)
     return add(area.centre, add(scale(area.edge_u, a - 0.5), scale(area.edge_v, b - 0.5)))
 
 

@@ -51,7 +51,9 @@ class Stacks(NamedTuple):
     candidates: np.ndarray  # int32 (MAX_CANDIDATES,): shapes that may meet the pyramid
     occluder: np.ndarray  # int64 (2,): OCCLUDER_SHAPE, OCCLUDER_POSITION
     # one light's points as seen from a shading point (see core.kernels.shading)
-    light_targets: np.ndarray  # float64 (shadow samples, 4): unit direction xyz, distance
+    # float64 (shadow samples, 5): unit direction xyz, distance, and for lights in Blender's
+    # units the sample's weight (core.kernels.emitters)
+    light_targets: np.ndarray
     visibility: np.ndarray  # float64 (shadow samples,): what reaches the point from each
     # a shading point's lighting split into the passes' terms (core.kernels.pass_record)
     terms: np.ndarray  # float64 (TERM_ROWS, 3)
@@ -109,7 +111,7 @@ def new_workspace(
             np.zeros((PYRAMID_ROWS, 4)),
             np.zeros(MAX_CANDIDATES, np.int32),
             np.full(2, -1, np.int64),
-            np.zeros((max(shadow_samples, 1), 4)),
+            np.zeros((max(shadow_samples, 1), 5)),
             np.zeros(max(shadow_samples, 1)),
             np.zeros((TERM_ROWS, 3)),
         ),

@@ -1,7 +1,8 @@
 """The scene model: small dataclasses a person can read, and their validation, a module each.
 
     camera.py     Camera
-    lights.py     PointLight, DirectionalLight, AreaLight
+    lights.py     PointLight, DirectionalLight, AreaLight: the report's lights
+    emitters.py   SphereLight, SpotLight, PanelLight, SunLight: lights in Blender's units
     materials.py  Material, Texture
     shapes.py     Sphere, Box, Cylinder, Cone, Torus, TriangleMesh and Mesh, Csg
     scene.py      Scene
@@ -17,6 +18,7 @@ scene units; angles are in degrees.
 """
 
 from .camera import Camera
+from .emitters import PanelLight, SphereLight, SpotLight, SunLight
 from .lights import AreaLight, DirectionalLight, PointLight
 from .materials import Material, Texture
 from .scene import Scene
@@ -33,11 +35,15 @@ __all__ = [
     "DirectionalLight",
     "Material",
     "Mesh",
+    "PanelLight",
     "PointLight",
     "RenderSettings",
     "Scene",
     "Shape",
     "Sphere",
+    "SphereLight",
+    "SpotLight",
+    "SunLight",
     "Texture",
     "Torus",
     "TriangleMesh",

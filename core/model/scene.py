@@ -9,6 +9,7 @@ import numpy as np
 from ..checks import Vec3, check_vec3, valid_affine
 from ..errors import SceneError
 from .camera import Camera
+from .emitters import EMITTERS
 from .lights import AreaLight, DirectionalLight, PointLight
 from .shapes import Csg, Shape
 
@@ -19,7 +20,8 @@ class Scene:
 
     camera      -- the `Camera`
     shapes      -- the `Shape`s (Sphere, Box, Cylinder, Cone, Torus, Mesh, Csg)
-    lights      -- `PointLight`s, `AreaLight`s and `DirectionalLight`s
+    lights      -- `PointLight`s, `AreaLight`s and `DirectionalLight`s (the report's), and
+                   lights in Blender's units (`core.model.emitters`)
     ambient     -- linear RGB ambient light, added as kd * ambient
     background  -- linear RGB colour of rays that hit nothing
     """
@@ -33,7 +35,7 @@ class Scene:
     def validate(self) -> None:
         self.camera.validate()
         for i, light in enumerate(self.lights):
-            if not isinstance(light, (PointLight, AreaLight, DirectionalLight)):
+            if not isinstance(light, (PointLight, AreaLight, DirectionalLight, *EMITTERS)):
                 raise SceneError("scene", f"lights[{i}]", f"got {light!r}; need a light")
             light.validate()
         for i, shape in enumerate(self.shapes):

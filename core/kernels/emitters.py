@@ -1,0 +1,171 @@
+"""Lights in Blender's units at one surface point: each light's samples, their shadow rays,
+and the report's Lambert and Phong terms for what arrives.
+
+For light l seen from a shading point, sample j gives a unit direction L_j, the distance to
+the light along it and a weight w_j (`light_sphere`, `light_panel`, `light_sun`); with the
+table's radiance R_l (emitter_radiance) the point's colour gains
+
+    sum over lights of  1/N sum_j  (kd (N.L_j) [diffuse] + ks (R_j.V)^p [specular]) R_l w_j v_j
+
+v_j the shadow ray's transmittance (1 when the light casts no shadow), [diffuse] and
+[specular] the light's switches. For a white Lambertian surface this is E / pi, Cycles'
+brightness. A light that needs no more than one sample (a point without radius, a sun
+without angle) gets one, whatever the render's shadow samples.
+"""
+
+import math
+
+from ..jit import kernel
+from .borrow import borrowed
+from .layout import (
+    EMITS_DIFFUSE,
+    EMITS_SHADOW,
+    EMITS_SPECULAR,
+    EMITS_SPOT,
+    EMITS_SPOT_COSINE,
+)
+from .light_panel import panel_sample
+from .light_pyramid import TRAVERSE_ALL
+from .light_samples import square_point
+from .light_sphere import facing_disk_sample, sphere_sample, spot_mask
+from .light_sun import sun_sample
+from .options import (
+    EMITTER_ELLIPSE,
+    EMITTER_FACING_DISK,
+    EMITTER_RECTANGLE,
+    EMITTER_SPHERE,
+    EMITTER_SUN_CONE,
+    EMITTER_SUN_DISK,
+    OPTION_SHADOW_CULLING,
+    OPTION_SHADOW_PATTERN,
+    OPTION_SHADOW_SAMPLES,
+    SHADOW_HALTON,
+)
+from .rng import PURPOSE_LIGHT_SHIFT, uniform2
+from .shading import AreaLight, _add_falling, light_candidates, shadow_visibility
+from .vec import add, dot, mul, row, scale, sub
+
+# Random streams of the emitters start here, past any count of the report's area lights
+# (whose light l uses stream event * 65536 + l)
+EMITTER_STREAM = 32768
+
+
+@kernel
+def _frame_rows(frames, light):
+    return (
+        (frames[light, 0, 0], frames[light, 0, 1], frames[light, 0, 2]),
+        (frames[light, 1, 0], frames[light, 1, 1], frames[light, 1, 2]),
+        (frames[light, 2, 0], frames[light, 2, 1], frames[light, 2, 2]),
+    )
+
+
+@kernel
+def samples_needed(lights, light, samples):
+    """1 for a light every sample of which is the same (a point, a sun without angle)."""
+    kind, param = lights.emitter_kind[light], lights.emitter_param
+    if kind <= EMITTER_FACING_DISK:
+        return 1 if param[light, 0] == 0.0 else samples
+    if kind >= EMITTER_SUN_CONE:
+        return 1 if param[light, 0] == 0.0 else samples
+    return samples
+
+
+@kernel
+def emitter_sample(lights, light, origin, normal, a, b):
+    """(unit direction, distance, weight) of light `light`'s sample (a, b) from `origin`;
+    distance 0 or weight 0 for a sample that brings nothing."""
+    kind = lights.emitter_kind[light]
+    position = row(lights.emitter_position, light)
+    param = lights.emitter_param
+    if kind >= EMITTER_SUN_CONE:
+        toward = sun_sample(
+            position, param[light, 0], param[light, 1], kind == EMITTER_SUN_DISK, a, b
+        )
+        return toward, math.inf, 1.0
+    if EMITTER_RECTANGLE <= kind <= EMITTER_ELLIPSE:
+        edge_u, edge_v, facing = _frame_rows(lights.emitter_frame, light)
+        return panel_sample(position, edge_u, edge_v, facing, kind == EMITTER_ELLIPSE, origin, a, b)
+    radius = param[light, 0]
+    if kind == EMITTER_SPHERE:
+        direction, t, weight = sphere_sample(position, radius, origin, normal, a, b)
+    else:
+        direction, t, weight = facing_disk_sample(position, radius, origin, a, b)
+    flags = lights.emitter_flags[light]
+    if flags & EMITS_SPOT:
+        with_cosine = (flags & EMITS_SPOT_COSINE) != 0
+        to_light_frame = _frame_rows(lights.emitter_frame, light)
+        mask = spot_mask(
+            to_light_frame, scale(direction, -1.0), param[light, 1], param[light, 2], with_cosine
+        )
+        weight *= mask
+    return direction, t, weight
+
+
+@kernel
+def emitted_colour(frame, lights, geo, stacks, point, phong, key, event, split):
+    """The colour the lights in Blender's units give a `ShadingPoint` of a surface with
+    `Phong` terms (the module's formula). `key` and `event` select the random numbers; with
+    `split` (core.kernels.shading.local_colour's) stacks.terms gets the light falling too."""
+    frame, lights = borrowed(frame), borrowed(lights)
+    geo, stacks = borrowed(geo), borrowed(stacks)
+    targets, visibility, terms = stacks.light_targets, stacks.visibility, stacks.terms
+    origin, n, to_viewer = point.origin, point.normal, point.to_viewer
+    kd, ks, shininess = phong
+    glossy = ks[0] > 0.0 or ks[1] > 0.0 or ks[2] > 0.0
+    samples = frame.options[OPTION_SHADOW_SAMPLES]
+    pattern = frame.options[OPTION_SHADOW_PATTERN]
+    colour = (0.0, 0.0, 0.0)
+    for light in range(lights.emitter_kind.shape[0]):
+        count = samples_needed(lights, light, samples)
+        stream = event * 65536 + EMITTER_STREAM + light
+        shift = (0.0, 0.0)
+        if pattern == SHADOW_HALTON:
+            shift = uniform2(key, PURPOSE_LIGHT_SHIFT, stream, 0)
+        for j in range(count):
+            a, b = square_point(pattern, count, j, key, stream, shift)
+            direction, t, weight = emitter_sample(lights, light, origin, n, a, b)
+            targets[j, 0], targets[j, 1], targets[j, 2] = direction
+            targets[j, 3] = t if weight > 0.0 else 0.0
+            targets[j, 4] = weight
+        flags = lights.emitter_flags[light]
+        if flags & EMITS_SHADOW:
+            listed = TRAVERSE_ALL
+            kind = lights.emitter_kind[light]
+            panel = EMITTER_RECTANGLE <= kind <= EMITTER_ELLIPSE
+            if panel and frame.options[OPTION_SHADOW_CULLING]:
+                frames = lights.emitter_frame
+                area = AreaLight(
+                    row(lights.emitter_position, light),
+                    (frames[light, 0, 0], frames[light, 0, 1], frames[light, 0, 2]),
+                    (frames[light, 1, 0], frames[light, 1, 1], frames[light, 1, 2]),
+                )
+                listed = light_candidates(geo, stacks, origin, area)
+            shadow_visibility(geo, stacks, listed, origin, n, count)
+        else:
+            for j in range(count):
+                visibility[j] = 1.0
+        diffuse = 1.0 if flags & EMITS_DIFFUSE else 0.0
+        specular = 1.0 if (flags & EMITS_SPECULAR) and glossy else 0.0
+        radiance = row(lights.emitter_radiance, light)
+        total = (0.0, 0.0, 0.0)
+        for j in range(count):
+            weight = targets[j, 4]
+            if targets[j, 3] == 0.0 or weight == 0.0:
+                continue
+            light_dir = row(targets, j)
+            n_dot_l = dot(n, light_dir)
+            if n_dot_l <= 0.0 or visibility[j] == 0.0:
+                continue
+            factor = diffuse * n_dot_l
+            if specular > 0.0:
+                reflected = sub(scale(n, 2.0 * n_dot_l), light_dir)
+                r_dot_v = min(dot(reflected, to_viewer), 1.0)
+                if r_dot_v > 0.0:
+                    highlight = r_dot_v**shininess
+                    total = add(total, scale(ks, highlight * weight * visibility[j]))
+            total = add(total, scale(kd, factor * weight * visibility[j]))
+            if split and diffuse > 0.0:
+                falling = scale(radiance, weight / count)
+                _add_falling(terms, light_dir, falling, visibility[j], n, 1.0)
+        colour = add(colour, scale(mul(total, radiance), 1.0 / count))
+    return colour

@@ -1,0 +1,101 @@
+"""Where a light's shadow rays go: points of the unit square in the render's shadow pattern,
+carried onto disks and around directions.
+
+The unit square's points are those the report's area lights use (stratified, uniform or
+Halton, `core.kernels.shading`); every light in Blender's units maps them onto its own shape
+with maps that keep areas in proportion, so a stratified pattern stays stratified on a disk, a
+sphere's cone of directions or a sun's.
+"""
+
+import math
+
+from ..jit import inlined_kernel, kernel
+from .options import SHADOW_HALTON, SHADOW_STRATIFIED
+from .rng import PURPOSE_LIGHT, uniform2
+from .vec import add, scale
+
+
+@kernel
+def radical_inverse(i, base):
+    """The digits of i in `base` mirrored about the point: the Halton sequence's i-th
+    coordinate in that base, in [0, 1)."""
+    inverse, scale_ = 0.0, 1.0 / base
+    while i > 0:
+        inverse += (i % base) * scale_
+        i //= base
+        scale_ /= base
+    return inverse
+
+
+@kernel
+def stratified_cell(j, count):
+    """Cell j of `count` equal-area cells tiling the unit square: (x0, y0, width, height).
+
+    Rows of ceil(sqrt(count)) cells; a short last row gets wider cells and a taller row, so
+    every cell has area 1/count and the cells cover the square exactly once."""
+    columns = int(math.ceil(math.sqrt(count)))
+    rows = (count + columns - 1) // columns
+    r = j // columns
+    in_row = columns if r < rows - 1 else count - columns * (rows - 1)
+    height = in_row / count
+    y0 = columns * r / count
+    return (j - r * columns) / in_row, y0, 1.0 / in_row, height
+
+
+@inlined_kernel
+def square_point(pattern, samples, j, key, stream, shift):
+    """Point j of `samples` in the unit square, in the shadow `pattern`; `shift` is the
+    shading point's Halton offset, `key` and `stream` select the random numbers."""
+    if pattern == SHADOW_HALTON:
+        a = (radical_inverse(j + 1, 2) + shift[0]) % 1.0
+        b = (radical_inverse(j + 1, 3) + shift[1]) % 1.0
+    else:
+        a, b = uniform2(key, PURPOSE_LIGHT, stream, j)
+    if pattern == SHADOW_STRATIFIED:
+        x0, y0, w, h = stratified_cell(j, samples)
+        a, b = x0 + a * w, y0 + b * h
+    return a, b
+
+
+@kernel
+def concentric_disk(a, b):
+    """The unit square onto the unit disk, areas in proportion and neighbours kept together
+    (Shirley and Chiu's concentric map): squares about the centre become rings."""
+    x, y = 2.0 * a - 1.0, 2.0 * b - 1.0
+    if x == 0.0 and y == 0.0:
+        return 0.0, 0.0
+    if abs(x) > abs(y):
+        radius, angle = x, (math.pi / 4.0) * (y / x)
+    else:
+        radius, angle = y, (math.pi / 2.0) - (math.pi / 4.0) * (x / y)
+    return radius * math.cos(angle), radius * math.sin(angle)
+
+
+@kernel
+def basis(w):
+    """Two unit vectors that make a right-handed orthonormal frame with unit w, continuous in
+    w except where w's z changes sign (Duff et al. 2017)."""
+    sign = math.copysign(1.0, w[2])
+    a = -1.0 / (sign + w[2])
+    b = w[0] * w[1] * a
+    e1 = (1.0 + sign * w[0] * w[0] * a, sign * b, -sign * w[0])
+    e2 = (b, sign + w[1] * w[1] * a, -w[1])
+    return e1, e2
+
+
+@kernel
+def in_frame(w, x, y, z):
+    """x e1 + y e2 + z w in the frame `basis` makes around unit w."""
+    e1, e2 = basis(w)
+    return add(add(scale(e1, x), scale(e2, y)), scale(w, z))
+
+
+@kernel
+def cone_direction(w, one_minus_cos_max, a, b):
+    """A direction within the cone about unit w whose half-angle has 1 - cos = the given
+    (exact for tiny cones, where cos itself rounds to 1), uniform in solid angle."""
+    one_minus = a * one_minus_cos_max
+    cos_theta = 1.0 - one_minus
+    sin_theta = math.sqrt(max(0.0, one_minus * (2.0 - one_minus)))
+    phi = 2.0 * math.pi * b
+    return in_frame(w, sin_theta * math.cos(phi), sin_theta * math.sin(phi), cos_theta)
