@@ -285,16 +285,18 @@ def test_add_menu_creates_a_tagged_stand_in(empty_scene, kind):
     assert obj.type == "MESH" and obj.whitted.shape == kind and len(obj.data.polygons) > 0
 
 
-def test_a_sun_is_parallel_light_along_its_minus_z(empty_scene, monkeypatch):
+def test_a_sun_shines_along_its_minus_z_with_its_strength_and_angle(empty_scene, monkeypatch):
     bpy = sys.modules["bpy"]
     bpy.ops.object.light_add(type="SUN", rotation=(np.pi / 2, 0, 0))
     sun = bpy.context.active_object.data
-    sun.energy, sun.color = 3.0, (1.0, 0.5, 0.25)
+    sun.energy, sun.color, sun.angle = 3.0, (1.0, 0.5, 0.25), np.radians(10.0)
     scene, _, warnings = exported(bpy, monkeypatch)
     (light,) = scene.lights
-    assert isinstance(light, core.DirectionalLight) and warnings == []
+    assert isinstance(light, core.SunLight) and warnings == []
     np.testing.assert_allclose(light.direction, (0, 1.0, 0), atol=1e-6)
-    np.testing.assert_allclose(light.intensity, np.array([1.0, 0.5, 0.25]) * 3.0 / np.pi)
+    np.testing.assert_allclose(light.irradiance, np.array([1.0, 0.5, 0.25]) * 3.0)
+    assert light.angle == pytest.approx(10.0)
+    assert light.sampling == ("disk" if bpy.app.version < (4, 0, 0) else "cone")
 
 
 def test_an_unchanged_mesh_is_not_exported_again_on_the_next_frame(empty_scene, monkeypatch):
@@ -334,17 +336,26 @@ def test_text_and_curves_render_through_their_evaluated_meshes(empty_scene, monk
     assert all(isinstance(s, core.Mesh) and len(s.mesh.triangles) > 10 for s in scene.shapes)
 
 
-def test_spot_and_disk_lights_are_skipped_with_their_names(empty_scene, monkeypatch):
+def test_spot_and_disk_lights_render_and_what_cannot_be_honoured_is_named(empty_scene, monkeypatch):
     bpy = sys.modules["bpy"]
     bpy.ops.object.light_add(type="SPOT")
     bpy.context.active_object.name = "Stage"
     bpy.ops.object.light_add(type="AREA")
-    bpy.context.active_object.data.shape = "DISK"
-    bpy.context.active_object.name = "Round"
+    round_light = bpy.context.active_object
+    round_light.data.shape = "DISK"
+    round_light.name = "Round"
     scene, _, warnings = exported(bpy, monkeypatch)
-    assert scene.lights == []
-    (warning,) = warnings
-    assert "'Round'" in warning and "'Stage'" in warning and "skipped 2 light" in warning
+    assert warnings == []
+    by_name = {light.name: light for light in scene.lights}
+    assert isinstance(by_name["Stage"], core.SpotLight)
+    assert by_name["Round"].shape == "ellipse"
+    round_light.data.spread = np.radians(60.0)
+    bpy.ops.object.light_add(type="POINT")
+    cs488 = bpy.context.active_object
+    cs488.name, cs488.data.whitted.model, cs488.data.shadow_soft_size = "Old", "CS488", 0.5
+    _, _, warnings = exported(bpy, monkeypatch)
+    assert any("'Round'" in w and "Spread 60°" in w for w in warnings)
+    assert any("'Old'" in w and "Radius 0.5 m" in w and "Light Model" in w for w in warnings)
 
 
 def test_faces_keep_the_material_of_their_slot(empty_scene, monkeypatch):
