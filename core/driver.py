@@ -241,7 +241,7 @@ def _render_one(packed: PackedScene, settings: RenderSettings, tile: Tile, stop:
     # Cryptomatte keeps each camera ray's ids until its pixel is done
     crypto = any(name in CRYPTO_PASSES for name in settings.passes)
     workspace = new_workspace(
-        settings.max_depth, settings.shadow_samples, stop,
+        settings.max_depth, max(settings.shadow_samples, settings.environment_samples), stop,
         settings.pixel_samples**2 if crypto else 1,
     )  # fmt: skip
     render_tile(packed, settings.width, settings.height, tile.x, tile.y, tile.width,

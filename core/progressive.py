@@ -205,7 +205,8 @@ class ProgressiveRender:
 
 def pass_settings(settings: RenderSettings, step: Pass) -> RenderSettings:
     """`settings` for one pass: 1/scale of the size (rounded up), the border scaled to cover
-    at least the same view pixels, one camera and one shadow ray unless full sampling."""
+    at least the same view pixels, one camera and one shadow ray (per light, and towards the
+    environment) unless full sampling."""
     width = -(-settings.width // step.scale)
     height = -(-settings.height // step.scale)
     region = None
@@ -215,7 +216,15 @@ def pass_settings(settings: RenderSettings, step: Pass) -> RenderSettings:
         x1 = min(width, -(-(x + w) * width // settings.width))
         y1 = min(height, -(-(y + h) * height // settings.height))
         region = (x0, y0, max(1, x1 - x0), max(1, y1 - y0))
-    sampling = {} if step.full_sampling else {"pixel_samples": 1, "shadow_samples": 1}
+    sampling = (
+        {}
+        if step.full_sampling
+        else {
+            "pixel_samples": 1,
+            "shadow_samples": 1,
+            "environment_samples": min(settings.environment_samples, 1),
+        }
+    )
     return replace(settings, width=width, height=height, region=region, **sampling)
 
 

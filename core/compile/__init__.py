@@ -72,7 +72,7 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
                              meshes, mesh_of)  # fmt: skip
     owners = [scene.shapes[row] for row in owner_rows(csg, tree_of_row, len(scene.shapes))]
     surfaces = pack_surfaces(shapes, owners, material_of, meshes)
-    lights = pack_lights(scene.lights)
+    lights = pack_lights(scene.lights, scene.environment)
     packed = kernel_ready(PackedScene(frame, geometry, surfaces, materials, lights))
     warnings = [
         f"mesh '{name}': dropped {count} degenerate (zero-area) triangle"

@@ -10,6 +10,9 @@ from ..kernels.layout import Frame
 from ..kernels.options import (
     OPTION_COUNT,
     OPTION_CRYPTO_LEVELS,
+    OPTION_ENVIRONMENT,
+    OPTION_ENVIRONMENT_CLOSEST,
+    OPTION_ENVIRONMENT_SAMPLES,
     OPTION_MAX_DEPTH,
     OPTION_PASSES,
     OPTION_PIXEL_PATTERN,
@@ -30,6 +33,7 @@ from ..kernels.options import (
 )
 from ..model import RenderSettings, Scene
 from ..passes import MIST_FALLOFFS, layout
+from .environment import environment_kind
 
 # Listing an area light's shapes costs about as much per shading point as tracing a few
 # shadow rays: on the final scene (300 x 300) culling was slower at 1 to 6 rays per light
@@ -67,6 +71,12 @@ def _options(scene: Scene, settings: RenderSettings) -> np.ndarray:
     options[OPTION_TRANSPARENT] = settings.transparent
     options[OPTION_PASSES] = pass_bits(settings.passes)
     options[OPTION_CRYPTO_LEVELS] = settings.crypto_levels
+    environment = scene.environment
+    options[OPTION_ENVIRONMENT] = environment_kind(environment)
+    options[OPTION_ENVIRONMENT_SAMPLES] = settings.environment_samples
+    options[OPTION_ENVIRONMENT_CLOSEST] = (
+        environment is not None and environment.interpolation == "closest"
+    )
     options[OPTION_SHADOW_CULLING] = (
         settings.shadow_culling and settings.shadow_samples >= SHADOW_CULLING_MIN_SAMPLES
     )

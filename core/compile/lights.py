@@ -1,5 +1,6 @@
-"""The lights, one table per kind of the report's (point, area: a parallelogram, sun), and
-one table for every light in Blender's units (`core.kernels.emitters` reads it)."""
+"""The lights, one table per kind of the report's (point, area: a parallelogram, sun), one
+table for every light in Blender's units (`core.kernels.emitters` reads it), and the
+environment's arrays (`core.compile.environment`)."""
 
 from __future__ import annotations
 
@@ -19,9 +20,10 @@ from ..model import AreaLight, DirectionalLight, PointLight
 from ..model.emitters import EMITTERS, PanelLight, SphereLight, SpotLight, SunLight
 from ..vocabulary import EMITTER_KINDS
 from .arrays import rows
+from .environment import pack_environment
 
 
-def pack_lights(lights: list) -> Lights:
+def pack_lights(lights: list, environment=None) -> Lights:
     points = [light for light in lights if isinstance(light, PointLight)]
     areas = [light for light in lights if isinstance(light, AreaLight)]
     suns = [light for light in lights if isinstance(light, DirectionalLight)]
@@ -44,6 +46,7 @@ def pack_lights(lights: list) -> Lights:
         emitter_frame=np.array([e[3] for e in emitters], float).reshape(-1, 3, 3),
         emitter_param=rows([e[4] for e in emitters], 4),
         emitter_radiance=rows([e[5] for e in emitters]),
+        **pack_environment(environment),
     )
 
 

@@ -17,7 +17,10 @@ import math
 
 from ..jit import inlined_kernel, kernel
 from .emitters import emitted_colour
+from .environment import environment_light, environment_radiance
+from .layout import ENVIRONMENT_NONE
 from .options import (
+    OPTION_ENVIRONMENT,
     OPTION_MAX_DEPTH,
     OPTION_PASSES,
     OPTION_TRANSPARENT,
@@ -36,7 +39,7 @@ from .pass_record import (
 from .shading import Phong, ShadingPoint, local_colour
 from .surface import diffuse_colour, surface_at
 from .trace import closest_hit, spawn_point
-from .vec import add, as_tuple, dot, mul, normalize, row, scale, sub
+from .vec import add, dot, mul, normalize, row, scale, sub
 from .workspace import RAYS_TRACED
 
 MIN_WEIGHT = 1e-6
@@ -107,7 +110,7 @@ def trace_ray(ps, o, d, key, ws):
             if depth == 0 and frame.options[OPTION_TRANSPARENT] != 0:
                 alpha = 0.0  # the camera ray itself: nothing there, not even background
             else:
-                seen = mul(w, as_tuple(frame.background))
+                seen = mul(w, environment_radiance(frame, lights, d))
                 colour = add(colour, seen)
                 if recording:
                     add_to(record, branch, seen)
@@ -143,6 +146,11 @@ def trace_ray(ps, o, d, key, ws):
                     frame, lights, geo, stacks, point, phong, key, event, splitting
                 )
                 local = add(local, emitted)
+            if frame.options[OPTION_ENVIRONMENT] != ENVIRONMENT_NONE:  # the World's light
+                sky = environment_light(
+                    frame, lights, geo, stacks, point, kd, key, event, splitting
+                )
+                local = add(local, sky)
             seen = mul(w, scale(local, 1.0 - tau))
             colour = add(colour, seen)
             if first:

@@ -113,6 +113,14 @@ class Lights(NamedTuple):
     # blend in cos; a sun's 1 - cos and tan of its half angle
     emitter_param: np.ndarray
     emitter_radiance: np.ndarray  # float64 (e, 3): see core.kernels.emitters
+    # the environment (core.compile.environment, core.kernels.environment); its kind is
+    # OPTION_ENVIRONMENT
+    env_colour: np.ndarray  # float64 (3,): the uniform radiance, or the image's tint
+    env_transform: np.ndarray  # float64 (3, 4): affine rows, view direction -> lookup direction
+    env_pixels: np.ndarray  # float32 (width x height, 3): linear RGB, row 0 at the top
+    env_size: np.ndarray  # int64 (3,): width, height, 1 if env_transform is a rotation
+    env_row_cdf: np.ndarray  # float64 (height + 1,): picks a row
+    env_column_cdf: np.ndarray  # float64 (height, width + 1): picks a pixel of the row
 
 
 # EMITS_* bits of Lights.emitter_flags
@@ -136,3 +144,9 @@ class PackedScene(NamedTuple):
     surfaces: Surfaces
     materials: Materials
     lights: Lights
+
+
+# OPTION_ENVIRONMENT: what lies beyond the scene
+ENVIRONMENT_NONE = 0  # the background colour only (Frame.background), lighting nothing
+ENVIRONMENT_UNIFORM = 1  # light of env_colour from every direction
+ENVIRONMENT_IMAGE = 2  # an equirectangular image times env_colour

@@ -15,7 +15,10 @@ OPTION_TRANSPARENT = 8
 # whether they need the lighting split or texture coordinates, which cost the most
 OPTION_PASSES = 9
 OPTION_CRYPTO_LEVELS = 10  # Cryptomatte ranks kept per pixel
-OPTION_COUNT = 11
+OPTION_ENVIRONMENT = 11  # one of ENVIRONMENT_* (core.kernels.layout)
+OPTION_ENVIRONMENT_SAMPLES = 12  # shadow rays towards the environment per shading point
+OPTION_ENVIRONMENT_CLOSEST = 13  # 1: the image's nearest pixel, not bilinear
+OPTION_COUNT = 14
 
 PASSES_ANY = 1
 PASSES_LIGHT_SPLIT = 2  # the diffuse, specular and shadow passes

@@ -109,14 +109,9 @@ def _texel(pixels, first, width, height, x, y):
 
 
 @kernel
-def diffuse_colour(mats, material, u, v):
-    """The material's kd, or its texture at (u, v): bilinear, repeating, v = 0 at the
-    bottom row of the image."""
-    texture = mats.texture[material]
-    if texture < 0:
-        return row(mats.diffuse, material)
-    pixels, first = mats.texture_pixels, mats.texture_offset[texture]
-    width, height = mats.texture_size[texture, 0], mats.texture_size[texture, 1]
+def bilinear(pixels, first, width, height, u, v):
+    """The image of `width` x `height` texels from pixels[first] at (u, v): bilinear,
+    repeating, v = 0 at the bottom row of the image."""
     x = u * width - 0.5
     y = (1.0 - v) * height - 0.5
     if not (math.isfinite(x) and math.isfinite(y)):
@@ -133,3 +128,23 @@ def diffuse_colour(mats, material, u, v):
         scale(_texel(pixels, first, width, height, i + 1, j + 1), fx),
     )
     return add(scale(top, 1.0 - fy), scale(bottom, fy))
+
+
+@kernel
+def nearest(pixels, first, width, height, u, v):
+    """The texel (u, v) falls in, repeating; v = 0 at the bottom row."""
+    x, y = u * width, (1.0 - v) * height
+    if not (math.isfinite(x) and math.isfinite(y)):
+        return _texel(pixels, first, width, height, 0, 0)
+    return _texel(pixels, first, width, height, int(math.floor(x)), int(math.floor(y)))
+
+
+@kernel
+def diffuse_colour(mats, material, u, v):
+    """The material's kd, or its texture at (u, v) (`bilinear`)."""
+    texture = mats.texture[material]
+    if texture < 0:
+        return row(mats.diffuse, material)
+    pixels, first = mats.texture_pixels, mats.texture_offset[texture]
+    width, height = mats.texture_size[texture, 0], mats.texture_size[texture, 1]
+    return bilinear(pixels, first, width, height, u, v)

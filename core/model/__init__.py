@@ -3,6 +3,7 @@
     camera.py     Camera
     lights.py     PointLight, DirectionalLight, AreaLight: the report's lights
     emitters.py   SphereLight, SpotLight, PanelLight, SunLight: lights in Blender's units
+    environment.py  Environment: Blender's World, a colour or an equirectangular image
     materials.py  Material, Texture
     shapes.py     Sphere, Box, Cylinder, Cone, Torus, TriangleMesh and Mesh, Csg
     scene.py      Scene
@@ -19,6 +20,7 @@ scene units; angles are in degrees.
 
 from .camera import Camera
 from .emitters import PanelLight, SphereLight, SpotLight, SunLight
+from .environment import Environment
 from .lights import AreaLight, DirectionalLight, PointLight
 from .materials import Material, Texture
 from .scene import Scene
@@ -33,6 +35,7 @@ __all__ = [
     "Csg",
     "Cylinder",
     "DirectionalLight",
+    "Environment",
     "Material",
     "Mesh",
     "PanelLight",

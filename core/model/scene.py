@@ -10,6 +10,7 @@ from ..checks import Vec3, check_vec3, valid_affine
 from ..errors import SceneError
 from .camera import Camera
 from .emitters import EMITTERS
+from .environment import Environment
 from .lights import AreaLight, DirectionalLight, PointLight
 from .shapes import Csg, Shape
 
@@ -22,8 +23,10 @@ class Scene:
     shapes      -- the `Shape`s (Sphere, Box, Cylinder, Cone, Torus, Mesh, Csg)
     lights      -- `PointLight`s, `AreaLight`s and `DirectionalLight`s (the report's), and
                    lights in Blender's units (`core.model.emitters`)
-    ambient     -- linear RGB ambient light, added as kd * ambient
-    background  -- linear RGB colour of rays that hit nothing
+    ambient     -- linear RGB ambient light, added as kd * ambient (the report's)
+    background  -- linear RGB colour of rays that hit nothing, when there is no environment
+    environment -- an `Environment` (Blender's World: seen behind the scene and lighting it),
+                   or None
     """
 
     camera: Camera = field(default_factory=Camera)
@@ -31,6 +34,7 @@ class Scene:
     lights: list = field(default_factory=list)
     ambient: Vec3 = (0.0, 0.0, 0.0)
     background: Vec3 = (0.0, 0.0, 0.0)
+    environment: Environment | None = None
 
     def validate(self) -> None:
         self.camera.validate()
@@ -46,6 +50,10 @@ class Scene:
             shape.validate(checked)
         check_vec3("scene", "ambient", self.ambient, nonnegative=True)
         check_vec3("scene", "background", self.background, nonnegative=True)
+        if self.environment is not None:
+            if not isinstance(self.environment, Environment):
+                raise SceneError("scene", "environment", f"got {self.environment!r}")
+            self.environment.validate()
 
     def object_and_material_names(self) -> tuple[list[str], list[str]]:
         """The names of the scene's shapes (a CSG tree named by its top node) and of every
