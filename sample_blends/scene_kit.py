@@ -175,13 +175,16 @@ def _link(obj, location, collection):
 
 
 def world(scene, colour):
-    """The world colour: Whitted's ambient light and background."""
+    """The world colour as the report used it: Whitted's ambient light and the background
+    (the CS488 World Model: the World lights nothing itself)."""
     w = bpy.data.worlds.new(f"{scene.name} World")
     w.use_nodes = True
     background = next(n for n in w.node_tree.nodes if n.type == "BACKGROUND")
     background.inputs[0].default_value = (*colour, 1.0)
     background.inputs[1].default_value = 1.0
     w.color = colour
+    w.whitted.model = "CS488"
+    w.whitted.ambient = colour
     scene.world = w
     return w
 

@@ -34,8 +34,8 @@ def convert(
     render = settings.convert(scene)
     if with_passes:
         passes.apply(render, depsgraph.view_layer, scene.world)
-    ambient = world.convert(scene.world)
     exporter = Exporter(depsgraph, mesh_cache)
+    environment, background, ambient = world.convert(scene.world, exporter.warn)
     holdouts = holdout_objects(depsgraph.view_layer)
     lights = []
     for instance in depsgraph.object_instances:
@@ -65,7 +65,8 @@ def convert(
         shapes=exporter.shapes,
         lights=lights,
         ambient=ambient,
-        background=ambient,
+        background=background,
+        environment=environment,
     )
     return result, render, warnings
 

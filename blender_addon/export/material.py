@@ -101,10 +101,10 @@ def _base_colour_image(principled):
     return node.image if node.type == "TEX_IMAGE" else None
 
 
-def image_texture(image, material_name: str) -> core.Texture:
+def image_texture(image, material_name: str = "", owner: str = "") -> core.Texture:
     """The image's pixels, top row first, as a core texture; sRGB unless Blender says the
-    image holds linear (non-colour) data."""
-    owner = f"material '{material_name}'"
+    image holds linear (non-colour) data. Errors name `owner`, or the material."""
+    owner = owner or f"material '{material_name}'"
     # Reading the pixels loads an on-disk image not read yet (has_data stays False until
     # then in Blender 3.4); a missing or unreadable file gives none
     count = len(image.pixels)
@@ -113,7 +113,8 @@ def image_texture(image, material_name: str) -> core.Texture:
             owner,
             f"image '{image.name}'",
             f"has no pixels (file '{image.filepath}' missing or unreadable); reload or "
-            "replace the image in the Image Texture node or the Whitted Material panel",
+            "replace the image in its Image or Environment Texture node, or the Whitted "
+            "Material panel",
         )
     width, height = image.size
     pixels = np.empty(width * height * image.channels, np.float32)

@@ -33,6 +33,7 @@ def convert(scene) -> core.RenderSettings:
         pixel_sampling=settings.pixel_sampling.lower(),
         shadow_samples=settings.shadow_samples,
         shadow_sampling=settings.shadow_sampling.lower(),
+        environment_samples=settings.environment_samples,
         seed=settings.seed,
         transparent=render.film_transparent,
     )

@@ -146,6 +146,9 @@ def _configure(scene, call) -> None:
     background.inputs[0].default_value = (*call.ambient, 1.0)
     background.inputs[1].default_value = 1.0
     world.color = call.ambient
+    # The script's ambient term as the report used it, and its background
+    world.whitted.model = "CS488"
+    world.whitted.ambient = call.ambient
     scene.world = world
 
 

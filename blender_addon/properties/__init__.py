@@ -12,6 +12,7 @@ from .material import WhittedMaterialSettings
 from .object import WhittedObjectSettings
 from .scene import WhittedSceneSettings
 from .view_layer import WhittedViewLayerSettings
+from .world import WhittedWorldSettings
 
 _owners = (
     (bpy.types.Object, WhittedObjectSettings),
@@ -19,6 +20,7 @@ _owners = (
     (bpy.types.Light, WhittedLightSettings),
     (bpy.types.Scene, WhittedSceneSettings),
     (bpy.types.ViewLayer, WhittedViewLayerSettings),
+    (bpy.types.World, WhittedWorldSettings),
 )
 
 

@@ -6,7 +6,11 @@ from bpy.props import (
     IntProperty,
 )
 
-from ..core.model.settings import DEFAULT_PIXEL_SAMPLES, DEFAULT_SHADOW_SAMPLES
+from ..core.model.settings import (
+    DEFAULT_ENVIRONMENT_SAMPLES,
+    DEFAULT_PIXEL_SAMPLES,
+    DEFAULT_SHADOW_SAMPLES,
+)
 
 
 class WhittedSceneSettings(bpy.types.PropertyGroup):
@@ -67,6 +71,17 @@ class WhittedSceneSettings(bpy.types.PropertyGroup):
         min=1,
         soft_max=256,
         default=DEFAULT_SHADOW_SAMPLES,
+    )
+    environment_samples: IntProperty(
+        name="World Samples",
+        description=(
+            "Shadow rays towards the World per shading point, for its light (its colour or "
+            "Environment Texture); 0 lights nothing by it. Noise falls as its square root"
+        ),
+        min=0,
+        soft_max=256,
+        max=65536,
+        default=DEFAULT_ENVIRONMENT_SAMPLES,
     )
     tile_size: IntProperty(
         name="Tile Size",

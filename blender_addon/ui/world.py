@@ -1,8 +1,10 @@
-"""World Properties › Whitted World: the one colour that is ambient and background."""
+"""World Properties › Whitted World: the World Model, what Whitted reads of the World, the
+report's ambient term, and what Whitted cannot honour."""
 
 import bpy
 
 from ..export.material import find_node
+from ..export.world import source, unsupported
 from .base import WhittedPanel
 
 
@@ -15,9 +17,21 @@ class WHITTED_PT_world(WhittedPanel, bpy.types.Panel):
         layout = self.layout
         layout.use_property_split = True
         world = context.world
+        layout.prop(world.whitted, "model")
+        blender = world.whitted.model == "BLENDER"
         background = find_node(world, "BACKGROUND")
-        if background is not None:
-            layout.prop(background.inputs[0], "default_value", text="Ambient and Background")
-            layout.prop(background.inputs[1], "default_value", text="Strength")
+        label = "Color" if blender else "Background"
+        if background is None:
+            layout.prop(world, "color", text=label)
         else:
-            layout.prop(world, "color", text="Ambient and Background")
+            fed = source(background.inputs[0])
+            if fed is None:
+                layout.prop(background.inputs[0], "default_value", text=label)
+            else:
+                layout.label(text=f"{label}: from '{fed[0].name}'", icon="NODE")
+            layout.prop(background.inputs[1], "default_value", text="Strength")
+        if blender:
+            layout.prop(context.scene.whitted, "environment_samples")
+        layout.prop(world.whitted, "ambient")
+        for text in unsupported(world):
+            layout.label(text=text.split(": ", 1)[1], icon="ERROR")

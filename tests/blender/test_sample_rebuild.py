@@ -41,7 +41,7 @@ def fingerprint(bpy, path):
         scene.name: (
             scene.render.resolution_x, scene.render.resolution_y, _whitted(scene.whitted),
             scene.camera.name if scene.camera else None,
-            _rounded(scene.world.color) if scene.world else None,
+            (_rounded(scene.world.color), _whitted(scene.world.whitted)) if scene.world else None,
             sorted(o.name for o in scene.objects),
         )
         for scene in bpy.data.scenes

@@ -301,7 +301,7 @@ def test_soft_shadow_penumbra_has_the_width_geometry_predicts(bpy_with_whitted, 
         top.location = (0.0, 0.0, camera_height)
         scene.collection.objects.link(top)
         scene.camera = top
-        scene.world.node_tree.nodes["Background"].inputs[0].default_value = (0, 0, 0, 1)
+        scene.world.whitted.ambient = (0.0, 0.0, 0.0)  # the light's shadow alone
         row = size // 2
         lit = render(bpy, scene, tmp_path / f"{scene_name}.png", (size, size))[row, :, 1]
         torus.hide_render = True

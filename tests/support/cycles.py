@@ -119,13 +119,87 @@ def block_means(image: np.ndarray, block: int = 4) -> np.ndarray:
     return image[: h * block, : w * block].reshape(h, block, w, block, -1).mean(axis=(1, 3))
 
 
-def brightness_ratios(cycles: np.ndarray, whitted: np.ndarray, lit_share: float = 0.05):
-    """Whitted's over Cycles' brightness in each 4 x 4 block lit above `lit_share` of the
-    brightest (Cycles' dark blocks are noise), with the blocks' Cycles brightness."""
-    c, w = block_means(cycles).sum(axis=-1), block_means(whitted).sum(axis=-1)
+def brightness_ratios(cycles: np.ndarray, whitted: np.ndarray, lit_share=0.05, block=4):
+    """Whitted's over Cycles' brightness in each block x block square lit above `lit_share`
+    of the brightest (Cycles' dark blocks are noise), with the blocks' Cycles brightness."""
+    c = block_means(cycles, block).sum(axis=-1)
+    w = block_means(whitted, block).sum(axis=-1)
     lit = c > lit_share * c.max()
     return w[lit] / c[lit], c[lit]
 
 
 def turned(degrees_x=0.0, degrees_y=0.0, degrees_z=0.0):
     return tuple(math.radians(a) for a in (degrees_x, degrees_y, degrees_z))
+
+
+def mirror(bpy):
+    """A perfect mirror: Cycles' Glossy BSDF of roughness 0, Whitted's reflectivity 1."""
+    material = bpy.data.materials.new("Mirror")
+    material.use_nodes = True
+    nodes = material.node_tree.nodes
+    nodes.clear()
+    glossy = nodes.new("ShaderNodeBsdfGlossy")
+    glossy.inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
+    glossy.inputs["Roughness"].default_value = 0.0
+    output = nodes.new("ShaderNodeOutputMaterial")
+    material.node_tree.links.new(glossy.outputs[0], output.inputs[0])
+    settings = material.whitted
+    settings.use_whitted = True
+    settings.reflectivity = 1.0
+    material.diffuse_color = (0.0, 0.0, 0.0, 1.0)
+    settings.specular = (0.0, 0.0, 0.0)
+    return material
+
+
+def add_ball(bpy, scene, material, location=(0.0, 0.0, 1.0), radius=1.0):
+    """A tagged sphere (exact in Whitted; Cycles renders its mesh, subdivided finely): a unit
+    sphere's mesh scaled by `radius`, as Whitted's canonical sphere is placed."""
+    mesh = bpy.data.meshes.new("Ball")
+    import bmesh
+
+    shape = bmesh.new()
+    bmesh.ops.create_uvsphere(shape, u_segments=256, v_segments=128, radius=1.0)
+    shape.to_mesh(mesh)
+    shape.free()
+    for polygon in mesh.polygons:
+        polygon.use_smooth = True
+    mesh.materials.append(material)
+    obj = bpy.data.objects.new("Ball", mesh)
+    scene.collection.objects.link(obj)
+    obj.location, obj.scale = location, (radius,) * 3
+    obj.whitted.shape = "SPHERE"
+    return obj
+
+
+def environment_world(bpy, scene, pixels: np.ndarray, turn_degrees: float = 0.0, strength=1.0):
+    """The World as an Environment Texture of `pixels` (h, w, 3 linear, row 0 at the top),
+    through a Mapping node turning it about Z, fed by Generated coordinates."""
+    height, width = pixels.shape[:2]
+    image = bpy.data.images.new("Sky", width, height, alpha=True, float_buffer=True)
+    rgba = np.ones((height, width, 4), np.float32)
+    rgba[..., :3] = pixels[::-1]  # Blender's rows run bottom-up
+    image.pixels.foreach_set(rgba.ravel())
+    image.pack()
+    world = scene.world
+    world.use_nodes = True
+    tree = world.node_tree
+    background = next(n for n in tree.nodes if n.type == "BACKGROUND")
+    background.inputs["Strength"].default_value = strength
+    texture = tree.nodes.new("ShaderNodeTexEnvironment")
+    texture.image = image
+    mapping = tree.nodes.new("ShaderNodeMapping")
+    mapping.inputs["Rotation"].default_value = (0.0, 0.0, math.radians(turn_degrees))
+    coordinates = tree.nodes.new("ShaderNodeTexCoord")
+    tree.links.new(coordinates.outputs["Generated"], mapping.inputs["Vector"])
+    tree.links.new(mapping.outputs["Vector"], texture.inputs["Vector"])
+    tree.links.new(texture.outputs["Color"], background.inputs["Color"])
+    return world
+
+
+def uniform_world(scene, colour, strength=1.0):
+    world = scene.world
+    world.use_nodes = True
+    background = next(n for n in world.node_tree.nodes if n.type == "BACKGROUND")
+    background.inputs["Color"].default_value = (*colour, 1.0)
+    background.inputs["Strength"].default_value = strength
+    return world
