@@ -70,6 +70,7 @@ def render(engine, depsgraph):
     if not preview:
         print(summary)
         keep_summary(engine, summary)
+        keep_warnings(engine, warnings + [f"Whitted: {w}" for w in output.warnings])
         keep_cryptomatte_manifests(engine, view_layer, scene)
 
 
@@ -106,6 +107,14 @@ def keep_summary(engine, summary: str) -> None:
     result = engine.get_result()
     if result is not None:
         result.stamp_data_add_field("Whitted", summary)
+
+
+def keep_warnings(engine, warnings: list[str]) -> None:
+    """What Whitted could not honour, kept with the picture (the Image Editor's Metadata
+    sidebar, and files that carry metadata) besides the Info log."""
+    result = engine.get_result()
+    if warnings and result is not None:
+        result.stamp_data_add_field("Whitted Warnings", " | ".join(warnings))
 
 
 def _kernels_ready(engine) -> bool:

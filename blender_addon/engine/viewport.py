@@ -103,7 +103,12 @@ class ViewportSession:
         passes = len(self.renderer.passes)
         done = image.pass_index + (1 if image.complete else 0)
         state = "Done" if done == passes and not self.renderer.busy() else "Refining"
-        return f"Whitted | {state} | pass {min(done + 1, passes)}/{passes}"
+        line = f"Whitted | {state} | pass {min(done + 1, passes)}/{passes}"
+        if self.warnings:
+            # What Whitted cannot honour, where the user looks at the picture
+            more = f" (+{len(self.warnings) - 1} more)" if len(self.warnings) > 1 else ""
+            line += f" | {self.warnings[0]}{more}"
+        return line
 
     def needs_redraw(self) -> bool:
         """A new image to draw: a finished pass at once, streamed tiles now and then."""

@@ -173,6 +173,17 @@ def test_a_scene_error_shows_in_the_view_and_is_not_raised(session, sample_scene
     assert ball.name in session.status()
 
 
+def test_what_whitted_cannot_honour_shows_in_the_views_status(
+    session, sample_scene, bpy_with_whitted
+):
+    bpy = bpy_with_whitted
+    light = next(o for o in sample_scene.objects if o.type == "LIGHT")
+    light.data.shadow_soft_size = 0.5  # unused by its CS488 light model
+    session.update(bpy.context.evaluated_depsgraph_get(), camera_view(bpy, sample_scene))
+    finish(session)
+    assert f"light '{light.name}'" in session.status() and "Radius 0.5 m" in session.status()
+
+
 def test_a_final_render_while_the_viewport_renders_completes_and_both_are_right(
     session, sample_scene, bpy_with_whitted, tmp_path
 ):
