@@ -95,13 +95,15 @@ def blender_power(light) -> np.ndarray:
 
 
 def _switches(obj) -> dict:
-    """Cast Shadow, and whether the light reaches diffuse surfaces and makes highlights
-    (Object Properties > Visibility > Ray Visibility > Diffuse, Glossy)."""
+    """Cast Shadow, and whether the light reaches diffuse surfaces, makes highlights and is
+    seen in mirrors, and is seen through glass (Object Properties > Visibility > Ray
+    Visibility > Diffuse, Glossy, Transmission)."""
     return dict(
         name=obj.name,
         cast_shadow=light_casts_shadow(obj.data),
         diffuse=bool(getattr(obj, "visible_diffuse", True)),
         specular=bool(getattr(obj, "visible_glossy", True)),
+        transmission=bool(getattr(obj, "visible_transmission", True)),
     )
 
 

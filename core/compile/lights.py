@@ -14,6 +14,7 @@ from ..kernels.layout import (
     EMITS_SPECULAR,
     EMITS_SPOT,
     EMITS_SPOT_COSINE,
+    EMITS_TRANSMISSION,
     Lights,
 )
 from ..model import AreaLight, DirectionalLight, PointLight
@@ -55,6 +56,7 @@ def _flags(light) -> int:
         (EMITS_SHADOW if light.cast_shadow else 0)
         | (EMITS_DIFFUSE if light.diffuse else 0)
         | (EMITS_SPECULAR if light.specular else 0)
+        | (EMITS_TRANSMISSION if light.transmission else 0)
     )
 
 

@@ -17,6 +17,7 @@ import math
 
 from ..jit import inlined_kernel, kernel
 from .emitters import emitted_colour
+from .emitters_seen import emitters_seen
 from .environment import environment_light, environment_radiance
 from .layout import ENVIRONMENT_NONE
 from .options import (
@@ -68,7 +69,7 @@ def refract(d, n, eta, cos_i, cos_t):
 
 
 @kernel
-def _push(rays, top, o, d, w, depth, branch):
+def _push(rays, top, o, d, w, depth, branch, refracted):
     if max(w[0], w[1], w[2]) < MIN_WEIGHT:
         return top
     for a in range(3):
@@ -77,6 +78,7 @@ def _push(rays, top, o, d, w, depth, branch):
         rays.weight[top, a] = w[a]
     rays.depth[top] = depth
     rays.branch[top] = branch
+    rays.refracted[top] = refracted
     return top + 1
 
 
@@ -98,14 +100,23 @@ def trace_ray(ps, o, d, key, ws):
         clear(record, 0.0)
     colour = (0.0, 0.0, 0.0)
     alpha = 1.0
-    top = _push(rays, 0, o, d, (1.0, 1.0, 1.0), 0, REC_ENVIRONMENT)
+    top = _push(rays, 0, o, d, (1.0, 1.0, 1.0), 0, REC_ENVIRONMENT, 0)
     event = 0
     while top > 0:
         top -= 1
         o, d = row(rays.origin, top), row(rays.direction, top)
         w, depth, branch = row(rays.weight, top), rays.depth[top], rays.branch[top]
+        came_through = rays.refracted[top] != 0  # left its last surface by refraction
         stacks.ray_counts[RAYS_TRACED] += 1
         shape, t, part, b1, b2 = closest_hit(geo, o, d, math.inf, stacks)
+        if depth > 0 and lights.emitter_kind.shape[0] > 0:
+            # Lights in Blender's units, seen in mirrors and through glass
+            glimpse = emitters_seen(lights, o, d, t if shape >= 0 else math.inf, came_through)
+            if glimpse[0] > 0.0 or glimpse[1] > 0.0 or glimpse[2] > 0.0:
+                seen = mul(w, glimpse)
+                colour = add(colour, seen)
+                if recording:
+                    add_to(record, branch, seen)
         if shape < 0:
             if depth == 0 and frame.options[OPTION_TRANSPARENT] != 0:
                 alpha = 0.0  # the camera ray itself: nothing there, not even background
@@ -173,10 +184,10 @@ def trace_ray(ps, o, d, key, ws):
                 inside = spawn_point(p, scale(n_geometric, -1.0), o)
                 through = REC_REFRACTION if depth == 0 else branch
                 weight = scale(w, tau * (1.0 - f))
-                top = _push(rays, top, inside, refracted, weight, depth + 1, through)
+                top = _push(rays, top, inside, refracted, weight, depth + 1, through, 1)
         if reflect_weight > 0.0:
             reflected = sub(d, scale(n_shading, 2.0 * dot(d, n_shading)))
             mirrored = REC_REFLECTION if depth == 0 else branch
             weight = scale(w, reflect_weight)
-            top = _push(rays, top, outside, reflected, weight, depth + 1, mirrored)
+            top = _push(rays, top, outside, reflected, weight, depth + 1, mirrored, 0)
     return colour, alpha

@@ -129,6 +129,7 @@ EMITS_DIFFUSE = 2  # lights diffuse surfaces
 EMITS_SPECULAR = 4  # makes highlights
 EMITS_SPOT = 8  # masked to a cone (a spot light)
 EMITS_SPOT_COSINE = 16  # and scaled by the cosine from its axis (Blender before 4.0)
+EMITS_TRANSMISSION = 32  # seen through glass (its Ray Visibility > Transmission)
 
 
 class PackedScene(NamedTuple):

@@ -68,6 +68,9 @@ class RayStack(NamedTuple):
     depth: np.ndarray  # int64 (n,): bounces so far
     # int64 (n,): the record slot of the term its colour adds to, when passes are made
     branch: np.ndarray
+    # int64 (n,): 1 if the ray left its last surface by refraction, 0 if reflected (which of
+    # a light's Ray Visibility switches, Transmission or Glossy, lets it see the light)
+    refracted: np.ndarray
 
 
 class Workspace(NamedTuple):
@@ -120,6 +123,7 @@ def new_workspace(
             np.empty((rays, 3)),
             np.empty((rays, 3)),
             np.empty(rays, np.int64),
+            np.zeros(rays, np.int64),
             np.zeros(rays, np.int64),
         ),
         np.zeros(1, np.int64) if cancel is None else cancel,

@@ -13,8 +13,10 @@ own attenuation model for CS488 scenes:
                  from a cone of directions `angle` degrees across
 
 A Lambertian surface of albedo kd lit by them has the radiance kd E / pi, E the irradiance,
-as in Cycles. Every light can be kept from casting shadows, from lighting diffuse surfaces, or
-from making highlights (Blender's Cast Shadow and the light's Diffuse and Glossy visibility).
+as in Cycles. Mirrors and glass show them too (`core.kernels.emitters_seen`). Every light
+can be kept from casting shadows, from lighting diffuse surfaces, from making highlights and
+showing in mirrors, or from showing through glass (Blender's Cast Shadow and the light's
+Diffuse, Glossy and Transmission Ray Visibility).
 """
 
 from __future__ import annotations
@@ -39,10 +41,11 @@ class Emitter:
     name: str = "Light"
     cast_shadow: bool = True  # Light > Cast Shadow
     diffuse: bool = True  # lights diffuse surfaces (Object > Visibility > Ray Visibility)
-    specular: bool = True  # makes highlights on glossy surfaces (the same panel's Glossy)
+    specular: bool = True  # highlights, and seen in mirrors (the same panel's Glossy)
+    transmission: bool = True  # seen through glass (the same panel's Transmission)
 
     def _check_switches(self, owner: str) -> None:
-        for field in ("cast_shadow", "diffuse", "specular"):
+        for field in ("cast_shadow", "diffuse", "specular", "transmission"):
             check_flag(owner, field, getattr(self, field))
 
 

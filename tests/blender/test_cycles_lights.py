@@ -152,3 +152,49 @@ def test_cast_shadow_and_ray_visibility_switch_as_in_cycles(bpy_with_whitted, tm
     light.visible_diffuse = False
     cycles, whitted = side_by_side(bpy, scene, tmp_path, samples=16)
     assert cycles.max() == 0.0 and whitted.max() == 0.0
+
+
+def _sun_in_mirror(bpy, scene):
+    add_light(bpy, scene, "SUN", (0.0, 0.0, 5.0), energy=3.0, angle=math.radians(60.0))
+
+
+def _area_in_mirror(bpy, scene):
+    add_light(bpy, scene, "AREA", (0.5, 0.0, 3.0), turned(15.0), energy=80.0, shape="ELLIPSE",
+              size=3.0, size_y=2.0)  # fmt: skip
+
+
+def _sphere_in_mirror(bpy, scene):
+    add_light(bpy, scene, "POINT", (0.0, 0.5, 3.0), energy=80.0, shadow_soft_size=1.5)
+
+
+def _spot_in_mirror(bpy, scene):
+    add_light(bpy, scene, "SPOT", (0.0, 0.0, 3.0), turned(10.0), energy=80.0,
+              shadow_soft_size=1.5, spot_size=math.radians(60.0), spot_blend=0.5)  # fmt: skip
+
+
+SEEN = {
+    "sun": _sun_in_mirror,
+    "ellipse area": _area_in_mirror,
+    "point with radius": _sphere_in_mirror,
+    "spot with radius": _spot_in_mirror,
+}
+
+
+@pytest.mark.parametrize("name", SEEN)
+def test_a_light_seen_in_a_mirror_is_as_bright_as_in_cycles(bpy_with_whitted, tmp_path, name):
+    """The plane a perfect mirror under the camera: each pixel shows what the mirror
+    reflects, the light itself where it is seen (Cycles does not show lights to the camera)."""
+    from tests.support.cycles import mirror
+
+    bpy = bpy_with_whitted
+    scene = new_scene(bpy)
+    bpy.data.objects["Plane"].data.materials[0] = mirror(bpy)
+    SEEN[name](bpy, scene)
+    cycles, whitted = side_by_side(bpy, scene, tmp_path, samples=64)
+    c, w = cycles.sum(axis=-1), whitted.sum(axis=-1)
+    seen = c > 0.05 * c.max()
+    assert seen.sum() >= 8, f"{name}: the light should show in the mirror"
+    # Pixels inside the light's outline agree; its edge may fall either side of a pixel centre
+    agree = np.abs(w[seen] / c[seen] - 1.0) < TOLERANCE
+    assert agree.mean() > 0.9, f"{name}: {agree.mean():.2f} of the pixels agree"
+    assert np.count_nonzero(w > 0.05 * c.max()) == pytest.approx(seen.sum(), rel=0.15)
