@@ -17,7 +17,10 @@ SHADOW_SAMPLINGS = tuple(SHADOW_PATTERNS)
 # anti-aliasing setting of the final scene up to 4 x 4 gained 3% in accuracy
 DEFAULT_PIXEL_SAMPLES = 3
 DEFAULT_SHADOW_SAMPLES = 4
-# Shadow rays towards the environment (the World) per shading point: see bench_environment
+# Shadow rays towards the environment (the World) per shading point. bench_environment (an
+# HDRI with a small sun): each doubling cuts the error by a third at every count, and from 8
+# to 16 the render time starts to double with the rays (1.75x): 16 sits at that knee, with
+# 144 rays a pixel under the default 3 x 3 camera rays
 DEFAULT_ENVIRONMENT_SAMPLES = 16
 # Far beyond any that changes a picture (a million camera rays per pixel; 65536 shadow rays
 # per light), and below where the sample numbers overflow
