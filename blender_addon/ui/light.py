@@ -6,7 +6,7 @@ import bpy
 
 from ..compat import cast_shadow_setting
 from ..export.light import unsupported
-from .base import WhittedPanel
+from .base import WhittedPanel, draw_warnings
 
 ATTENUATION_LABELS = ("Constant", "Linear", "Quadratic")
 
@@ -52,8 +52,7 @@ class WHITTED_PT_light(WhittedPanel, bpy.types.Panel):
                 attenuation.prop(light.whitted, "attenuation", index=index, text=label)
         obj = context.object
         if obj is not None and obj.data == light:
-            for text in unsupported(obj):
-                layout.label(text=text.split(": ", 1)[1], icon="ERROR")
+            draw_warnings(layout, context, unsupported(obj))
 
     @staticmethod
     def _draw_area(col, light, cs488):

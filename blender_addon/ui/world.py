@@ -5,7 +5,7 @@ import bpy
 
 from ..export.material import find_node
 from ..export.world import source, unsupported
-from .base import WhittedPanel
+from .base import WhittedPanel, draw_warnings
 
 
 class WHITTED_PT_world(WhittedPanel, bpy.types.Panel):
@@ -33,5 +33,4 @@ class WHITTED_PT_world(WhittedPanel, bpy.types.Panel):
         if blender:
             layout.prop(context.scene.whitted, "environment_samples")
         layout.prop(world.whitted, "ambient")
-        for text in unsupported(world):
-            layout.label(text=text.split(": ", 1)[1], icon="ERROR")
+        draw_warnings(layout, context, unsupported(world))
