@@ -177,6 +177,21 @@ def test_an_ellipse_light_matches_quadrature():
     assert_converged(rendered([light], 1024), expected)
 
 
+def test_a_disk_light_matches_the_closed_form_for_a_parallel_disk():
+    # A Lambertian disk of radius R facing down at height h: at horizontal distance rho,
+    # E = (pi L / 2) (1 - (h^2 + rho^2 - R^2) / sqrt((h^2 + rho^2 + R^2)^2 - 4 rho^2 R^2))
+    centre, radius = np.array([0.3, -0.2, 1.3]), 0.9
+    diameter = 2 * radius
+    light = PanelLight(centre=tuple(centre), edge_u=(diameter, 0.0, 0.0),
+                       edge_v=(0.0, diameter, 0.0), shape="ellipse", power=(40.0,) * 3)  # fmt: skip
+    radiance = 40.0 / (math.pi * light.area())
+    offset = pixel_points() - centre
+    h2, rho2, r2 = offset[..., 2] ** 2, offset[..., 0] ** 2 + offset[..., 1] ** 2, radius**2
+    root = np.sqrt((h2 + rho2 + r2) ** 2 - 4 * rho2 * r2)
+    expected = math.pi * radiance / 2 * (1 - (h2 + rho2 - r2) / root)
+    assert_converged(rendered([light], 1024), expected)
+
+
 def test_a_wide_sun_gives_its_irradiance_to_a_facing_plane():
     for angle in (0.0, 20.0, 90.0):
         sun = SunLight(direction=(0.0, 0.0, -1.0), irradiance=(3.0,) * 3, angle=angle)
