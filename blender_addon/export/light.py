@@ -25,7 +25,7 @@ import math
 import numpy as np
 
 from .. import core
-from ..compat import LIGHTS_BEFORE_4, light_casts_shadow
+from ..compat import LIGHTS_BEFORE_4, light_casts_shadow, node_tree_in_use
 
 WATTS_TO_INTENSITY = 1.0 / (4.0 * math.pi**2)
 FULL_SPREAD = math.pi
@@ -77,12 +77,29 @@ def unsupported(obj) -> list[str]:
             f"{owner}: Light > Spread {math.degrees(light.spread):.0f}° is not modelled: "
             "Whitted's area lights shine over the full 180°"
         )
-    if getattr(light, "use_nodes", False) and light.node_tree is not None:
+    if _nodes_change_the_light(light):
         found.append(
             f"{owner}: its shader nodes (Light > Nodes) are not read: Whitted lights with "
             "its Color and Power"
         )
     return found
+
+
+def _nodes_change_the_light(light) -> bool:
+    """The light's node tree does more than Blender's default (an Emission of white, strength
+    1, into the Light Output), which every light has from Blender 5.2."""
+    tree = node_tree_in_use(light)
+    if tree is None:
+        return False
+    for node in tree.nodes:
+        if node.type == "OUTPUT_LIGHT" or node.mute:
+            continue
+        if node.type != "EMISSION" or any(socket.is_linked for socket in node.inputs):
+            return True
+        colour, strength = node.inputs["Color"].default_value, node.inputs["Strength"].default_value
+        if tuple(colour[:3]) != (1.0, 1.0, 1.0) or strength != 1.0:
+            return True
+    return False
 
 
 def blender_power(light) -> np.ndarray:

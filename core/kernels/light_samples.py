@@ -60,15 +60,16 @@ def square_point(pattern, samples, j, key, stream, shift):
 @kernel
 def concentric_disk(a, b):
     """The unit square onto the unit disk, areas in proportion and neighbours kept together
-    (Shirley and Chiu's concentric map): squares about the centre become rings."""
+    (Shirley and Chiu's concentric map): squares about the centre become rings. (A lens's
+    points too, core.kernels.render_tile.)"""
     x, y = 2.0 * a - 1.0, 2.0 * b - 1.0
     if x == 0.0 and y == 0.0:
         return 0.0, 0.0
     if abs(x) > abs(y):
-        radius, angle = x, (math.pi / 4.0) * (y / x)
+        r, phi = x, (math.pi / 4.0) * (y / x)
     else:
-        radius, angle = y, (math.pi / 2.0) - (math.pi / 4.0) * (x / y)
-    return radius * math.cos(angle), radius * math.sin(angle)
+        r, phi = y, math.pi / 2.0 - (math.pi / 4.0) * (x / y)
+    return r * math.cos(phi), r * math.sin(phi)
 
 
 @kernel

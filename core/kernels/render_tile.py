@@ -8,11 +8,10 @@ lens positions are not correlated), and aims at where the pinhole ray meets the 
 focus. With aperture 0 the lens code does not run: the pinhole picture, exactly.
 """
 
-import math
-
 from ..jit import kernel
 from .borrow import borrowed
 from .integrator import trace_ray
+from .light_samples import concentric_disk
 from .options import (
     OPTION_PASSES,
     OPTION_PIXEL_PATTERN,
@@ -28,19 +27,6 @@ from .rng import PURPOSE_LENS, PURPOSE_PIXEL, permuted, sample_key, uniform2
 from .vec import add, normalize, row, scale, sub
 
 FLOAT32_MAX = 3.4028234663852886e38
-
-
-@kernel
-def concentric_disk(a, b):
-    """Map the unit square onto the unit disk keeping strata compact (Shirley and Chiu)."""
-    x, y = 2.0 * a - 1.0, 2.0 * b - 1.0
-    if x == 0.0 and y == 0.0:
-        return 0.0, 0.0
-    if abs(x) > abs(y):
-        r, phi = x, (math.pi / 4.0) * (y / x)
-    else:
-        r, phi = y, math.pi / 2.0 - (math.pi / 4.0) * (x / y)
-    return r * math.cos(phi), r * math.sin(phi)
 
 
 @kernel

@@ -27,6 +27,7 @@ import numpy as np
 
 from ..checks import Vec3, check_choice, check_flag, check_number, check_vec3
 from ..errors import SceneError
+from .lights import check_parallelogram
 
 PANEL_SHAPES = ("rectangle", "ellipse")
 # How a sun's directions are spread: over a cone (Blender 4.0 on), or over a disk one unit
@@ -117,11 +118,7 @@ class PanelLight(Emitter):
 
     def validate(self) -> None:
         owner = f"area light '{self.name}'"
-        check_vec3(owner, "centre", self.centre)
-        u = check_vec3(owner, "edge_u", self.edge_u, nonzero=True)
-        v = check_vec3(owner, "edge_v", self.edge_v, nonzero=True)
-        if np.linalg.norm(np.cross(u, v)) <= 1e-12 * np.linalg.norm(u) * np.linalg.norm(v):
-            raise SceneError(owner, "edge_v", f"{self.edge_v} is parallel to edge_u {self.edge_u}")
+        check_parallelogram(owner, self.centre, self.edge_u, self.edge_v)
         check_choice(owner, "shape", self.shape, PANEL_SHAPES)
         check_vec3(owner, "power", self.power, nonnegative=True)
         self._check_switches(owner)

@@ -10,6 +10,15 @@ from ..checks import Vec3, check_vec3
 from ..errors import SceneError
 
 
+def check_parallelogram(owner: str, centre, edge_u, edge_v) -> None:
+    """A light's centre and two edges that span an area (not parallel, neither zero)."""
+    check_vec3(owner, "centre", centre)
+    u = check_vec3(owner, "edge_u", edge_u, nonzero=True)
+    v = check_vec3(owner, "edge_v", edge_v, nonzero=True)
+    if np.linalg.norm(np.cross(u, v)) <= 1e-12 * np.linalg.norm(u) * np.linalg.norm(v):
+        raise SceneError(owner, "edge_v", f"{edge_v} is parallel to edge_u {edge_u}")
+
+
 def _check_attenuation(owner: str, attenuation) -> None:
     check_vec3(owner, "attenuation", attenuation, nonnegative=True, nonzero=True)
 
@@ -79,10 +88,6 @@ class AreaLight:
 
     def validate(self) -> None:
         owner = f"area light '{self.name}'"
-        check_vec3(owner, "centre", self.centre)
-        u = check_vec3(owner, "edge_u", self.edge_u, nonzero=True)
-        v = check_vec3(owner, "edge_v", self.edge_v, nonzero=True)
-        if np.linalg.norm(np.cross(u, v)) <= 1e-12 * np.linalg.norm(u) * np.linalg.norm(v):
-            raise SceneError(owner, "edge_v", f"{self.edge_v} is parallel to edge_u {self.edge_u}")
+        check_parallelogram(owner, self.centre, self.edge_u, self.edge_v)
         check_vec3(owner, "intensity", self.intensity, nonnegative=True)
         _check_attenuation(owner, self.attenuation)

@@ -353,9 +353,17 @@ def test_spot_and_disk_lights_render_and_what_cannot_be_honoured_is_named(empty_
     bpy.ops.object.light_add(type="POINT")
     cs488 = bpy.context.active_object
     cs488.name, cs488.data.whitted.model, cs488.data.shadow_soft_size = "Old", "CS488", 0.5
+    # A light's node tree that changes its light (Blender 5.2 gives every light the default)
+    stage = bpy.data.objects["Stage"].data
+    if stage.node_tree is None:
+        stage.use_nodes = True
+    emission = next(n for n in stage.node_tree.nodes if n.type == "EMISSION")
+    emission.inputs["Strength"].default_value = 2.0
     _, _, warnings = exported(bpy, monkeypatch)
     assert any("'Round'" in w and "Spread 60°" in w for w in warnings)
     assert any("'Old'" in w and "Radius 0.5 m" in w and "Light Model" in w for w in warnings)
+    assert any("'Stage'" in w and "shader nodes" in w for w in warnings)
+    assert len(warnings) == 3
 
 
 def test_faces_keep_the_material_of_their_slot(empty_scene, monkeypatch):
