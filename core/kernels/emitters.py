@@ -42,7 +42,7 @@ from .options import (
     SHADOW_HALTON,
 )
 from .rng import PURPOSE_LIGHT_SHIFT, uniform2
-from .shading import AreaLight, _add_falling, light_candidates, shadow_visibility
+from .shading import AreaLight, add_falling, light_candidates, shadow_visibility
 from .vec import add, dot, mul, row, scale, sub
 
 # Random streams of the emitters start here, past any count of the report's area lights
@@ -166,6 +166,6 @@ def emitted_colour(frame, lights, geo, stacks, point, phong, key, event, split):
             total = add(total, scale(kd, factor * weight * visibility[j]))
             if split and diffuse > 0.0:
                 falling = scale(radiance, weight / count)
-                _add_falling(terms, light_dir, falling, visibility[j], n, 1.0)
+                add_falling(terms, light_dir, falling, visibility[j], n, 1.0)
         colour = add(colour, scale(mul(total, radiance), 1.0 / count))
     return colour

@@ -33,7 +33,7 @@ from .options import (
     SHADOW_HALTON,
 )
 from .rng import PURPOSE_LIGHT_SHIFT, uniform2
-from .shading import _add_falling, shadow_visibility
+from .shading import add_falling, shadow_visibility
 from .surface import bilinear, nearest
 from .vec import add, as_tuple, dot, mul, row, scale
 
@@ -158,5 +158,5 @@ def environment_light(frame, lights, geo, stacks, point, kd, key, event, split):
         radiance = scale(environment_radiance(frame, lights, d), targets[j, 4] / samples)
         total = add(total, scale(radiance, dot(n, d) * visibility[j]))
         if split:
-            _add_falling(terms, d, radiance, visibility[j], n, 1.0)
+            add_falling(terms, d, radiance, visibility[j], n, 1.0)
     return mul(kd, total)

@@ -11,8 +11,6 @@ emitter table's radiance carries the rest (`core.kernels.emitters`):
   S 2 (sqrt(1 + tan^2 h) - 1) / tan^2 h, less than S for a wide sun, as Blender 3.x shows.
 """
 
-import math
-
 from ..jit import kernel
 from .light_samples import concentric_disk, cone_direction, in_frame
 from .vec import add, normalize
@@ -25,9 +23,3 @@ def sun_sample(toward, one_minus_cos_half, tan_half, disk, a, b):
         x, y = concentric_disk(a, b)
         return normalize(add(toward, in_frame(toward, tan_half * x, tan_half * y, 0.0)))
     return cone_direction(toward, one_minus_cos_half, a, b)
-
-
-@kernel
-def sun_cone_factor(half_angle_rad):
-    """The cone's radiance over S / pi: 2 / (1 + cos h)."""
-    return 2.0 / (1.0 + math.cos(half_angle_rad))

@@ -131,7 +131,7 @@ def _radiance(intensity, attenuation, distance):
 
 
 @inlined_kernel
-def _add_falling(terms, light_dir, radiance, visible, n, weight):
+def add_falling(terms, light_dir, radiance, visible, n, weight):
     """Add to `terms` (core.kernels.pass_record) the light falling on the point (times N.L
     and `weight`) with and without what its shadow ray let through. For the shadow and
     diffuse passes of a first hit only: the colour itself is `_phong_lit`'s, as ever."""
@@ -210,7 +210,7 @@ def local_colour(frame, lights, geo, stacks, point, phong, key, event, split):
         radiance = row(lights.sun_intensity, light)
         colour = add(colour, _phong_lit(toward, radiance, visibility[0], point, phong))
         if split:
-            _add_falling(terms, toward, radiance, visibility[0], n, 1.0)
+            add_falling(terms, toward, radiance, visibility[0], n, 1.0)
     for light in range(lights.point_position.shape[0]):
         _aim(targets, 0, row(lights.point_position, light), origin)
         shadow_visibility(geo, stacks, TRAVERSE_ALL, origin, n, 1)
@@ -219,7 +219,7 @@ def local_colour(frame, lights, geo, stacks, point, phong, key, event, split):
         colour = add(colour, _lit_by(targets, visibility, 0, intensity, attenuation, point, phong))
         if split and targets[0, 3] != 0.0:
             radiance = _radiance(intensity, attenuation, targets[0, 3])
-            _add_falling(terms, row(targets, 0), radiance, visibility[0], n, 1.0)
+            add_falling(terms, row(targets, 0), radiance, visibility[0], n, 1.0)
     samples = frame.options[OPTION_SHADOW_SAMPLES]
     pattern = frame.options[OPTION_SHADOW_PATTERN]
     for light in range(lights.area_centre.shape[0]):
@@ -252,5 +252,5 @@ def local_colour(frame, lights, geo, stacks, point, phong, key, event, split):
                 if distance != 0.0:
                     radiance = _radiance(intensity, attenuation, distance)
                     light_dir = row(targets, j)
-                    _add_falling(terms, light_dir, radiance, visibility[j], n, 1.0 / samples)
+                    add_falling(terms, light_dir, radiance, visibility[j], n, 1.0 / samples)
     return colour

@@ -253,6 +253,32 @@ def test_the_terms_match_closed_forms_and_sum_to_combined(material):
         assert passes["diffuse_color"].max() == 0.0 and passes["refraction"].max() > 0.1
 
 
+def test_lights_in_blenders_units_and_the_world_split_into_terms_that_sum_to_combined():
+    """A sphere light, a spot and a panel, and an environment: their light goes to the
+    diffuse and specular terms (the World's to diffuse), its view to environment, and the
+    terms still sum to Combined."""
+    material = Material(diffuse=(0.6, 0.3, 0.2), specular=(0.4, 0.4, 0.4), shininess=10.0,
+                        reflectivity=0.25)  # fmt: skip
+    scene = lit_sphere(material)
+    scene.lights = [
+        core.SphereLight(position=(2.0, 3.0, 5.0), power=(90.0, 80.0, 70.0), radius=0.5),
+        core.PanelLight(centre=(-2.0, 1.0, 4.0), power=(50.0,) * 3),
+        core.SpotLight(
+            position=(0.0, 4.0, 1.0),
+            power=(60.0,) * 3,
+            spot_size=90.0,
+            world_to_light=((1, 0, 0), (0, 0, 1), (0, -1, 0)),
+        ),  # fmt: skip
+    ]
+    scene.environment = core.Environment(colour=(0.2, 0.3, 0.4))
+    output = core.render(scene, settings())
+    passes = output.passes
+    total = sum(passes[name] for name in TERMS)
+    np.testing.assert_allclose(total, output.image[..., :3], rtol=1e-5, atol=1e-6)
+    assert passes["diffuse"].max() > 0.1 and passes["specular"].max() > 0.01
+    assert passes["environment"].max() == pytest.approx(0.4, rel=1e-6)
+
+
 def test_the_shadow_pass_is_one_where_lit_and_zero_in_the_balls_shadow():
     floor = Box("Floor", Material(), np.diag([6.0, 6.0, 0.5, 1.0]))
     floor.world_from_object[2, 3] = -2.0  # its top at z = -1.5
