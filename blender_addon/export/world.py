@@ -8,7 +8,8 @@ World Properties > Whitted World > World Model says what the World is:
   Point, Texture, Vector or Normal type, fed by Generated coordinates or nothing). That
   environment is seen by every ray that leaves the scene and lights the scene through World
   Samples shadow rays per shading point. Without nodes (before Blender 5.0), the World's
-  colour does the same.
+  colour does the same. World Properties > Settings > Ray Visibility says which rays see it
+  (camera, diffuse, glossy, transmission).
 - CS488: the report's way. The Background colour (or the World's colour) is only what rays
   that leave the scene see; nothing is lit by it.
 
@@ -42,12 +43,15 @@ def convert(world, warn=lambda text: None, with_pixels: bool = True):
     ambient = tuple(float(c) for c in world.whitted.ambient)
     if world.whitted.model == "CS488":
         return None, _cs488_background(world), ambient
-    _check_visibility(world, warn)
     tree = node_tree_in_use(world)
     if tree is None:
         colour = tuple(float(c) for c in world.color)
-        return core.Environment(colour=colour, name=world.name), colour, ambient
+        environment = core.Environment(colour=colour, name=world.name, **_ray_visibility(world))
+        return environment, colour, ambient
     environment = _from_nodes(world, tree, warn, with_pixels)
+    if environment is not None:
+        for name, visible in _ray_visibility(world).items():
+            setattr(environment, name, visible)
     return environment, BLACK, ambient
 
 
@@ -59,15 +63,10 @@ def _cs488_background(world) -> tuple:
     return tuple(float(c) for c in world.color)
 
 
-def _check_visibility(world, warn) -> None:
+def _ray_visibility(world) -> dict:
+    """World Properties > Settings > Ray Visibility: which rays see the World (Cycles')."""
     visibility = getattr(world, "cycles_visibility", None)
-    off = [name for name in RAY_VISIBILITY if not getattr(visibility, name, True)]
-    if off:
-        names = ", ".join(name.title() for name in off)
-        warn(
-            f"world '{world.name}': World Properties > Settings > Ray Visibility: {names} off "
-            "is not honoured; Whitted's World is seen and lights as with every switch on"
-        )
+    return {name: bool(getattr(visibility, name, True)) for name in RAY_VISIBILITY}
 
 
 def source(socket):

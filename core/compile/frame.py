@@ -8,10 +8,15 @@ import numpy as np
 
 from ..kernels.layout import Frame
 from ..kernels.options import (
+    HIDDEN_FROM_CAMERA,
+    HIDDEN_FROM_DIFFUSE,
+    HIDDEN_FROM_GLOSSY,
+    HIDDEN_FROM_TRANSMISSION,
     OPTION_COUNT,
     OPTION_CRYPTO_LEVELS,
     OPTION_ENVIRONMENT,
     OPTION_ENVIRONMENT_CLOSEST,
+    OPTION_ENVIRONMENT_HIDDEN,
     OPTION_ENVIRONMENT_SAMPLES,
     OPTION_MAX_DEPTH,
     OPTION_PASSES,
@@ -77,10 +82,24 @@ def _options(scene: Scene, settings: RenderSettings) -> np.ndarray:
     options[OPTION_ENVIRONMENT_CLOSEST] = (
         environment is not None and environment.interpolation == "closest"
     )
+    options[OPTION_ENVIRONMENT_HIDDEN] = hidden_bits(environment)
     options[OPTION_SHADOW_CULLING] = (
         settings.shadow_culling and settings.shadow_samples >= SHADOW_CULLING_MIN_SAMPLES
     )
     return options
+
+
+def hidden_bits(environment) -> int:
+    """OPTION_ENVIRONMENT_HIDDEN: the rays an environment is black to."""
+    if environment is None:
+        return 0
+    switches = (
+        (environment.camera, HIDDEN_FROM_CAMERA),
+        (environment.diffuse, HIDDEN_FROM_DIFFUSE),
+        (environment.glossy, HIDDEN_FROM_GLOSSY),
+        (environment.transmission, HIDDEN_FROM_TRANSMISSION),
+    )
+    return sum(bit for visible, bit in switches if not visible)
 
 
 def pass_bits(passes: tuple[str, ...]) -> int:

@@ -26,8 +26,13 @@ from .layout import ENVIRONMENT_IMAGE, ENVIRONMENT_NONE, ENVIRONMENT_UNIFORM
 from .light_pyramid import TRAVERSE_ALL
 from .light_samples import in_frame, square_point
 from .options import (
+    HIDDEN_FROM_CAMERA,
+    HIDDEN_FROM_DIFFUSE,
+    HIDDEN_FROM_GLOSSY,
+    HIDDEN_FROM_TRANSMISSION,
     OPTION_ENVIRONMENT,
     OPTION_ENVIRONMENT_CLOSEST,
+    OPTION_ENVIRONMENT_HIDDEN,
     OPTION_ENVIRONMENT_SAMPLES,
     OPTION_SHADOW_PATTERN,
     SHADOW_HALTON,
@@ -60,6 +65,21 @@ def equirectangular_uv(m):
     u = (math.pi - math.atan2(m[1], m[0])) / (2.0 * math.pi)
     v = 1.0 - math.acos(min(1.0, max(-1.0, m[2] / length))) / math.pi
     return u, v
+
+
+@kernel
+def environment_seen(frame, lights, d, depth, came_through):
+    """What a ray leaving the scene along d sees: a camera ray (depth 0), a refracted one
+    (`came_through`) or a reflected one; black to those the World's Ray Visibility hides it
+    from."""
+    hidden = frame.options[OPTION_ENVIRONMENT_HIDDEN]
+    if depth == 0:
+        bit = HIDDEN_FROM_CAMERA
+    else:
+        bit = HIDDEN_FROM_TRANSMISSION if came_through else HIDDEN_FROM_GLOSSY
+    if hidden & bit:
+        return (0.0, 0.0, 0.0)
+    return environment_radiance(frame, lights, d)
 
 
 @kernel
@@ -126,6 +146,8 @@ def environment_light(frame, lights, geo, stacks, point, kd, key, event, split):
     kind = frame.options[OPTION_ENVIRONMENT]
     samples = frame.options[OPTION_ENVIRONMENT_SAMPLES]
     if kind == ENVIRONMENT_NONE or samples == 0:
+        return (0.0, 0.0, 0.0)
+    if frame.options[OPTION_ENVIRONMENT_HIDDEN] & HIDDEN_FROM_DIFFUSE:
         return (0.0, 0.0, 0.0)
     targets, visibility, terms = stacks.light_targets, stacks.visibility, stacks.terms
     n = point.normal

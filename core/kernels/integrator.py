@@ -18,7 +18,7 @@ import math
 from ..jit import inlined_kernel, kernel
 from .emitters import emitted_colour
 from .emitters_seen import emitters_seen
-from .environment import environment_light, environment_radiance
+from .environment import environment_light, environment_seen
 from .layout import ENVIRONMENT_NONE
 from .options import (
     OPTION_ENVIRONMENT,
@@ -121,7 +121,7 @@ def trace_ray(ps, o, d, key, ws):
             if depth == 0 and frame.options[OPTION_TRANSPARENT] != 0:
                 alpha = 0.0  # the camera ray itself: nothing there, not even background
             else:
-                seen = mul(w, environment_radiance(frame, lights, d))
+                seen = mul(w, environment_seen(frame, lights, d, depth, came_through))
                 colour = add(colour, seen)
                 if recording:
                     add_to(record, branch, seen)

@@ -18,7 +18,14 @@ OPTION_CRYPTO_LEVELS = 10  # Cryptomatte ranks kept per pixel
 OPTION_ENVIRONMENT = 11  # one of ENVIRONMENT_* (core.kernels.layout)
 OPTION_ENVIRONMENT_SAMPLES = 12  # shadow rays towards the environment per shading point
 OPTION_ENVIRONMENT_CLOSEST = 13  # 1: the image's nearest pixel, not bilinear
-OPTION_COUNT = 14
+OPTION_ENVIRONMENT_HIDDEN = 14  # HIDDEN_FROM_* bits: rays the environment is black to
+OPTION_COUNT = 15
+
+# OPTION_ENVIRONMENT_HIDDEN's bits (Blender's World > Settings > Ray Visibility, off)
+HIDDEN_FROM_CAMERA = 1
+HIDDEN_FROM_DIFFUSE = 2
+HIDDEN_FROM_GLOSSY = 4
+HIDDEN_FROM_TRANSMISSION = 8
 
 PASSES_ANY = 1
 PASSES_LIGHT_SPLIT = 2  # the diffuse, specular and shadow passes

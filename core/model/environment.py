@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..checks import Vec3, check_choice, check_vec3
+from ..checks import Vec3, check_choice, check_flag, check_vec3
 from ..errors import SceneError
 from .materials import Texture
 
@@ -32,6 +32,9 @@ class Environment:
     direction_from_world -- 3 x 4 affine rows taking a view direction to the direction the
                             image is looked up with (identity: none)
     interpolation        -- "linear" (bilinear) or "closest" between the image's pixels
+    camera, diffuse, glossy, transmission -- which rays see it (Blender's World > Settings >
+                            Ray Visibility): camera rays, its light on diffuse surfaces,
+                            reflected rays, refracted rays; a ray it is hidden from sees black
     name                 -- what warnings and errors call it (the World's name)
     """
 
@@ -39,12 +42,18 @@ class Environment:
     image: Texture | None = None
     direction_from_world: np.ndarray = field(default_factory=lambda: np.eye(3, 4))
     interpolation: str = "linear"
+    camera: bool = True
+    diffuse: bool = True
+    glossy: bool = True
+    transmission: bool = True
     name: str = "World"
 
     def validate(self) -> None:
         owner = f"world '{self.name}'"
         check_vec3(owner, "colour", self.colour, nonnegative=True)
         check_choice(owner, "interpolation", self.interpolation, INTERPOLATIONS)
+        for switch in ("camera", "diffuse", "glossy", "transmission"):
+            check_flag(owner, switch, getattr(self, switch))
         matrix = np.asarray(self.direction_from_world, dtype=float)
         if matrix.shape != (3, 4) or not np.all(np.isfinite(matrix)):
             raise SceneError(owner, "direction_from_world", "needs 3 x 4 finite numbers")

@@ -68,3 +68,26 @@ def test_an_environment_texture_seen_in_a_mirror_ball_is_cycles_pixel_for_pixel(
     # (Cycles' ball is a fine mesh: a pixel straddling the sun's edge may differ)
     assert np.mean(np.abs(ratio - 1.0) < 0.01) > 0.97
     assert abs(np.median(ratio) - 1.0) < 2e-3
+
+
+def test_the_worlds_ray_visibility_hides_it_as_in_cycles(bpy_with_whitted, tmp_path):
+    """Camera off: black behind a mirror ball, which still reflects the World; then Glossy
+    off: the ball reflects black; Diffuse off on a white ball: unlit."""
+    bpy = bpy_with_whitted
+    scene = new_scene(bpy)
+    bpy.data.objects.remove(bpy.data.objects["Plane"])
+    world = uniform_world(scene, (0.5, 0.6, 0.8), strength=2.0)
+    ball = add_ball(bpy, scene, mirror(bpy), location=(0.0, 0.0, 0.0), radius=3.0)
+    visibility = world.cycles_visibility
+    visibility.camera = False
+    cycles, whitted = side_by_side(bpy, scene, tmp_path, samples=16)
+    np.testing.assert_allclose(whitted, cycles, atol=1e-5)
+    assert whitted[0, 0].max() == 0.0 and whitted[16, 16].max() > 0.5
+    visibility.glossy = False
+    cycles, whitted = side_by_side(bpy, scene, tmp_path, samples=16)
+    assert cycles.max() == 0.0 and whitted.max() == 0.0
+    visibility.camera, visibility.glossy, visibility.diffuse = True, True, False
+    ball.data.materials[0] = bpy.data.materials["White"]
+    cycles, whitted = side_by_side(bpy, scene, tmp_path, samples=16)
+    np.testing.assert_allclose(whitted, cycles, atol=1e-5)
+    assert whitted[16, 16].max() == 0.0 and whitted[0, 0].max() > 0.5

@@ -145,3 +145,33 @@ def test_an_image_seen_in_a_mirror_ball_is_its_lookup_pixel_for_pixel():
     direction = np.where(inside[..., None], reflected, view)
     expected = equirect_lookup(pixels, direction @ rotation.T) * env.colour
     np.testing.assert_allclose(image, expected, rtol=2e-5, atol=1e-5)
+
+
+def test_ray_visibility_hides_the_world_from_the_rays_switched_off():
+    env = Environment(colour=(0.5, 0.6, 0.7))
+    white, mirror = (
+        Material(diffuse=(1.0, 1.0, 1.0)),
+        Material(diffuse=(0.0,) * 3, reflectivity=1.0),
+    )
+    _, inside = hits()
+
+    def image(material, **switches):
+        for name, value in switches.items():
+            setattr(env, name, value)
+        picture = rendered(Scene(look_at_ball(), [ball(material)], environment=env), samples=4)
+        for name in switches:
+            setattr(env, name, True)
+        return picture
+
+    # Camera off: black behind the ball, which the World still lights
+    hidden = image(white, camera=False)
+    assert np.all(hidden[~inside] == 0.0)
+    np.testing.assert_allclose(hidden[inside], image(white)[inside])
+    # Diffuse off: the ball is unlit, the World still seen behind it
+    unlit = image(white, diffuse=False)
+    assert np.all(unlit[inside] == 0.0) and np.allclose(unlit[~inside], env.colour)
+    # Glossy off: a mirror reflects black
+    assert np.all(image(mirror, glossy=False)[inside] == 0.0)
+    np.testing.assert_allclose(
+        image(mirror)[inside], np.broadcast_to(env.colour, (inside.sum(), 3))
+    )
