@@ -176,6 +176,12 @@ def test_bad_blender_input_is_reported_clearly(empty_scene, monkeypatch):
     with pytest.raises(RuntimeError, match=r"'Flat': Object Properties > Transform > Scale"):
         bpy.ops.render.render()
     bpy.data.objects.remove(bpy.data.objects["Flat"])
+    bpy.ops.object.light_add(type="SPOT")
+    spot = bpy.context.active_object
+    spot.name, spot.scale = "Squashed", (1.0, 1.0, 0.0)
+    with pytest.raises(RuntimeError, match=r"'Squashed': Object Properties > Transform > Scale"):
+        bpy.ops.render.render()
+    bpy.data.objects.remove(spot)
     bpy.ops.render.render()  # Blender stays usable
 
 
