@@ -15,6 +15,9 @@ def prepare_corner_normals(mesh) -> None:
 
 # Principled BSDF inputs renamed in Blender 4.0; the newer name first
 TRANSMISSION_INPUTS = ("Transmission Weight", "Transmission")
+# Cycles' Principled BSDF layers its specular over the diffuse from Blender 4.0 (the
+# Principled v2); before, the lobes were added
+PRINCIPLED_LAYERED = bpy.app.version >= (4, 0, 0)
 
 
 def node_tree_in_use(datablock):

@@ -25,10 +25,12 @@ kernels also write, per pixel, from the same camera rays:
     reflection      3  everything seen in the first hit's mirror reflection (and a dielectric's
                        Fresnel reflection), with all its own bounces
     refraction      3  everything seen through the first hit (its refracted ray and bounces)
+    emission        3  the light the first hit emits itself (`Material.emission`)
     crypto_object   4 per 2 levels   Cryptomatte: per rank, (object id, coverage), by coverage
     crypto_material 4 per 2 levels   the same for materials
 
-environment + ambient + diffuse + specular + reflection + refraction = Combined's RGB.
+environment + ambient + diffuse + specular + reflection + refraction + emission = Combined's
+RGB.
 
 Averaging makes no sense for depth, position and the indices (the mean of two objects'
 indices names a third, the mean of two depths lies in mid air): those are the nearest hit's
@@ -65,6 +67,7 @@ PASS_CHANNELS = {
     "specular": 3,
     "reflection": 3,
     "refraction": 3,
+    "emission": 3,
     "crypto_object": 0,  # 4 per two levels: see channels()
     "crypto_material": 0,
 }
@@ -72,7 +75,7 @@ assert tuple(PASS_CHANNELS) == PASS_NAMES
 PASS_COUNT = len(PASS_NAMES)
 CRYPTO_PASSES = ("crypto_object", "crypto_material")
 # The terms that sum to Combined's RGB
-TERMS = ("environment", "ambient", "diffuse", "specular", "reflection", "refraction")
+TERMS = ("environment", "ambient", "diffuse", "specular", "reflection", "refraction", "emission")
 # Blender's default (View Layer > Passes > Cryptomatte > Levels) and its range
 DEFAULT_CRYPTO_LEVELS = 6
 MAX_CRYPTO_LEVELS = 16

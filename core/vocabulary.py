@@ -40,7 +40,8 @@ PROJECTIONS = {"perspective": PROJECTION_PERSPECTIVE, "orthographic": PROJECTION
 # (`core.passes` says what each holds and how many channels it has)
 PASS_NAMES = ("depth", "mist", "normal", "position", "uv", "object_index", "material_index",
               "diffuse_color", "shadow", "environment", "ambient", "diffuse", "specular",
-              "reflection", "refraction", "crypto_object", "crypto_material")  # fmt: skip
+              "reflection", "refraction", "emission", "crypto_object",
+              "crypto_material")  # fmt: skip
 PASS_SLOT = {name: slot for slot, name in enumerate(PASS_NAMES)}
 
 # Lights in Blender's units (core.model.emitters), one row each of the emitter table, by the

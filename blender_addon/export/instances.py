@@ -13,6 +13,13 @@ from ..properties.shape_tags import BY_TAG
 from . import csg, material
 from .mesh import MeshCache
 
+# core.Shape's flags and the Object properties they come from
+RAY_VISIBILITY = (
+    ("seen_by_camera", "visible_camera"),
+    ("seen_in_mirrors", "visible_glossy"),
+    ("seen_through_glass", "visible_transmission"),
+)
+
 
 class Exporter:
     """Collects shapes from object instances: one `TriangleMesh` per distinct mesh, one
@@ -39,6 +46,9 @@ class Exporter:
         casts_shadows = bool(getattr(original, "visible_shadow", True))
         # What the passes say of it: Object > Relations > Pass Index, and the holdout
         marks = dict(casts_shadows=casts_shadows, holdout=holdout, pass_index=original.pass_index)
+        # Object > Visibility > Ray Visibility > Camera, Glossy and Transmission
+        for mark, name in RAY_VISIBILITY:
+            marks[mark] = bool(getattr(original, name, True))
         if obj.type == "MESH" and csg.boolean_modifiers(original):
             shape = csg.convert(original, self, self.depsgraph)
         elif obj.type == "MESH" and settings.shape != "MESH":
@@ -93,5 +103,5 @@ class Exporter:
             blender_material = slots[slot].material if 0 <= slot < len(slots) else None
         key = blender_material.name if blender_material is not None else ""
         if key not in self.materials:
-            self.materials[key] = material.convert(blender_material)
+            self.materials[key] = material.convert(blender_material, self.warn)
         return self.materials[key]

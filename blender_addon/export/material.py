@@ -1,20 +1,13 @@
 """Blender materials into `core.Material`.
 
-A material renders from its Principled BSDF unless its Whitted panel says "Whitted
-settings" (then the panel's own values count). From the Principled BSDF:
+A material renders from its node tree, read as Cycles reads it from the active Material
+Output down (shader_nodes; the mapping onto Whitted's model in shader_lobes and
+principled), unless its Whitted panel says "Whitted Settings": then the panel's own values,
+the report's material, count. A material without nodes renders its viewport colour as a
+Lambert surface (Cycles' own fallback). What the tree holds that Whitted cannot honour is
+one warning per material, naming it, the nodes and what was used instead.
 
-    diffuse       base colour x (1 - metallic) x (1 - transmission)
-    specular      0.04 grey for dielectrics, the base colour for metals (mixed by metallic),
-                  scaled by (1 - roughness)
-    shininess     2 / roughness^4 - 2, the Phong exponent of a Beckmann lobe of that
-                  roughness (Walter et al. 2007), at most 10,000
-    reflectivity  metallic x (1 - roughness): smooth metals are mirrors
-    transparency  transmission; inner IOR the BSDF's IOR, outer 1
-    texture       an Image Texture node feeding Base Color
-
-In both cases an Image Texture node linked to the base colour (or the panel's image)
-replaces the diffuse colour. Images are read from Blender's own pixels, so packed, generated
-and on-disk images all work.
+Images are read from Blender's own pixels, so packed, generated and on-disk images all work.
 """
 
 from __future__ import annotations
@@ -22,9 +15,12 @@ from __future__ import annotations
 import numpy as np
 
 from .. import core
-from ..compat import TRANSMISSION_INPUTS, node_tree_in_use
+from ..compat import node_tree_in_use
+from .shader_lobes import Lobes
+from .shader_nodes import MaterialReader
 
-MAX_SHININESS = 10000.0
+# The surface's share below which it is taken to be all glass (its lobes are divided by it)
+SURFACE_CUTOFF = 1e-9
 
 
 def find_node(datablock, node_type):
@@ -34,71 +30,101 @@ def find_node(datablock, node_type):
     return next((node for node in tree.nodes if node.type == node_type), None)
 
 
-def _input(node, *names, default=0.0):
-    """A node input's value by the first name that exists (names changed across versions)."""
-    for name in names:
-        socket = node.inputs.get(name)
-        if socket is not None:
-            return socket.default_value
-    return default
-
-
-def convert(material) -> core.Material:
+def convert(material, warn=None) -> core.Material:
+    """The core material of a Blender material (None: Blender's default grey surface);
+    `warn(text)` gets the one warning of what its tree holds that Whitted cannot honour."""
     if material is None:
         return core.Material(name="(no material)")
     settings = material.whitted
-    principled = find_node(material, "BSDF_PRINCIPLED")
-    image = settings.image if settings.use_whitted else _base_colour_image(principled)
-    texture = None if image is None else image_texture(image, material.name)
-    if settings.use_whitted or principled is None:
-        base = _base_colour(material, principled)
-        return core.Material(
-            diffuse=base,
-            specular=tuple(settings.specular),
-            shininess=settings.shininess,
-            name=material.name,
-            reflectivity=settings.reflectivity,
-            transparency=settings.transparency,
-            outer_ior=settings.outer_ior,
-            inner_ior=settings.inner_ior,
-            texture=texture,
-            pass_index=material.pass_index,
-        )
-    base = np.array(_base_colour(material, principled))
-    metallic = float(_input(principled, "Metallic"))
-    roughness = float(_input(principled, "Roughness", default=0.5))
-    transmission = float(_input(principled, *TRANSMISSION_INPUTS))
-    ior = float(_input(principled, "IOR", default=1.45))
-    specular = (0.04 * (1.0 - metallic) + base * metallic) * (1.0 - roughness)
-    shininess = MAX_SHININESS if roughness <= 0.0 else 2.0 / roughness**4 - 2.0
+    if settings.use_whitted:
+        return _whitted_settings(material)
+    lobes, problems = read_lobes(material)
+    if problems and warn is not None:
+        warn(warning_text(material, problems))
+    texture = None
+    if lobes.texture is not None:
+        texture = image_texture(lobes.texture, material.name)
+    return from_lobes(lobes, material.name, material.pass_index, texture)
+
+
+def read_lobes(material) -> tuple[Lobes, list[str]]:
+    """The material's lobes from its node tree, and what could not be honoured."""
+    tree = node_tree_in_use(material)
+    if tree is None:
+        lobes = Lobes()
+        lobes.add_diffuse(1.0, tuple(material.diffuse_color[:3]))
+        return lobes, []
+    reader = MaterialReader(material)
+    return reader.read(tree), reader.problems
+
+
+def warning_text(material, problems: list[str]) -> str:
+    return f"material '{material.name}': " + "; ".join(problems)
+
+
+def from_lobes(lobes: Lobes, name: str, pass_index: int = 0, texture=None) -> core.Material:
+    """The core material of weighted lobes: the glass's weight is the transparency, the
+    other lobes are shares of the rest (the integrator scales them by 1 - transparency)."""
+    glass = min(lobes.glass, 1.0)
+    surface = 1.0 - glass
+    per_surface = 1.0 / surface if surface > SURFACE_CUTOFF else 0.0
+    mirror_normal = lobes.mirror_normal * per_surface
+    mirror_edge = lobes.mirror_edge * per_surface
+    mirrors = bool(np.any(mirror_normal > 0.0) or np.any(mirror_edge > 0.0))
+    ks = lobes.highlight * per_surface
+    shininess = lobes.shininess_sum / lobes.highlight.mean() if np.any(ks > 0.0) else 1.0
+    per_glass = 1.0 / lobes.glass if lobes.glass > 0.0 else 0.0
     return core.Material(
-        diffuse=tuple(base * (1.0 - metallic) * (1.0 - transmission)),
-        specular=tuple(specular),
-        shininess=float(min(max(shininess, 0.0), MAX_SHININESS)),
-        name=material.name,
-        reflectivity=metallic * (1.0 - roughness),
-        transparency=transmission,
+        diffuse=_triple(lobes.diffuse * per_surface),
+        specular=_triple(ks),
+        shininess=float(shininess),
+        name=name,
+        reflectivity=1.0 if mirrors else 0.0,
+        transparency=glass,
         outer_ior=1.0,
-        inner_ior=ior if ior > 0.0 else 1.0,
+        inner_ior=lobes.glass_ior_sum * per_glass if lobes.glass > 0.0 else 1.0,
         texture=texture,
-        pass_index=material.pass_index,
+        pass_index=pass_index,
+        mirror_colour=_triple(mirror_normal) if mirrors else (1.0, 1.0, 1.0),
+        mirror_edge=_triple(mirror_edge) if mirrors else None,
+        mirror_sees_lights=not lobes.rough_mirror,
+        coat=min(lobes.coat * per_surface, 1.0),
+        coat_ior=lobes.coat_ior_sum / lobes.coat if lobes.coat > 0.0 else 1.5,
+        coat_hides=lobes.coat_hides,
+        glass_reflect=_triple(lobes.glass_reflect * per_glass) if glass else (1.0, 1.0, 1.0),
+        glass_transmit=_triple(lobes.glass_transmit * per_glass) if glass else (1.0, 1.0, 1.0),
+        refraction_fresnel=lobes.refraction_fresnel_sum * per_glass if glass else 1.0,
+        emission=_triple(lobes.emission),
+        transparent=_triple(np.clip(lobes.transparent, 0.0, 1.0)),
+        holdout=min(lobes.holdout, 1.0),
     )
 
 
-def _base_colour(material, principled) -> tuple[float, float, float]:
+def _triple(values) -> tuple[float, float, float]:
+    return tuple(float(v) for v in np.maximum(values, 0.0)[:3])
+
+
+def _whitted_settings(material) -> core.Material:
+    """The report's material, from the Whitted Material panel."""
+    settings = material.whitted
+    texture = None if settings.image is None else image_texture(settings.image, material.name)
+    principled = find_node(material, "BSDF_PRINCIPLED")
     if principled is not None:
-        return tuple(float(c) for c in _input(principled, "Base Color")[:3])
-    return tuple(float(c) for c in material.diffuse_color[:3])
-
-
-def _base_colour_image(principled):
-    if principled is None:
-        return None
-    socket = principled.inputs.get("Base Color")
-    if socket is None or not socket.is_linked:
-        return None
-    node = socket.links[0].from_node
-    return node.image if node.type == "TEX_IMAGE" else None
+        base = tuple(float(c) for c in principled.inputs["Base Color"].default_value[:3])
+    else:
+        base = tuple(float(c) for c in material.diffuse_color[:3])
+    return core.Material(
+        diffuse=base,
+        specular=tuple(settings.specular),
+        shininess=settings.shininess,
+        name=material.name,
+        reflectivity=settings.reflectivity,
+        transparency=settings.transparency,
+        outer_ior=settings.outer_ior,
+        inner_ior=settings.inner_ior,
+        texture=texture,
+        pass_index=material.pass_index,
+    )
 
 
 def image_texture(image, material_name: str = "", owner: str = "") -> core.Texture:

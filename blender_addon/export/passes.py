@@ -38,6 +38,7 @@ PASSES = (
     BlenderPass("specular", "Whitted Specular", "RGB", "COLOR", "whitted.use_pass_terms"),
     BlenderPass("reflection", "Whitted Reflection", "RGB", "COLOR", "whitted.use_pass_terms"),
     BlenderPass("refraction", "Whitted Refraction", "RGB", "COLOR", "whitted.use_pass_terms"),
+    BlenderPass("emission", "Emit", "RGB", "COLOR", "use_pass_emit"),
 )
 # Cryptomatte: core's pass, Blender's switch and the layer's name after the view layer's
 CRYPTO = (

@@ -1,9 +1,11 @@
-"""Material Properties › Whitted Material: the report's material, or the Principled BSDF."""
+"""Material Properties › Whitted Material: what Whitted reads of the node tree and what it
+cannot honour, or the report's material (Whitted Settings)."""
 
 import bpy
 
-from ..export.material import find_node
-from .base import WhittedPanel
+from ..compat import node_tree_in_use
+from ..export.material import find_node, read_lobes
+from .base import WhittedPanel, draw_warnings
 
 
 class WHITTED_PT_material(WhittedPanel, bpy.types.Panel):
@@ -16,15 +18,13 @@ class WHITTED_PT_material(WhittedPanel, bpy.types.Panel):
         layout.use_property_split = True
         material = context.material
         settings = material.whitted
-        principled = find_node(material, "BSDF_PRINCIPLED")
         # The Material Index pass's value (Cycles shows it in its material Settings)
         layout.prop(material, "pass_index")
-        if principled is not None:
-            layout.prop(settings, "use_whitted")
-        if principled is not None and not settings.use_whitted:
-            layout.label(text="From the Principled BSDF (base colour, metallic,", icon="INFO")
-            layout.label(text="roughness, IOR, transmission)")
+        layout.prop(settings, "use_whitted")
+        if not settings.use_whitted:
+            self.draw_nodes(context, material)
             return
+        principled = find_node(material, "BSDF_PRINCIPLED")
         if principled is not None:
             layout.prop(principled.inputs["Base Color"], "default_value", text="Diffuse")
         else:
@@ -36,3 +36,14 @@ class WHITTED_PT_material(WhittedPanel, bpy.types.Panel):
         column.active = settings.transparency > 0.0
         column.prop(settings, "outer_ior")
         column.prop(settings, "inner_ior")
+
+    def draw_nodes(self, context, material):
+        layout = self.layout
+        if node_tree_in_use(material) is None:
+            layout.label(text="No nodes: its Viewport Display colour, as Lambert", icon="INFO")
+            layout.prop(material, "diffuse_color", text="Color")
+            return
+        lobes, problems = read_lobes(material)
+        layout.label(text="From the node tree, as Cycles reads it", icon="NODETREE")
+        layout.label(text="Renders as: " + (", ".join(lobes.kinds()) or "nothing (black)"))
+        draw_warnings(layout, context, [f"material '{material.name}': {p}" for p in problems])

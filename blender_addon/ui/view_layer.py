@@ -56,6 +56,7 @@ class WHITTED_PT_passes_light(WhittedPanel, bpy.types.Panel):
         column.prop(view_layer, "use_pass_diffuse_color", text="Color")
         column = layout.column(heading="Other", align=True)
         column.prop(view_layer, "use_pass_shadow")
+        column.prop(view_layer, "use_pass_emit", text="Emission")
         column.prop(view_layer, "use_pass_environment")
         column.prop(view_layer.whitted, "use_pass_terms")
 

@@ -41,5 +41,23 @@ def pack_materials(shapes: list) -> tuple[Materials, dict[int, int]]:
         ),
         pass_index=np.array([m.pass_index for m, _ in materials], np.int32),
         crypto=np.array([crypto_id(m.name) for m, _ in materials], np.float32),
+        mirror=_pairs([(m.mirror_colour, _edge(m)) for m, _ in materials]),
+        coat=rows([(m.coat, m.coat_ior, float(m.coat_hides)) for m, _ in materials]),
+        glass_tint=_pairs([(m.glass_reflect, m.glass_transmit) for m, _ in materials]),
+        refraction_fresnel=np.array([m.refraction_fresnel for m, _ in materials], float),
+        mirror_hides_lights=np.array([not m.mirror_sees_lights for m, _ in materials], np.uint8),
+        emission=rows([m.emission for m, _ in materials]),
+        transparent=rows([m.transparent for m, _ in materials]),
+        holdout=np.array([m.holdout for m, _ in materials], float),
     )
     return table, row_of
+
+
+def _edge(material):
+    """The mirror's tint at grazing incidence: its own tint when it has no Fresnel."""
+    return material.mirror_colour if material.mirror_edge is None else material.mirror_edge
+
+
+def _pairs(values: list) -> np.ndarray:
+    """float64 (n, 2, 3) from n pairs of RGB triples."""
+    return np.array(values, float).reshape(-1, 2, 3)

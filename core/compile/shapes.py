@@ -85,15 +85,20 @@ def pack_geometry(scene_shapes: list, shapes: list, world_from_object: np.ndarra
 
 def _shadow_transparency(shapes: list, scene_rows: int) -> np.ndarray:
     """What each row lets through per surface crossed by a shadow ray: its material's
-    transparency; 1 for a scene shape that casts no shadow (kernels skip such rows, which
-    is exact: 1^crossings = 1); for a CSG row 0, as its operands' rows decide."""
+    transparency plus the mean of what passes it straight (`Material.transparent`), at
+    most 1; 1 for a scene shape that casts no shadow (kernels skip such rows, which is
+    exact: 1^crossings = 1); for a CSG row 0, as its operands' rows decide."""
     tau = np.empty(len(shapes))
     for i, shape in enumerate(shapes):
         if i < scene_rows and not shape.casts_shadows:
             tau[i] = 1.0
         else:
-            tau[i] = 0.0 if isinstance(shape, Csg) else shape.material.transparency
+            tau[i] = 0.0 if isinstance(shape, Csg) else _lets_through(shape.material)
     return tau
+
+
+def _lets_through(material) -> float:
+    return min(1.0, material.transparency + float(np.mean(material.transparent)))
 
 
 def _world_boxes(world_from_object, lo, hi):

@@ -1,12 +1,13 @@
 """How each row's surface is shaded (`Surfaces`): its material's row, and for meshes the
 smooth flags, vertex normals and UVs per triangle slot; what the passes say of its object
-(pass index, holdout, Cryptomatte id), taken from the scene shape the row belongs to."""
+(pass index, holdout, Cryptomatte id, the rays that see it), taken from the scene shape
+the row belongs to."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from ..kernels.layout import Surfaces
+from ..kernels.layout import VISIBLE_CAMERA, VISIBLE_GLOSSY, VISIBLE_TRANSMISSION, Surfaces
 from ..passes import crypto_id
 from .arrays import concatenated
 from .meshes import MeshTables
@@ -31,4 +32,13 @@ def pack_surfaces(shapes: list, owners: list, material_of: dict, meshes: MeshTab
         shape_pass_index=np.array([o.pass_index for o in owners], np.int32),
         shape_holdout=np.array([o.holdout for o in owners], np.uint8),
         shape_crypto=np.array([ids[o.name] for o in owners], np.float32),
+        shape_visibility=np.array([_visibility(o) for o in owners], np.uint8),
+    )
+
+
+def _visibility(shape) -> int:
+    return (
+        VISIBLE_CAMERA * shape.seen_by_camera
+        + VISIBLE_GLOSSY * shape.seen_in_mirrors
+        + VISIBLE_TRANSMISSION * shape.seen_through_glass
     )

@@ -1,16 +1,26 @@
 """Whitted's recursion without recursion: the tree of reflected and refracted rays, walked
 depth-first with an explicit stack from the `Workspace`.
 
-At each hit of a ray carrying weight w (what its colour counts for in the pixel):
+At each hit of a ray carrying weight w (what its colour counts for in the pixel), with the
+material's row of the table (core.model.Material names the fields):
 
-    colour += w (1 - tau) local               local = the report's Phong lighting
-    reflected ray, weight w ((1 - tau) rho + tau F)
-    refracted ray, weight w tau (1 - F)
+    colour += w (1 - tau) local + w emission      local = the report's Phong lighting, its
+                                                    kd dimmed by (1 - c Fc) when the coat hides
+    reflected ray, weight w ((1 - tau) (rho M + c Fc) + tau F Gr)
+    refracted ray, weight w tau (1 - k F) Gt          k = refraction_fresnel (1: glass)
+    a ray straight on, weight w T
 
-with rho the material's reflectivity, tau its transparency and F the exact dielectric
-Fresnel reflectance for the indices on the two sides (outer and inner IOR, swapped when the
-ray leaves the object); past the critical angle F = 1 (total internal reflection). Rays stop
-after `max_depth` bounces, or once their weight can no longer show (MIN_WEIGHT).
+with rho the material's reflectivity, M its mirror tint c0 + (c90 - c0)(1 - cos)^5
+(Schlick's), c and Fc the coat's weight and exact Fresnel reflectance for its IOR, tau its
+transparency, F the exact dielectric Fresnel reflectance for the indices on the two sides
+(outer and inner IOR, swapped when the ray leaves the object; past the critical angle F = 1,
+total internal reflection), Gr and Gt the glass tints, T what passes straight through. With
+the report's materials (tints 1, no coat, nothing straight through) this is the report's
+formula to the bit. Rays stop after `max_depth` bounces, or once their weight can no longer
+show (MIN_WEIGHT); rays going straight on do not bounce, and stop after MAX_CROSSINGS.
+
+A shape that the ray's kind does not see (core.model.Shape.seen_by_camera, seen_in_mirrors,
+seen_through_glass) is passed as if absent: the ray goes on from its far side.
 """
 
 import math
@@ -19,7 +29,12 @@ from ..jit import inlined_kernel, kernel
 from .emitters import emitted_colour
 from .emitters_seen import emitters_seen
 from .environment import environment_light, environment_seen
-from .layout import ENVIRONMENT_NONE
+from .layout import (
+    ENVIRONMENT_NONE,
+    VISIBLE_CAMERA,
+    VISIBLE_GLOSSY,
+    VISIBLE_TRANSMISSION,
+)
 from .options import (
     OPTION_ENVIRONMENT,
     OPTION_MAX_DEPTH,
@@ -29,6 +44,7 @@ from .options import (
     PASSES_UV,
 )
 from .pass_record import (
+    REC_EMISSION,
     REC_ENVIRONMENT,
     REC_REFLECTION,
     REC_REFRACTION,
@@ -41,9 +57,12 @@ from .shading import Phong, ShadingPoint, local_colour
 from .surface import diffuse_colour, surface_at
 from .trace import closest_hit, spawn_point
 from .vec import add, dot, mul, normalize, row, scale, sub
-from .workspace import RAYS_TRACED
+from .workspace import MAX_CROSSINGS, RAYS_TRACED
 
 MIN_WEIGHT = 1e-6
+# How a ray left its last surface (RayStack.refracted): the lights in Blender's units it
+# sees depend on it (a rough mirror's highlight holds their light already)
+RAY_REFLECTED, RAY_REFRACTED, RAY_ROUGH_REFLECTED = 0, 1, 2
 
 
 @kernel
@@ -69,8 +88,10 @@ def refract(d, n, eta, cos_i, cos_t):
 
 
 @kernel
-def _push(rays, top, o, d, w, depth, branch, refracted):
-    if max(w[0], w[1], w[2]) < MIN_WEIGHT:
+def _push(rays, top, o, d, w, depth, branch, refracted, crossed=0):
+    """Put a ray on the stack; one too faint to show, or with no room left, is dropped
+    (`core.kernels.workspace` sizes the stack for max_depth and MAX_CROSSINGS)."""
+    if max(w[0], w[1], w[2]) < MIN_WEIGHT or top >= rays.depth.shape[0]:
         return top
     for a in range(3):
         rays.origin[top, a] = o[a]
@@ -79,7 +100,47 @@ def _push(rays, top, o, d, w, depth, branch, refracted):
     rays.depth[top] = depth
     rays.branch[top] = branch
     rays.refracted[top] = refracted
+    rays.crossed[top] = crossed
     return top + 1
+
+
+@kernel
+def _sees(visibility, depth, came_through):
+    """Whether a ray of this kind stops at a shape of these VISIBLE_* bits."""
+    if depth == 0:
+        return (visibility & VISIBLE_CAMERA) != 0
+    if came_through:
+        return (visibility & VISIBLE_TRANSMISSION) != 0
+    return (visibility & VISIBLE_GLOSSY) != 0
+
+
+@kernel
+def _mean(w):
+    return (w[0] + w[1] + w[2]) / 3.0
+
+
+@kernel
+def _glass_tint(mats, material, which):
+    """The dielectric's tint of its reflection (which 0) or of its refracted ray (1)."""
+    tints = mats.glass_tint
+    return (tints[material, which, 0], tints[material, which, 1], tints[material, which, 2])
+
+
+@kernel
+def _mirror_tint(mats, material, cos_i):
+    """The mirror's tint at this incidence: Schlick's c0 + (c90 - c0)(1 - cos)^5."""
+    toward_edge = (1.0 - cos_i) ** 5
+    normal_tint = (
+        mats.mirror[material, 0, 0],
+        mats.mirror[material, 0, 1],
+        mats.mirror[material, 0, 2],
+    )
+    edge_tint = (
+        mats.mirror[material, 1, 0],
+        mats.mirror[material, 1, 1],
+        mats.mirror[material, 1, 2],
+    )
+    return add(normal_tint, scale(sub(edge_tint, normal_tint), toward_edge))
 
 
 @inlined_kernel
@@ -102,14 +163,19 @@ def trace_ray(ps, o, d, key, ws):
     alpha = 1.0
     top = _push(rays, 0, o, d, (1.0, 1.0, 1.0), 0, REC_ENVIRONMENT, 0)
     event = 0
+    hit_recorded = False
     while top > 0:
         top -= 1
         o, d = row(rays.origin, top), row(rays.direction, top)
         w, depth, branch = row(rays.weight, top), rays.depth[top], rays.branch[top]
-        came_through = rays.refracted[top] != 0  # left its last surface by refraction
+        # how it left its last surface (RAY_*)
+        refracted_before = rays.refracted[top]
+        came_through = refracted_before == RAY_REFRACTED
+        crossed = rays.crossed[top]
         stacks.ray_counts[RAYS_TRACED] += 1
         shape, t, part, b1, b2 = closest_hit(geo, o, d, math.inf, stacks)
-        if depth > 0 and lights.emitter_kind.shape[0] > 0:
+        lit_seen = refracted_before != RAY_ROUGH_REFLECTED
+        if depth > 0 and lit_seen and lights.emitter_kind.shape[0] > 0:
             # Lights in Blender's units, seen in mirrors and through glass
             glimpse = emitters_seen(lights, o, d, t if shape >= 0 else math.inf, came_through)
             if glimpse[0] > 0.0 or glimpse[1] > 0.0 or glimpse[2] > 0.0:
@@ -119,18 +185,27 @@ def trace_ray(ps, o, d, key, ws):
                     add_to(record, branch, seen)
         if shape < 0:
             if depth == 0 and frame.options[OPTION_TRANSPARENT] != 0:
-                alpha = 0.0  # the camera ray itself: nothing there, not even background
+                # a camera ray (or what passed straight through) meets nothing, not even
+                # background: the pixel's alpha loses its share
+                alpha -= _mean(w)
             else:
                 seen = mul(w, environment_seen(frame, lights, d, depth, came_through))
                 colour = add(colour, seen)
                 if recording:
                     add_to(record, branch, seen)
             continue
+        if not _sees(surf.shape_visibility[shape], depth, came_through):
+            if crossed < MAX_CROSSINGS:
+                p, n_geometric, _, _, _ = surface_at(geo, surf, shape, part, b1, b2, o, d, t, False)
+                along = n_geometric if dot(d, n_geometric) > 0.0 else scale(n_geometric, -1.0)
+                beyond = spawn_point(p, along, o)
+                top = _push(rays, top, beyond, d, w, depth, branch, refracted_before, crossed + 1)
+            continue
         if depth == 0 and surf.shape_holdout[shape] != 0:
-            alpha = 0.0  # a hole in the picture, as Cycles cuts: nothing behind shows
+            alpha -= _mean(w)  # a hole in the picture, as Cycles cuts: nothing behind shows
             continue
         material = surf.shape_material[shape]
-        first = recording and depth == 0
+        first = recording and depth == 0 and not hit_recorded
         textured = mats.texture[material] >= 0
         p, n_geometric, n_shading, u, v = surface_at(
             geo, surf, shape, part, b1, b2, o, d, t, textured or (first and with_uv)
@@ -143,9 +218,30 @@ def trace_ray(ps, o, d, key, ws):
             n_geometric = scale(n_geometric, -1.0)
             n_shading = scale(n_shading, -1.0)
         outside = spawn_point(p, n_geometric, o)
+        cos_i = min(1.0, max(0.0, -dot(d, n_shading)))
         kd = diffuse_colour(mats, material, u, v) if tau < 1.0 or first else (0.0, 0.0, 0.0)
+        coat = mats.coat[material, 0]
+        coat_reflects = 0.0
+        if coat > 0.0:
+            # a layer on the surface, air on its outer side from either side (Cycles' specular
+            # layer does not flip its IOR on back faces)
+            coat_f, _ = fresnel_dielectric(cos_i, 1.0, mats.coat[material, 1])
+            coat_reflects = coat * coat_f
+            if mats.coat[material, 2] != 0.0:
+                kd = scale(kd, 1.0 - coat_reflects)  # the diffuse seen through the coat
+        if depth == 0 and mats.holdout[material] > 0.0:
+            alpha -= _mean(w) * mats.holdout[material]
         if first:
+            hit_recorded = True
             record_hit(record, surf, mats, shape, material, p, n_shading, u, v, 1.0 - tau, kd)
+        emission = row(mats.emission, material)
+        if emission[0] > 0.0 or emission[1] > 0.0 or emission[2] > 0.0:
+            seen = mul(w, emission)
+            colour = add(colour, seen)
+            if first:
+                add_to(record, REC_EMISSION, seen)
+            elif recording:
+                add_to(record, branch, seen)
         if tau < 1.0:
             point = ShadingPoint(outside, n_shading, scale(d, -1.0))
             ks = row(mats.specular, material)
@@ -170,24 +266,40 @@ def trace_ray(ps, o, d, key, ws):
             elif recording:
                 add_to(record, branch, seen)
         event += 1
+        straight = row(mats.transparent, material)
+        if (
+            straight[0] > 0.0 or straight[1] > 0.0 or straight[2] > 0.0
+        ) and crossed < MAX_CROSSINGS:
+            # What passes straight through: on from the far side, unbent, no bounce counted
+            beyond = spawn_point(p, scale(n_geometric, -1.0), o)
+            onward = REC_REFRACTION if depth == 0 else branch
+            top = _push(
+                rays, top, beyond, d, mul(w, straight), depth, onward, refracted_before, crossed + 1
+            )
         if depth >= max_depth:
             continue
-        cos_i = min(1.0, max(0.0, -dot(d, n_shading)))
-        reflect_weight = (1.0 - tau) * rho
+        reflect = (0.0, 0.0, 0.0)
+        if rho > 0.0:
+            reflect = scale(_mirror_tint(mats, material, cos_i), (1.0 - tau) * rho)
+        if coat_reflects > 0.0:
+            reflect = add(reflect, scale((1.0, 1.0, 1.0), (1.0 - tau) * coat_reflects))
         if tau > 0.0:
             outer, inner = mats.ior[material, 0], mats.ior[material, 1]
             n1, n2 = (outer, inner) if entering else (inner, outer)
             f, cos_t = fresnel_dielectric(cos_i, n1, n2)
-            reflect_weight += tau * f
+            reflect = add(reflect, scale(_glass_tint(mats, material, 0), tau * f))
+            # the share Fresnel takes from the refracted ray: all of F for glass
+            f_lost = f * mats.refraction_fresnel[material]
             if f < 1.0:
                 refracted = refract(d, n_shading, n1 / n2, cos_i, cos_t)
                 inside = spawn_point(p, scale(n_geometric, -1.0), o)
                 through = REC_REFRACTION if depth == 0 else branch
-                weight = scale(w, tau * (1.0 - f))
-                top = _push(rays, top, inside, refracted, weight, depth + 1, through, 1)
-        if reflect_weight > 0.0:
+                weight = mul(w, scale(_glass_tint(mats, material, 1), tau * (1.0 - f_lost)))
+                top = _push(rays, top, inside, refracted, weight, depth + 1, through, RAY_REFRACTED)
+        if reflect[0] > 0.0 or reflect[1] > 0.0 or reflect[2] > 0.0:
             reflected = sub(d, scale(n_shading, 2.0 * dot(d, n_shading)))
             mirrored = REC_REFLECTION if depth == 0 else branch
-            weight = scale(w, reflect_weight)
-            top = _push(rays, top, outside, reflected, weight, depth + 1, mirrored, 0)
+            weight = mul(w, reflect)
+            kind = RAY_ROUGH_REFLECTED if mats.mirror_hides_lights[material] else RAY_REFLECTED
+            top = _push(rays, top, outside, reflected, weight, depth + 1, mirrored, kind)
     return colour, alpha

@@ -74,6 +74,8 @@ class Surfaces(NamedTuple):
     shape_pass_index: np.ndarray  # int32 (n,): the object index pass's value
     shape_holdout: np.ndarray  # uint8 (n,): 1 if camera rays see a hole there
     shape_crypto: np.ndarray  # float32 (n,): the Cryptomatte id of its name
+    # uint8 (n,): VISIBLE_* bits, the rays that see it (Object > Visibility > Ray Visibility)
+    shape_visibility: np.ndarray
 
 
 class Materials(NamedTuple):
@@ -89,6 +91,15 @@ class Materials(NamedTuple):
     texture_size: np.ndarray  # int64 (x, 2): width, height
     pass_index: np.ndarray  # int32 (q,): the material index pass's value
     crypto: np.ndarray  # float32 (q,): the Cryptomatte id of its name
+    # what Blender's node materials add (core.model.Material; core.kernels.integrator)
+    mirror: np.ndarray  # float64 (q, 2, 3): the mirror's tint at normal and grazing incidence
+    coat: np.ndarray  # float64 (q, 3): clear layer's weight, its IOR, 1 if it hides the diffuse
+    glass_tint: np.ndarray  # float64 (q, 2, 3): the dielectric's reflection, transmission tint
+    refraction_fresnel: np.ndarray  # float64 (q,): 1 glass, 0 all refracts (Refraction BSDF)
+    mirror_hides_lights: np.ndarray  # uint8 (q,): 1 if its highlight holds the lights instead
+    emission: np.ndarray  # float64 (q, 3): emitted radiance
+    transparent: np.ndarray  # float64 (q, 3): share passing straight through
+    holdout: np.ndarray  # float64 (q,): share of a camera ray's pixel cut out
 
 
 class Lights(NamedTuple):
@@ -146,6 +157,13 @@ class PackedScene(NamedTuple):
     materials: Materials
     lights: Lights
 
+
+# VISIBLE_* bits of Surfaces.shape_visibility: the rays that stop at a shape (the others pass
+# through it, as Cycles' Ray Visibility switches do)
+VISIBLE_CAMERA = 1
+VISIBLE_GLOSSY = 2  # reflected rays
+VISIBLE_TRANSMISSION = 4  # refracted rays
+VISIBLE_ALL = 7
 
 # OPTION_ENVIRONMENT: what lies beyond the scene
 ENVIRONMENT_NONE = 0  # the background colour only (Frame.background), lighting nothing

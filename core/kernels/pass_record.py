@@ -35,8 +35,9 @@ REC_DIFFUSE = 28
 REC_SPECULAR = 31
 REC_REFLECTION = 34
 REC_REFRACTION = 37
-REC_COUNT = 40
-TERM_COUNT = 6
+REC_EMISSION = 40
+REC_COUNT = 43
+TERM_COUNT = 7
 
 # Slots of a pixel's accumulator (float64): sums over its rays, then its nearest hit
 ACC_MIST = 0
@@ -45,11 +46,11 @@ ACC_UV = 4  # u, v and the coverage
 ACC_DIFFUSE_COLOR = 7
 ACC_SHADOW = 10
 ACC_TERMS = 13  # TERM_COUNT RGB sums, in REC_ENVIRONMENT.. order
-ACC_DEPTH = 31  # of the nearest hit (inf: none yet)
-ACC_POSITION = 32
-ACC_OBJECT_INDEX = 35
-ACC_MATERIAL_INDEX = 36
-ACC_COUNT = 37
+ACC_DEPTH = 34  # of the nearest hit (inf: none yet)
+ACC_POSITION = 35
+ACC_OBJECT_INDEX = 38
+ACC_MATERIAL_INDEX = 39
+ACC_COUNT = 40
 
 # Rows of Stacks.terms: the light falling on one shading point (N.L-weighted), through its
 # shadows and without them (see shading.local_colour)

@@ -11,6 +11,10 @@ from .csg import CROSSING_CAPACITY, SPAN_CAPACITY
 from .light_pyramid import MAX_CANDIDATES, PYRAMID_ROWS
 from .pass_record import ACC_COUNT, REC_COUNT, TERM_ROWS
 
+# Surfaces one ray may pass straight through (transparent shares, shapes its kind does not
+# see): Cycles' Max Bounces > Transparent is 8 by default; leaves on cards need more
+MAX_CROSSINGS = 64
+
 # A wide node leaves at most WIDTH - 1 children waiting besides the one visited next,
 # and the wide tree is no deeper than the binary one
 MESH_STACK_SIZE = (WIDTH - 1) * MAX_TREE_DEPTH + 1
@@ -68,9 +72,11 @@ class RayStack(NamedTuple):
     depth: np.ndarray  # int64 (n,): bounces so far
     # int64 (n,): the record slot of the term its colour adds to, when passes are made
     branch: np.ndarray
-    # int64 (n,): 1 if the ray left its last surface by refraction, 0 if reflected (which of
-    # a light's Ray Visibility switches, Transmission or Glossy, lets it see the light)
+    # int64 (n,): how the ray left its last surface, core.kernels.integrator's RAY_*:
+    # reflected, refracted, or reflected off a rough surface (which of a light's Ray
+    # Visibility switches, Glossy or Transmission, lets it see the light, or none)
     refracted: np.ndarray
+    crossed: np.ndarray  # int64 (n,): surfaces passed straight through so far
 
 
 class Workspace(NamedTuple):
@@ -92,9 +98,10 @@ def new_workspace(
 ) -> Workspace:
     """Scratch for one tile; `crypto_rays`: the camera rays per pixel when Cryptomatte is
     made (each keeps its ids until the pixel is done), else 1."""
-    # Depth-first, each shading point pops one ray and pushes at most two, so no more than
-    # max_depth + 2 rays ever wait
-    rays = max_depth + 2
+    # Depth-first, each shading point pops one ray and pushes at most two that bounce, so no
+    # more than max_depth + 2 of those ever wait; each surface passed straight through
+    # (MAX_CROSSINGS) may leave two more waiting
+    rays = max_depth + 2 + 2 * MAX_CROSSINGS
     return Workspace(
         Stacks(
             np.empty(MAX_TREE_DEPTH, np.int32),
@@ -123,6 +130,7 @@ def new_workspace(
             np.empty((rays, 3)),
             np.empty((rays, 3)),
             np.empty(rays, np.int64),
+            np.zeros(rays, np.int64),
             np.zeros(rays, np.int64),
             np.zeros(rays, np.int64),
         ),

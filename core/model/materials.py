@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..checks import Vec3, check_count, check_number, check_vec3
+from ..checks import Vec3, check_count, check_flag, check_number, check_vec3
 from ..errors import SceneError
 
 
@@ -42,7 +42,8 @@ class Texture:
 
 @dataclass(eq=False)
 class Material:
-    """The report's material: Phong, plus mirror reflection, refraction and a texture.
+    """The report's material: Phong, plus mirror reflection, refraction and a texture; and
+    what Blender's shader nodes add to it (core.kernels.integrator has the formulas).
 
     diffuse       -- linear RGB diffuse reflectance kd, each channel >= 0
     specular      -- linear RGB specular reflectance ks, each channel >= 0
@@ -55,6 +56,28 @@ class Material:
     inner_ior     -- index of refraction inside it (> 0); glass is about 1.5
     texture       -- a `Texture` replacing `diffuse`, or None
     pass_index    -- its value in the material index pass (Material > Settings > Pass Index)
+
+    What Blender's node materials need beyond the report's (the defaults change nothing):
+    mirror_colour  -- RGB tint of the mirror at normal incidence (a metal's, a Glossy BSDF's
+                      colour)
+    mirror_edge    -- RGB the mirror's tint tends to at grazing incidence, Schlick's
+                      c + (edge - c)(1 - cos)^5; None: the same as mirror_colour (no Fresnel)
+    mirror_sees_lights -- False: lights are not seen in the mirror, as the Phong highlight
+                      (`specular`) already holds their light (a rough surface's)
+    coat           -- 0..1: weight of a clear dielectric layer over the surface, reflecting
+                      with the exact Fresnel reflectance of coat_ior (Principled's specular)
+    coat_ior       -- its index of refraction (> 0); 1 reflects nothing
+    coat_hides     -- True: the diffuse colour below is dimmed by what the layer reflects,
+                      (1 - coat F), as Cycles 4's Principled layers; False adds it on top
+    glass_reflect  -- RGB tint of the dielectric's Fresnel reflection (Glass BSDF colour)
+    glass_transmit -- RGB tint of its refracted ray, at each crossing of the surface
+    refraction_fresnel -- 0..1: how much of what Fresnel reflects the refracted ray loses:
+                      1 for glass, 0 for Blender's Refraction BSDF (all refracts)
+    emission       -- RGB radiance the surface emits, both sides (Emission, Principled)
+    transparent    -- RGB share of the light passing straight through, unbent (Transparent
+                      BSDF, alpha below 1); shadow rays pass its mean
+    holdout        -- 0..1: share of a camera ray's pixel cut out (Holdout shader): alpha
+                      lowered by it, nothing seen there
     """
 
     diffuse: Vec3 = (0.8, 0.8, 0.8)
@@ -67,6 +90,18 @@ class Material:
     inner_ior: float = 1.0
     texture: Texture | None = None
     pass_index: int = 0
+    mirror_colour: Vec3 = (1.0, 1.0, 1.0)
+    mirror_edge: Vec3 | None = None
+    mirror_sees_lights: bool = True
+    coat: float = 0.0
+    coat_ior: float = 1.5
+    coat_hides: bool = False
+    glass_reflect: Vec3 = (1.0, 1.0, 1.0)
+    glass_transmit: Vec3 = (1.0, 1.0, 1.0)
+    refraction_fresnel: float = 1.0
+    emission: Vec3 = (0.0, 0.0, 0.0)
+    transparent: Vec3 = (0.0, 0.0, 0.0)
+    holdout: float = 0.0
 
     def validate(self, user: str) -> None:
         owner = f"material '{self.name}' (on {user})"
@@ -78,6 +113,19 @@ class Material:
         check_number(owner, "outer_ior", self.outer_ior, low=0.0, low_open=True)
         check_number(owner, "inner_ior", self.inner_ior, low=0.0, low_open=True)
         check_count(owner, "pass_index", self.pass_index, high=32767)
+        for name in ("mirror_colour", "glass_reflect", "glass_transmit", "emission"):
+            check_vec3(owner, name, getattr(self, name), nonnegative=True)
+        if self.mirror_edge is not None:
+            check_vec3(owner, "mirror_edge", self.mirror_edge, nonnegative=True)
+        check_number(owner, "coat", self.coat, low=0.0, high=1.0)
+        check_number(owner, "coat_ior", self.coat_ior, low=0.0, low_open=True)
+        check_flag(owner, "coat_hides", self.coat_hides)
+        check_flag(owner, "mirror_sees_lights", self.mirror_sees_lights)
+        check_number(owner, "refraction_fresnel", self.refraction_fresnel, low=0.0, high=1.0)
+        transparent = check_vec3(owner, "transparent", self.transparent, nonnegative=True)
+        if transparent.max() > 1.0:
+            raise SceneError(owner, "transparent", f"got {self.transparent!r}; use 0..1 each")
+        check_number(owner, "holdout", self.holdout, low=0.0, high=1.0)
         if self.texture is not None:
             if not isinstance(self.texture, Texture):
                 raise SceneError(owner, "texture", f"got {self.texture!r}; need a Texture")

@@ -58,7 +58,10 @@ class Shape:
                      Object > Visibility > Holdout, and holdout collections); it still casts
                      shadows and shows in mirrors and through glass, as in Cycles
     pass_index    -- its value in the object index pass (Object > Relations > Pass Index)
-    Of a CSG tree, the top node's holdout and pass_index hold for all of it."""
+    seen_by_camera, seen_in_mirrors, seen_through_glass -- False: camera rays, reflected
+                     rays or refracted rays pass through it as if it were not there
+                     (Object > Visibility > Ray Visibility > Camera, Glossy, Transmission)
+    Of a CSG tree, the top node's holdout, pass_index and visibility hold for all of it."""
 
     name: str = "Shape"
     material: Material = field(default_factory=Material)
@@ -66,6 +69,9 @@ class Shape:
     casts_shadows: bool = field(default=True, kw_only=True)
     holdout: bool = field(default=False, kw_only=True)
     pass_index: int = field(default=0, kw_only=True)
+    seen_by_camera: bool = field(default=True, kw_only=True)
+    seen_in_mirrors: bool = field(default=True, kw_only=True)
+    seen_through_glass: bool = field(default=True, kw_only=True)
 
     kind_name = "shape"  # how messages name the kind
     kernel_kind = -1  # its code in the shape table (core.kernels.shapes)
@@ -83,6 +89,8 @@ class Shape:
             check_affine(self.owner, "world_from_object", self.world_from_object)
         check_flag(self.owner, "casts_shadows", self.casts_shadows)
         check_flag(self.owner, "holdout", self.holdout)
+        for name in ("seen_by_camera", "seen_in_mirrors", "seen_through_glass"):
+            check_flag(self.owner, name, getattr(self, name))
         check_count(self.owner, "pass_index", self.pass_index, high=MAX_PASS_INDEX)
         if not isinstance(self.material, Material):
             raise SceneError(

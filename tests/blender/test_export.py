@@ -205,6 +205,9 @@ def sphere_with_material(bpy, name):
 
 
 def test_untouched_materials_follow_their_principled_bsdf(empty_scene, monkeypatch):
+    """The Principled BSDF read from the Material Output (export/principled.py): a smooth
+    metal is a mirror tinted by its base colour, white at grazing; glass refracts with its
+    IOR, a rough surface gets highlights; the Whitted panel's own values win when asked."""
     bpy = sys.modules["bpy"]
     _, material = sphere_with_material(bpy, "Chrome")
     bsdf = principled(material)
@@ -213,7 +216,8 @@ def test_untouched_materials_follow_their_principled_bsdf(empty_scene, monkeypat
     bsdf.inputs["Roughness"].default_value = 0.0
     chrome = material_of(bpy, monkeypatch)
     assert chrome.reflectivity == pytest.approx(1.0) and chrome.diffuse == pytest.approx((0, 0, 0))
-    assert chrome.specular == pytest.approx((0.9, 0.6, 0.2), abs=1e-6)
+    assert chrome.mirror_colour == pytest.approx((0.9, 0.6, 0.2), abs=1e-6)
+    assert chrome.mirror_edge == pytest.approx((1, 1, 1)) and chrome.specular == (0, 0, 0)
     bsdf.inputs["Metallic"].default_value = 0.0
     bsdf.inputs["Roughness"].default_value = 0.5
     bsdf.inputs["IOR"].default_value = 1.33
@@ -221,13 +225,44 @@ def test_untouched_materials_follow_their_principled_bsdf(empty_scene, monkeypat
     bsdf.inputs[transmission].default_value = 1.0
     water = material_of(bpy, monkeypatch)
     assert water.transparency == pytest.approx(1.0) and water.inner_ior == pytest.approx(1.33)
-    assert water.shininess == pytest.approx(2 / 0.5**4 - 2)
+    assert water.mirror_sees_lights  # glass stays sharp, lights seen in it
+    bsdf.inputs[transmission].default_value = 0.0
+    plastic = material_of(bpy, monkeypatch)
+    # Roughness 0.5: alpha 0.25, a Blinn-Phong exponent 2 / alpha^2 - 2 = 30, on R.V a quarter
+    assert plastic.shininess == pytest.approx(7.5) and not plastic.mirror_sees_lights
+    bsdf.inputs[transmission].default_value = 1.0
+    # Blender 4's Principled tints each crossing by sqrt(base): a solid, by the base
+    per_crossing = np.sqrt((0.9, 0.6, 0.2)) if bpy.app.version >= (4, 0, 0) else (0.9, 0.6, 0.2)
+    assert water.glass_transmit == pytest.approx(tuple(per_crossing), abs=1e-6)
     material.whitted.use_whitted = True
     material.whitted.reflectivity = 0.25
     material.whitted.inner_ior = 1.7
     own = material_of(bpy, monkeypatch)
     assert own.reflectivity == 0.25 and own.inner_ior == pytest.approx(1.7)
     assert own.diffuse == pytest.approx((0.9, 0.6, 0.2), abs=1e-6)
+
+
+def test_nodes_whitted_cannot_evaluate_are_named_in_one_warning_per_material(
+    empty_scene, monkeypatch
+):
+    bpy = sys.modules["bpy"]
+    _, material = sphere_with_material(bpy, "Marble")
+    tree = material.node_tree
+    noise = tree.nodes.new("ShaderNodeTexNoise")
+    tree.links.new(noise.outputs["Color"], principled(material).inputs["Base Color"])
+    bump = tree.nodes.new("ShaderNodeBump")
+    tree.links.new(bump.outputs["Normal"], principled(material).inputs["Normal"])
+    volume = tree.nodes.new("ShaderNodeVolumePrincipled")
+    output = next(n for n in tree.nodes if n.type == "OUTPUT_MATERIAL")
+    tree.links.new(volume.outputs[0], output.inputs["Volume"])
+    scene, _, warnings = exported(bpy, monkeypatch)
+    mine = [w for w in warnings if w.startswith("material 'Marble'")]
+    assert len(mine) == 1, warnings
+    for named in ("'Noise Texture'", "Base Color", "Normal", "Volume", "used:"):
+        assert named in mine[0], mine[0]
+    # What was used instead: the Base Color's own value
+    base = tuple(principled(material).inputs["Base Color"].default_value[:3])
+    assert scene.shapes[0].material.diffuse == pytest.approx(base, abs=1e-6)
 
 
 def test_an_image_texture_on_the_base_colour_replaces_the_diffuse(empty_scene, monkeypatch):

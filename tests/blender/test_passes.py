@@ -17,7 +17,7 @@ from tests.support.exr import read_exr
 WIDTH, HEIGHT = 40, 30
 CAMERA_Z, FLOOR_Z = 5.0, -1.5
 TERMS = ("Env", "Whitted Ambient", "Whitted Diffuse", "Whitted Specular", "Whitted Reflection",
-         "Whitted Refraction")  # fmt: skip
+         "Whitted Refraction", "Emit")  # fmt: skip
 
 
 @pytest.fixture
@@ -32,6 +32,7 @@ def ball_scene(bpy_with_whitted):
     scene.render.resolution_percentage = 100
     scene.render.film_transparent = False
     scene.whitted.pixel_samples = 1
+    scene.world = None  # no World left by another test: a black background, no sky light
     for layer in list(scene.view_layers)[1:]:
         scene.view_layers.remove(layer)
     bpy.ops.object.camera_add(location=(0.0, 0.0, CAMERA_Z), rotation=(0.0, 0.0, 0.0))
@@ -102,7 +103,7 @@ def test_the_render_layers_node_offers_the_passes_the_view_layer_asks_for(ball_s
     offered = {socket.name for socket in node.outputs if socket.enabled}
     assert offered == {
         "Image", "Alpha", "Depth", "Mist", "IndexOB", "CryptoMaterial00", "CryptoMaterial01",
-        "CryptoMaterial02", *TERMS[1:],
+        "CryptoMaterial02", *TERMS[1:-1],
     }  # fmt: skip
     assert "Normal" not in offered and "CryptoObject00" not in offered
 
@@ -114,7 +115,7 @@ def test_the_passes_reach_blenders_multilayer_exr_exactly(ball_scene, tmp_path):
     for switch in ("use_pass_z", "use_pass_normal", "use_pass_object_index",
                    "use_pass_material_index", "use_pass_cryptomatte_object",
                    "use_pass_cryptomatte_material", "use_pass_environment",
-                   "use_pass_mist"):  # fmt: skip
+                   "use_pass_mist", "use_pass_emit"):  # fmt: skip
         setattr(layer, switch, True)
     layer.whitted.use_pass_terms = True
     if ball_scene.world is None:

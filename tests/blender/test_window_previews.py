@@ -1,6 +1,7 @@
 """Material previews in Blender 3.4's real window (under Xvfb) render with Whitted: the
-refraction sample's diffuse walls, its checker texture and its glass ball each get a
-thumbnail, made by Whitted's engine (its preview renders counted), that shows the material."""
+refraction sample's diffuse walls, its checker texture and its glass ball, and a pink node
+material, each get a thumbnail, made by Whitted's engine (its preview renders counted), that
+shows the material in its colour."""
 
 import json
 import os
@@ -33,7 +34,7 @@ def test_material_previews_render_with_whitted(display, tmp_path):
     assert out.is_file(), run.stdout[-3000:] + run.stderr[-3000:]
     seen = json.loads(out.read_text())
     previews = {name: np.array(rows) for name, rows in seen["materials"].items()}
-    assert sorted(previews) == ["Blue Wall", "Checker", "Glass", "Red Wall"]
+    assert sorted(previews) == ["Blue Wall", "Checker", "Glass", "Pink", "Red Wall"]
     assert seen["previews rendered by Whitted"] >= len(previews)
     for name, pixels in previews.items():
         assert pixels.shape == (128, 128, 3), name
@@ -44,6 +45,10 @@ def test_material_previews_render_with_whitted(display, tmp_path):
     assert red > 2 * blue and red > 2 * green
     red, green, blue = ball["Blue Wall"].mean(axis=(0, 1))
     assert blue > 2 * red and blue > 1.5 * green
+    # A node material in the colour its Principled BSDF was given, under the preview's bright
+    # lights (displayed: 1, 0.58, 0.77 for linear 1, 0.3, 0.55): red over blue over green
+    red, green, blue = ball["Pink"].mean(axis=(0, 1))
+    assert red > 1.1 * blue and blue > 1.15 * green, (red, green, blue)
     # The checker texture: dark and light squares both cover a good part of the ball
     brightness = ball["Checker"].mean(axis=2)
     assert (brightness < 0.3 * brightness.max()).mean() > 0.15

@@ -57,8 +57,7 @@ def new_scene(bpy):
 
 
 def white_lambertian(bpy):
-    """A Diffuse BSDF of albedo 1. (Whitted reads it through its Material panel, Phong
-    specular off, until node materials are read.)"""
+    """A Diffuse BSDF of albedo 1 (both renderers read the node)."""
     material = bpy.data.materials.new("White")
     material.use_nodes = True
     nodes = material.node_tree.nodes
@@ -67,9 +66,6 @@ def white_lambertian(bpy):
     diffuse.inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
     output = nodes.new("ShaderNodeOutputMaterial")
     material.node_tree.links.new(diffuse.outputs[0], output.inputs[0])
-    material.diffuse_color = (1.0, 1.0, 1.0, 1.0)
-    material.whitted.use_whitted = True
-    material.whitted.specular = (0.0, 0.0, 0.0)
     return material
 
 
@@ -133,7 +129,7 @@ def turned(degrees_x=0.0, degrees_y=0.0, degrees_z=0.0):
 
 
 def mirror(bpy):
-    """A perfect mirror: Cycles' Glossy BSDF of roughness 0, Whitted's reflectivity 1."""
+    """A perfect mirror: a Glossy BSDF of roughness 0 (both renderers read the node)."""
     material = bpy.data.materials.new("Mirror")
     material.use_nodes = True
     nodes = material.node_tree.nodes
@@ -143,11 +139,6 @@ def mirror(bpy):
     glossy.inputs["Roughness"].default_value = 0.0
     output = nodes.new("ShaderNodeOutputMaterial")
     material.node_tree.links.new(glossy.outputs[0], output.inputs[0])
-    settings = material.whitted
-    settings.use_whitted = True
-    settings.reflectivity = 1.0
-    material.diffuse_color = (0.0, 0.0, 0.0, 1.0)
-    settings.specular = (0.0, 0.0, 0.0)
     return material
 
 
@@ -203,3 +194,49 @@ def uniform_world(scene, colour, strength=1.0):
     background.inputs["Color"].default_value = (*colour, 1.0)
     background.inputs["Strength"].default_value = strength
     return world
+
+
+def node_material(bpy, name, shader_type, renamed=None, **inputs):
+    """A material of one shader node (bpy type name) into the Material Output, its inputs
+    set by name (underscores for spaces; `renamed` maps tuples of names, as `set_inputs`);
+    returns (material, the shader node)."""
+    material = bpy.data.materials.new(name)
+    material.use_nodes = True
+    nodes = material.node_tree.nodes
+    nodes.clear()
+    shader = nodes.new(shader_type)
+    set_inputs(shader, renamed, **inputs)
+    output = nodes.new("ShaderNodeOutputMaterial")
+    material.node_tree.links.new(shader.outputs[0], output.inputs[0])
+    return material, shader
+
+
+def set_inputs(node, renamed=None, **inputs):
+    """Set a node's inputs by name; `renamed` maps tuples of names to values, the first name
+    the node has taking it (names changed across versions: Transmission Weight was
+    Transmission)."""
+    for key, value in {**(renamed or {}), **inputs}.items():
+        names = key if isinstance(key, tuple) else (key.replace("_", " "),)
+        socket = next(node.inputs[n] for n in names if n in node.inputs)
+        if isinstance(value, tuple) and len(value) == 3 and socket.type == "RGBA":
+            value = (*value, 1.0)
+        socket.default_value = value
+
+
+def emissive_floor(bpy, scene, colours=((1.0, 0.2, 0.2), (0.2, 1.0, 0.2), (0.2, 0.2, 1.0),
+                                        (1.0, 1.0, 0.2))):  # fmt: skip
+    """Replace the plane by four emissive quadrants (Emission shaders, strength 1): a floor
+    whose colour no shadow or light changes, seen in mirrors and through glass alike by
+    both renderers. Its Ray Visibility > Diffuse is off, so that Cycles does not light
+    diffuse surfaces with it (Whitted's emissive surfaces light nothing)."""
+    bpy.data.objects.remove(bpy.data.objects["Plane"])
+    quads = ((-10, -10), (0, -10), (0, 0), (-10, 0))
+    for k, ((x, y), colour) in enumerate(zip(quads, colours, strict=True)):
+        mesh = bpy.data.meshes.new(f"Floor{k}")
+        mesh.from_pydata([(x, y, 0), (x + 10, y, 0), (x + 10, y + 10, 0), (x, y + 10, 0)], [],
+                         [(0, 1, 2, 3)])  # fmt: skip
+        material, _ = node_material(bpy, f"Glow{k}", "ShaderNodeEmission", Color=colour)
+        mesh.materials.append(material)
+        quad = bpy.data.objects.new(f"Floor{k}", mesh)
+        quad.visible_diffuse = False
+        scene.collection.objects.link(quad)

@@ -1,7 +1,7 @@
 """Run inside Blender's window: render each material's preview thumbnail (as the Material
 tab and the asset browser do: `ed.lib_id_generate_preview`), one at a time, and count the
 preview renders Whitted's engine made. Writes, to the path after `--`, JSON of each material's
-preview as RGB rows (row 0 at the top) and the count."""
+preview as RGB rows (row 0 at the top) and the count. Adds a pink node material first."""
 
 import json
 import sys
@@ -22,6 +22,10 @@ def counting_render(engine, depsgraph):
 
 
 final.render = counting_render
+# A node material as a user makes one (Principled, base colour pink), besides the sample's
+pink = bpy.data.materials.new("Pink")
+pink.use_nodes = True
+pink.node_tree.nodes["Principled BSDF"].inputs["Base Color"].default_value = (1.0, 0.3, 0.55, 1)
 queue = list(bpy.data.materials)
 state = {"material": None, "since": 0.0}
 
