@@ -146,6 +146,56 @@ def _holdout_mix(bpy):
                         ("ShaderNodeHoldout", {}), factor=0.5)  # fmt: skip
 
 
+def _group(bpy, name, inputs, outputs):
+    """A shader node group with sockets [(name, NodeSocket type)], in either API (Blender 4.0
+    moved them to `interface`), and its Group Input and Output nodes."""
+    tree = bpy.data.node_groups.new(name, "ShaderNodeTree")
+    for in_out, sockets in (("INPUT", inputs), ("OUTPUT", outputs)):
+        for socket_name, kind in sockets:
+            if hasattr(tree, "interface"):
+                tree.interface.new_socket(socket_name, in_out=in_out, socket_type=kind)
+            else:
+                (tree.inputs if in_out == "INPUT" else tree.outputs).new(kind, socket_name)
+    return tree, tree.nodes.new("NodeGroupInput"), tree.nodes.new("NodeGroupOutput")
+
+
+def _nested_groups(bpy):
+    """As asset packs build them: a group holding a group, values passed in through both
+    (a colour to a Diffuse BSDF inside the inner one, a Mix factor in the outer one), with a
+    reroute on the way."""
+    inner, inner_in, inner_out = _group(bpy, "Paint", [("Tint", "NodeSocketColor")],
+                                        [("Shader", "NodeSocketShader")])  # fmt: skip
+    paint = inner.nodes.new("ShaderNodeBsdfDiffuse")
+    inner.links.new(inner_in.outputs[0], paint.inputs["Color"])
+    inner.links.new(paint.outputs[0], inner_out.inputs[0])
+    outer, outer_in, outer_out = _group(bpy, "Lacquer", [("Tint", "NodeSocketColor"),
+                                        ("Gloss", "NodeSocketFloat")],
+                                        [("Shader", "NodeSocketShader")])  # fmt: skip
+    holder = outer.nodes.new("ShaderNodeGroup")
+    holder.node_tree = inner
+    outer.links.new(outer_in.outputs[0], holder.inputs[0])
+    glossy = outer.nodes.new("ShaderNodeBsdfGlossy")
+    glossy.inputs["Roughness"].default_value = 0.0
+    mix = outer.nodes.new("ShaderNodeMixShader")
+    outer.links.new(outer_in.outputs[1], mix.inputs[0])
+    outer.links.new(holder.outputs[0], mix.inputs[1])
+    reroute = outer.nodes.new("NodeReroute")
+    outer.links.new(glossy.outputs[0], reroute.inputs[0])
+    outer.links.new(reroute.outputs[0], mix.inputs[2])
+    outer.links.new(mix.outputs[0], outer_out.inputs[0])
+    material = bpy.data.materials.new("Lacquered")
+    material.use_nodes = True
+    tree = material.node_tree
+    tree.nodes.clear()
+    node = tree.nodes.new("ShaderNodeGroup")
+    node.node_tree = outer
+    node.inputs[0].default_value = (0.1, 0.5, 0.2, 1.0)
+    node.inputs[1].default_value = 0.25
+    output = tree.nodes.new("ShaderNodeOutputMaterial")
+    tree.links.new(node.outputs[0], output.inputs[0])
+    return material
+
+
 # Agreeing block by block: the smooth lobes, which Whitted computes as Cycles does
 MATERIALS = {
     "diffuse_red": _diffuse_red,
@@ -162,6 +212,7 @@ MATERIALS = {
     "principled_alpha": _principled_alpha,
     "unconnected_principled": _unconnected_principled,
     "holdout_mix": _holdout_mix,
+    "nested_groups": _nested_groups,
 }
 # Rough lobes keep their mirrors sharp (export/shader_lobes.py): the light they reflect is
 # Cycles', on average over the ball, not blurred as Cycles blurs it
