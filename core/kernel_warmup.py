@@ -49,6 +49,7 @@ def warmup_scene():
         PanelLight,
         PointLight,
         Scene,
+        ShaderNode,
         Sphere,
         SphereLight,
         Texture,
@@ -67,6 +68,8 @@ def warmup_scene():
     checker = np.zeros((2, 2, 3))
     checker[0, 0] = checker[1, 1] = 1.0
     glass = Material(transparency=0.5, reflectivity=0.3)
+    # A node material (folded by the compile, whose fold kernel it compiles)
+    node_material = Material(surface=ShaderNode("diffuse", {"Color": (0.8, 0.2, 0.2)}))
     return Scene(
         shapes=[
             Sphere("Sphere", glass, world_from_object=moved(-2)),
@@ -74,6 +77,7 @@ def warmup_scene():
             Mesh("Mesh", mesh=TriangleMesh(vertices, triangles), world_from_object=moved(4)),
             Csg("Csg", operation="difference", left=Box("Box"), right=Cylinder("Cylinder")),
             Sphere("Textured", Material(texture=Texture(pixels=checker)), moved(6)),
+            Sphere("Node material", node_material, moved(8)),
         ],
         lights=[
             PointLight((0.0, -4.0, 4.0), (1.0, 1.0, 1.0)),

@@ -1,11 +1,12 @@
 """Blender materials into `core.Material`.
 
 A material renders from its node tree, read as Cycles reads it from the active Material
-Output down (shader_nodes; the mapping onto Whitted's model in shader_lobes and
-principled), unless its Whitted panel says "Whitted Settings": then the panel's own values,
-the report's material, count. A material without nodes renders its viewport colour as a
-Lambert surface (Cycles' own fallback). What the tree holds that Whitted cannot honour is
-one warning per material, naming it, the nodes and what was used instead.
+Output down into a core shader graph (shader_nodes), which the kernels run per hit or the
+compile folds into numbers (core.kernels.shader_program has the mapping onto Whitted's model),
+unless its Whitted panel says "Whitted Settings": then the panel's own values, the report's
+material, count. A material without nodes renders its viewport colour as a Lambert surface
+(Cycles' own fallback). What the tree holds that Whitted cannot honour is one warning per
+material, naming it, the nodes and what was used instead.
 
 Images are read from Blender's own pixels, so packed, generated and on-disk images all work.
 """
@@ -16,11 +17,7 @@ import numpy as np
 
 from .. import core
 from ..compat import node_tree_in_use
-from .shader_lobes import Lobes
-from .shader_nodes import MaterialReader
-
-# The surface's share below which it is taken to be all glass (its lobes are divided by it)
-SURFACE_CUTOFF = 1e-9
+from .shader_nodes import GraphReader
 
 
 def find_node(datablock, node_type):
@@ -35,73 +32,44 @@ def convert(material, warn=None) -> core.Material:
     `warn(text)` gets the one warning of what its tree holds that Whitted cannot honour."""
     if material is None:
         return core.Material(name="(no material)")
-    settings = material.whitted
-    if settings.use_whitted:
+    if material.whitted.use_whitted:
         return _whitted_settings(material)
-    lobes, problems = read_lobes(material)
+    surface, problems = read_graph(material)
     if problems and warn is not None:
         warn(warning_text(material, problems))
-    texture = None
-    if lobes.texture is not None:
-        texture = image_texture(lobes.texture, material.name)
-    return from_lobes(lobes, material.name, material.pass_index, texture)
+    if surface is None:
+        lambert = tuple(float(c) for c in material.diffuse_color[:3])
+        tree = node_tree_in_use(material)
+        colour = lambert if tree is None else (0.0, 0.0, 0.0)  # nothing linked: black
+        return core.Material(diffuse=colour, name=material.name, pass_index=material.pass_index)
+    return core.Material(name=material.name, pass_index=material.pass_index, surface=surface)
 
 
-def read_lobes(material) -> tuple[Lobes, list[str]]:
-    """The material's lobes from its node tree, and what could not be honoured."""
+def read_graph(material, textures: bool = True):
+    """(core closure node or None, what could not be honoured) of the material's tree.
+    Without `textures`, images are not read (the panel's quick look)."""
     tree = node_tree_in_use(material)
     if tree is None:
-        lobes = Lobes()
-        lobes.add_diffuse(1.0, tuple(material.diffuse_color[:3]))
-        return lobes, []
-    reader = MaterialReader(material)
+        return None, []
+    owner = f"material '{material.name}'"
+    made: dict = {}  # one core Texture per image, however many nodes show it
+
+    def make(image):
+        if image.as_pointer() not in made:
+            texture = image_texture(image, owner=owner) if textures else _placeholder(image)
+            made[image.as_pointer()] = texture
+        return made[image.as_pointer()]
+
+    reader = GraphReader(material, make)
     return reader.read(tree), reader.problems
+
+
+def _placeholder(image):
+    return core.Texture(pixels=np.zeros((1, 1, 4)), srgb=False, name=image.name)
 
 
 def warning_text(material, problems: list[str]) -> str:
     return f"material '{material.name}': " + "; ".join(problems)
-
-
-def from_lobes(lobes: Lobes, name: str, pass_index: int = 0, texture=None) -> core.Material:
-    """The core material of weighted lobes: the glass's weight is the transparency, the
-    other lobes are shares of the rest (the integrator scales them by 1 - transparency)."""
-    glass = min(lobes.glass, 1.0)
-    surface = 1.0 - glass
-    per_surface = 1.0 / surface if surface > SURFACE_CUTOFF else 0.0
-    mirror_normal = lobes.mirror_normal * per_surface
-    mirror_edge = lobes.mirror_edge * per_surface
-    mirrors = bool(np.any(mirror_normal > 0.0) or np.any(mirror_edge > 0.0))
-    ks = lobes.highlight * per_surface
-    shininess = lobes.shininess_sum / lobes.highlight.mean() if np.any(ks > 0.0) else 1.0
-    per_glass = 1.0 / lobes.glass if lobes.glass > 0.0 else 0.0
-    return core.Material(
-        diffuse=_triple(lobes.diffuse * per_surface),
-        specular=_triple(ks),
-        shininess=float(shininess),
-        name=name,
-        reflectivity=1.0 if mirrors else 0.0,
-        transparency=glass,
-        outer_ior=1.0,
-        inner_ior=lobes.glass_ior_sum * per_glass if lobes.glass > 0.0 else 1.0,
-        texture=texture,
-        pass_index=pass_index,
-        mirror_colour=_triple(mirror_normal) if mirrors else (1.0, 1.0, 1.0),
-        mirror_edge=_triple(mirror_edge) if mirrors else None,
-        mirror_sees_lights=not lobes.rough_mirror,
-        coat=min(lobes.coat * per_surface, 1.0),
-        coat_ior=lobes.coat_ior_sum / lobes.coat if lobes.coat > 0.0 else 1.5,
-        coat_hides=lobes.coat_hides,
-        glass_reflect=_triple(lobes.glass_reflect * per_glass) if glass else (1.0, 1.0, 1.0),
-        glass_transmit=_triple(lobes.glass_transmit * per_glass) if glass else (1.0, 1.0, 1.0),
-        refraction_fresnel=lobes.refraction_fresnel_sum * per_glass if glass else 1.0,
-        emission=_triple(lobes.emission),
-        transparent=_triple(np.clip(lobes.transparent, 0.0, 1.0)),
-        holdout=min(lobes.holdout, 1.0),
-    )
-
-
-def _triple(values) -> tuple[float, float, float]:
-    return tuple(float(v) for v in np.maximum(values, 0.0)[:3])
 
 
 def _whitted_settings(material) -> core.Material:
@@ -145,9 +113,11 @@ def image_texture(image, material_name: str = "", owner: str = "") -> core.Textu
     width, height = image.size
     pixels = np.empty(width * height * image.channels, np.float32)
     image.pixels.foreach_get(pixels)
-    pixels = pixels.reshape(height, width, image.channels)[::-1, :, :3]
-    if image.channels < 3:
-        pixels = np.repeat(pixels[..., :1], 3, axis=2)
+    pixels = pixels.reshape(height, width, image.channels)[::-1]
+    if image.channels < 3:  # grey (and alpha): as RGB(A)
+        grey = np.repeat(pixels[..., :1], 3, axis=2)
+        pixels = np.concatenate([grey, pixels[..., 1:2]], axis=2) if image.channels == 2 else grey
+    pixels = pixels[..., :4]  # RGB, and alpha when the image has it
     linear = image.colorspace_settings.name in {"Non-Color", "Linear", "Linear Rec.709"}
     # Float images hold linear values whatever their colour space says
     srgb = not linear and not image.is_float

@@ -1,85 +1,335 @@
-"""A material's node tree read as Cycles reads it, into `Lobes` (shader_lobes has the terms).
-
-From the active Material Output's Surface socket down: Mix Shader and Add Shader combine
-what their inputs make; each BSDF, Emission and Holdout node adds its lobes
-(`SHADERS`). Inputs are read as constants: an unlinked socket's value, a Value or RGB node,
-and an Image Texture feeding a diffuse colour. Anything else is named in the material's
-warning with what was used in its place.
+"""A material's node tree, read as Cycles reads it, into a core shader graph
+(core.model.shader): from the active Material Output's Surface socket down, through reroutes
+and node groups, each node Whitted evaluates becoming a core `ShaderNode` (the kernels run it
+per hit, or the compile folds it). What Whitted cannot evaluate is noted, with what was used
+in its place, for the material's one warning.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from .. import core
 from ..compat import PRINCIPLED_LAYERED
 from .shader_graph import Feed, feed_of, node_label, output_node
-from .shader_lobes import Lobes
 
-# Mix Shader factors and weights below this add nothing (Cycles' closure cutoff)
-WEIGHT_CUTOFF = 1e-5
+# Principled BSDF inputs that change the look but are not modelled, with the value that
+# changes nothing and what is used instead
+_UNMODELLED = (
+    ("Coat Weight", 0.0, "no coat"),
+    ("Clearcoat", 0.0, "no clearcoat"),
+    ("Sheen Weight", 0.0, "no sheen"),
+    ("Sheen", 0.0, "no sheen"),
+    ("Subsurface Weight", 0.0, "the base colour as diffuse"),
+    ("Subsurface", 0.0, "the base colour as diffuse"),
+    ("Anisotropic", 0.0, "isotropic"),
+    ("Thin Film Thickness", 0.0, "no thin film"),
+    ("Diffuse Roughness", 0.0, "Lambert"),
+)
+# Blender's Math operations Whitted computes (the others: noted, their A used)
+MATH = set(core.model.shader.MATH_OPERATIONS)
+BLENDS = set(core.model.shader.MIX_BLENDS)
+# Value nodes: Blender node.type -> (core kind, {Blender output identifier or name: core
+# output name})
+OUTPUTS = {
+    "TEX_IMAGE": ("image", {"Color": "Color", "Alpha": "Alpha"}),
+    "TEX_COORD": (
+        "tex_coord",
+        {"UV": "UV", "Generated": "Generated", "Object": "Object", "Normal": "Normal"},
+    ),  # fmt: skip
+    "UVMAP": ("tex_coord", {"UV": "UV"}),
+    "MAPPING": ("mapping", {"Vector": "Vector"}),
+    "MATH": ("math", {"Value": "Value"}),
+    "MIX_RGB": ("mix_color", {"Color": "Color"}),
+    "MIX": (
+        "mix_color",
+        {
+            "Result": "Color",
+            "Result_Color": "Color",
+            "Result_Float": "Color",
+            "Result_Vector": "Color",
+        },
+    ),  # fmt: skip
+    "INVERT": ("invert", {"Color": "Color"}),
+    "GAMMA": ("gamma", {"Color": "Color"}),
+    "BRIGHTCONTRAST": ("bright_contrast", {"Color": "Color"}),
+    "HUE_SAT": ("hsv", {"Color": "Color"}),
+    "VALTORGB": ("color_ramp", {"Color": "Color", "Alpha": "Alpha"}),
+    "SEPXYZ": ("separate", {"X": "X", "Y": "Y", "Z": "Z"}),
+    "SEPRGB": ("separate", {"R": "X", "G": "Y", "B": "Z"}),
+    "SEPARATE_COLOR": ("separate", {"Red": "X", "Green": "Y", "Blue": "Z"}),
+    "COMBXYZ": ("combine", {"Vector": "Vector"}),
+    "COMBRGB": ("combine", {"Image": "Vector"}),
+    "COMBINE_COLOR": ("combine", {"Color": "Vector"}),
+    "RGBTOBW": ("to_bw", {"Val": "Val"}),
+    "TEX_CHECKER": ("checker", {"Color": "Color", "Fac": "Fac"}),
+    "TEX_GRADIENT": ("gradient", {"Color": "Color", "Fac": "Fac"}),
+}
 
 
-class MaterialReader:
-    """Reads one material's tree; `problems` lists what it could not honour, each once."""
+class GraphReader:
+    """Reads one material's tree into a core graph; `problems` lists what it could not
+    honour, each once; `image_texture(image)` makes a core Texture of a Blender image."""
 
-    def __init__(self, material):
+    def __init__(self, material, image_texture):
         self.material = material
+        self.image_texture = image_texture
         self.problems: list[str] = []
+        self.made: dict = {}  # (node, group path) -> core ShaderNode
+        self.depth = 0  # value nodes being read, one inside the other
 
     def note(self, text: str) -> None:
         if text not in self.problems:
             self.problems.append(text)
 
-    def read(self, tree) -> Lobes:
+    def read(self, tree) -> core.ShaderNode | None:
+        """The closure node the surface renders from, or None (nothing linked: black)."""
         output = output_node(tree)
         if output is None:
             self.note("its node tree has no Material Output: rendered black")
-            return Lobes()
+            return None
         for name in ("Volume", "Displacement"):
             socket = output.inputs.get(name)
             if socket is not None and socket.is_linked:
                 used = "the surface's own normal" if name == "Displacement" else "nothing"
                 self.note(f"the Material Output's {name} is not rendered (used: {used})")
-        return self.shader(feed_of(output.inputs["Surface"]), 1.0)
+        return self.shader(feed_of(output.inputs["Surface"]))
 
-    def shader(self, feed: Feed, weight: float) -> Lobes:
-        if feed.node is None or weight < WEIGHT_CUTOFF:
-            return Lobes()  # an unlinked shader socket adds nothing, as in Cycles
+    # shaders
+
+    def shader(self, feed: Feed) -> core.ShaderNode | None:
         node = feed.node
+        if node is None:
+            return None  # an unlinked shader socket adds nothing, as in Cycles
         if getattr(node, "mute", False):
-            # A muted node passes its first linked shader input through
-            for socket in node.inputs:
+            for socket in node.inputs:  # a muted node passes its first linked shader through
                 if socket.type == "SHADER" and socket.is_linked:
-                    return self.shader(feed_of(socket, feed.groups), weight)
-            return Lobes()
-        read = SHADERS.get(node.type)
-        if read is None:
-            self.note(f"node {node_label(node)} is not a shader Whitted renders (used: black)")
-            return Lobes()
-        return read(self, node, feed.groups, weight)
+                    return self.shader(feed_of(socket, feed.groups))
+            return None
+        key = (node.as_pointer(), tuple(g.as_pointer() for g in feed.groups))
+        if key not in self.made:
+            self.made[key] = self._shader(node, feed.groups)
+        return self.made[key]
 
-    def number(self, node, groups, *names, default=0.0) -> float:
-        """A float input's value by the first of `names` the node has."""
-        socket = _input(node, names)
-        if socket is None:
-            return default
-        value = self._constant(socket, groups, node)
-        return float(value if np.ndim(value) == 0 else np.mean(np.asarray(value)[:3]))
+    def _shader(self, node, groups):
+        kind = node.type
+        v = self.value
+        if kind in ("MIX_SHADER", "ADD_SHADER"):
+            first = 1 if kind == "MIX_SHADER" else 0
+            made = core.ShaderNode(kind.lower(), name=node.name)
+            if kind == "MIX_SHADER":
+                made.inputs["Fac"] = v(node, groups, "Fac")
+            for name, socket in zip(("Shader A", "Shader B"), node.inputs[first : first + 2],
+                                    strict=True):  # fmt: skip
+                inner = self.shader(feed_of(socket, groups))
+                if inner is not None:
+                    made.inputs[name] = core.Link(inner)
+            return made
+        if kind == "BSDF_PRINCIPLED":
+            return self._principled(node, groups)
+        simple = {
+            "BSDF_DIFFUSE": ("diffuse", ("Color",)),
+            "BSDF_GLOSSY": ("glossy", ("Color", "Roughness")),
+            "BSDF_ANISOTROPIC": ("glossy", ("Color", "Roughness")),
+            "BSDF_METALLIC": ("metallic", ("Base Color", "Edge Tint", "Roughness")),
+            "BSDF_GLASS": ("glass", ("Color", "IOR")),
+            "BSDF_REFRACTION": ("refraction", ("Color", "IOR")),
+            "BSDF_TRANSPARENT": ("transparent", ("Color",)),
+            "EMISSION": ("emission", ("Color", "Strength")),
+            "HOLDOUT": ("holdout", ()),
+        }
+        if kind not in simple:
+            if kind == "BSDF_TRANSLUCENT":
+                self.note(f"{node_label(node)}: light through thin surfaces is not computed "
+                          "(used: black)")  # fmt: skip
+            else:
+                self.note(f"node {node_label(node)} is not a shader Whitted renders "
+                          "(used: black)")  # fmt: skip
+            return None
+        core_kind, names = simple[kind]
+        made = core.ShaderNode(core_kind, name=node.name)
+        for name in names:
+            made.inputs[name] = v(node, groups, name)
+        if kind == "BSDF_DIFFUSE" and self._number(node, "Roughness") > 0.0:
+            self.note(f"{node_label(node)}'s Roughness is not modelled (used: Lambert, 0)")
+        if kind == "BSDF_METALLIC" and getattr(node, "fresnel_type", "F82") != "F82":
+            self.note(f"{node_label(node)}'s Physical Conductor Fresnel (used: F82 Tint)")
+        if kind == "BSDF_TRANSPARENT":
+            colour = made.inputs["Color"]
+            if not isinstance(colour, core.Link) and np.ptp(colour) > 1e-6:
+                self.note(f"{node_label(node)}'s colour tints what is seen through it, not "
+                          f"the shadows it casts (used: its mean, {float(np.mean(colour)):.3g}, "
+                          "for shadows)")  # fmt: skip
+        self.linked(node, groups, "Normal", "the surface's own normal")
+        return made
 
-    def colour(self, node, groups, *names, textures=False):
-        """(RGB, Image Texture's image or None) of a colour input; an image only where
-        `textures` (a diffuse colour)."""
-        socket = _input(node, names)
-        if socket is None:
-            return np.ones(3), None
+    def _principled(self, node, groups):
+        for name, neutral, used in _UNMODELLED:
+            if node.inputs.get(name) is not None and self._number(node, name) != neutral:
+                self.note(f"{node_label(node)}'s {name} is not modelled (used: {used})")
+        for name in ("Normal", "Coat Normal", "Clearcoat Normal", "Tangent"):
+            self.linked(node, groups, name, "the surface's own normal")
+        v = self.value
+        made = core.ShaderNode("principled", name=node.name,
+                               settings={"layered": PRINCIPLED_LAYERED})  # fmt: skip
+        renamed = {
+            "Base Color": ("Base Color",),
+            "Metallic": ("Metallic",),
+            "Roughness": ("Roughness",),
+            "IOR": ("IOR",),
+            "Alpha": ("Alpha",),
+            "Transmission": ("Transmission Weight", "Transmission"),
+            "Emission Color": ("Emission Color", "Emission"),
+            "Emission Strength": ("Emission Strength",),
+            "Specular": ("Specular IOR Level", "Specular"),
+            "Specular Tint": ("Specular Tint",),
+        }
+        for core_name, names in renamed.items():
+            name = next((n for n in names if node.inputs.get(n) is not None), None)
+            if name is not None:
+                made.inputs[core_name] = v(node, groups, name)
+        tint = made.inputs.get("Specular Tint")
+        constant_tint = tint is not None and not isinstance(tint, core.Link)
+        dielectric = made.inputs.get("Metallic", 0.0) != 1.0
+        if PRINCIPLED_LAYERED and constant_tint and dielectric and not np.allclose(tint, 1.0):
+            self.note(f"{node_label(node)}'s Specular Tint on a dielectric (used: white)")
+        return made
+
+    # values
+
+    def value(self, node, groups, name):
+        """What feeds input `name` of `node`: its constant, or a Link to the core node made
+        of what is linked to it (the input's own value, noted, where Whitted cannot)."""
+        return self._socket_value(node, groups, node.inputs[name])
+
+    def _value_node(self, feed: Feed):
+        """A Link to the core node computing the fed output, or None when Whitted cannot."""
+        node, socket = feed.node, feed.socket
+        if node.type in ("VALUE", "RGB"):
+            return _constant(socket)
+        if node.type not in OUTPUTS:
+            return None
+        kind, names = OUTPUTS[node.type]
+        # by identifier first: names change across versions (Fac became Factor in 5.0)
+        output = names.get(socket.identifier, names.get(socket.name))
+        if output is None:
+            self.note(f"{node_label(node)}'s output {socket.name} is not evaluated")
+            return None
+        key = (node.as_pointer(), tuple(g.as_pointer() for g in feed.groups))
+        if key not in self.made:
+            self.made[key] = self._make_value_node(node, feed.groups, kind)
+        made = self.made[key]
+        return None if made is None else core.Link(made, output)
+
+    def _make_value_node(self, node, groups, kind):
+        v = self.value
+        made = core.ShaderNode(kind, name=node.name)
+        t = node.type
+        if t == "TEX_IMAGE":
+            if node.image is None:
+                return None
+            made.settings["texture"] = self.image_texture(node.image)
+            interpolation = node.interpolation if node.interpolation in ("Linear", "Closest") \
+                else "Linear"  # fmt: skip
+            if node.interpolation not in ("Linear", "Closest"):
+                self.note(f"{node_label(node)}'s {node.interpolation} interpolation (used: "
+                          "Linear)")  # fmt: skip
+            made.settings["interpolation"] = interpolation
+            made.settings["extension"] = getattr(node, "extension", "REPEAT")
+            if node.projection != "FLAT":
+                self.note(f"{node_label(node)}'s {node.projection.title()} projection (used: "
+                          "Flat)")  # fmt: skip
+            made.inputs["Vector"] = self._vector(node, groups, "Vector")
+        elif t in ("TEX_CHECKER", "TEX_GRADIENT"):
+            made.inputs["Vector"] = self._vector(node, groups, "Vector")
+            if t == "TEX_CHECKER":
+                for name in ("Color1", "Color2", "Scale"):
+                    made.inputs[name] = v(node, groups, name)
+            else:
+                made.settings["type"] = node.gradient_type
+        elif t == "TEX_COORD":
+            if getattr(node, "object", None) is not None:
+                self.note(f"{node_label(node)}'s Object (used: the surface's own object)")
+        elif t == "UVMAP":
+            pass  # the active UV map is exported
+        elif t == "MAPPING":
+            made.settings["type"] = node.vector_type
+            for name in ("Vector", "Location", "Rotation", "Scale"):
+                if node.inputs.get(name) is not None and node.inputs[name].enabled:
+                    made.inputs[name] = v(node, groups, name)
+        elif t == "MATH":
+            operation = node.operation if node.operation in MATH else "ADD"
+            if node.operation not in MATH:
+                self.note(f"{node_label(node)}'s {node.operation.title()} (used: Add)")
+            made.settings.update(operation=operation, clamp=bool(node.use_clamp))
+            for core_name, socket in zip(("A", "B", "C"), node.inputs, strict=False):
+                made.inputs[core_name] = self._socket_value(node, groups, socket)
+        elif t in ("MIX_RGB", "MIX"):
+            blend = node.blend_type if node.blend_type in BLENDS else "MIX"
+            if node.blend_type not in BLENDS:
+                self.note(f"{node_label(node)}'s {node.blend_type.title()} (used: Mix)")
+            clamp = getattr(node, "use_clamp", False) or getattr(node, "clamp_result", False)
+            made.settings.update(blend=blend, clamp=bool(clamp))
+            for core_name, socket in zip(("Fac", "A", "B"), _mix_inputs(node), strict=True):
+                made.inputs[core_name] = self._socket_value(node, groups, socket)
+        elif t == "VALTORGB":
+            ramp = node.color_ramp
+            made.settings["stops"] = tuple((e.position, tuple(e.color)) for e in ramp.elements)
+            interpolation = ramp.interpolation
+            if interpolation not in ("LINEAR", "CONSTANT", "EASE") or ramp.color_mode != "RGB":
+                self.note(f"{node_label(node)}'s {interpolation.title()} interpolation in "
+                          f"{ramp.color_mode} (used: Linear in RGB)")  # fmt: skip
+                interpolation = "LINEAR"
+            made.settings["interpolation"] = interpolation
+            made.inputs["Fac"] = v(node, groups, "Fac")
+        elif t in ("SEPXYZ", "SEPRGB", "SEPARATE_COLOR"):
+            if getattr(node, "mode", "RGB") != "RGB":
+                self.note(f"{node_label(node)}'s {node.mode} mode (used: RGB)")
+            made.inputs["Vector"] = self._socket_value(node, groups, node.inputs[0])
+        elif t in ("COMBXYZ", "COMBRGB", "COMBINE_COLOR"):
+            if getattr(node, "mode", "RGB") != "RGB":
+                self.note(f"{node_label(node)}'s {node.mode} mode (used: RGB)")
+            for core_name, socket in zip(("X", "Y", "Z"), node.inputs, strict=False):
+                made.inputs[core_name] = self._socket_value(node, groups, socket)
+        elif t == "INVERT":
+            made.inputs.update(Fac=v(node, groups, "Fac"), Color=v(node, groups, "Color"))
+        elif t == "GAMMA":
+            made.inputs.update(Color=v(node, groups, "Color"), Gamma=v(node, groups, "Gamma"))
+        elif t == "BRIGHTCONTRAST":
+            made.inputs.update(Color=v(node, groups, "Color"), Bright=v(node, groups, "Bright"),
+                               Contrast=v(node, groups, "Contrast"))  # fmt: skip
+        elif t == "HUE_SAT":
+            for name in ("Hue", "Saturation", "Value", "Fac", "Color"):
+                made.inputs[name] = v(node, groups, name)
+        elif t == "RGBTOBW":
+            made.inputs["Color"] = v(node, groups, "Color")
+        return made
+
+    def _vector(self, node, groups, name):
+        """A texture's Vector: what feeds it, or None (its own default coordinates)."""
+        socket = node.inputs.get(name)
+        if socket is None or feed_of(socket, groups).node is None:
+            return None
+        return self.value(node, groups, name)
+
+    def _socket_value(self, node, groups, socket):
+        """`value` for a socket given as itself (nodes whose inputs share names)."""
         feed = feed_of(socket, groups)
-        if textures and feed.node is not None and feed.node.type == "TEX_IMAGE":
-            image = feed.node.image
-            if image is not None:
-                return np.ones(3), image
-        value = self._constant(socket, groups, node)
-        rgb = np.asarray(value, float).ravel()
-        return (np.repeat(rgb[:1], 3) if rgb.size == 1 else rgb[:3]), None
+        if feed.node is None:
+            return _constant(feed.socket)
+        if self.depth >= core.model.shader.MAX_GRAPH_DEPTH:
+            made = None  # deeper than the core walks: the socket's own value, noted below
+        else:
+            self.depth += 1
+            made = self._value_node(feed)
+            self.depth -= 1
+        if made is None:
+            fallback = _constant(socket)
+            used = _shown(fallback)
+            self.note(f"node {node_label(feed.node)} feeding {node_label(node)}'s "
+                      f"{socket.name} is not evaluated (used: its value {used})")  # fmt: skip
+            return fallback
+        return made
 
     def linked(self, node, groups, name, what: str) -> None:
         """Note an input Whitted does not read, when something feeds it."""
@@ -87,35 +337,30 @@ class MaterialReader:
         if socket is not None and feed_of(socket, groups).node is not None:
             self.note(f"{node_label(node)}'s {name} is not read (used: {what})")
 
-    def _constant(self, socket, groups, consumer):
-        feed = feed_of(socket, groups)
-        if feed.node is None:
-            return _value(feed.socket)
-        if feed.node.type in ("VALUE", "RGB"):
-            return _value(feed.socket)
-        fallback = _value(socket)
-        shown = _shown(fallback)
-        self.note(
-            f"node {node_label(feed.node)} feeding {node_label(consumer)}'s {socket.name} is "
-            f"not evaluated (used: its value {shown})"
-        )
-        return fallback
+    def _number(self, node, name) -> float:
+        value = _constant(node.inputs[name])
+        return float(value if np.ndim(value) == 0 else np.mean(value))
 
 
-def _input(node, names):
-    for name in names:
-        socket = node.inputs.get(name)
-        if socket is not None and getattr(socket, "enabled", True):
-            return socket
-    return None
+def _mix_inputs(node):
+    """(factor, A, B) sockets of a Mix Color: MixRGB's three, or the Mix node's colour ones
+    (Blender 3.4 on, which keeps a pair of sockets per data type)."""
+    if node.type == "MIX_RGB":
+        return node.inputs[0], node.inputs[1], node.inputs[2]
+    by_id = {socket.identifier: socket for socket in node.inputs}
+    kind = {"RGBA": "Color", "FLOAT": "Float", "VECTOR": "Vector"}.get(node.data_type, "Color")
+    factor = by_id.get("Factor_Float") or node.inputs[0]
+    return factor, by_id.get(f"A_{kind}", node.inputs[1]), by_id.get(f"B_{kind}", node.inputs[2])
 
 
-def _value(socket):
+def _constant(socket):
+    """A socket's own value: a float, or the first three of a colour or vector."""
     value = getattr(socket, "default_value", 0.0)
     try:
-        return tuple(value)
+        values = tuple(float(x) for x in value)
     except TypeError:
-        return value
+        return float(value)
+    return values[:3] if len(values) >= 3 else (values + (0.0,) * 3)[:3]
 
 
 def _shown(value) -> str:
@@ -124,121 +369,17 @@ def _shown(value) -> str:
     return ", ".join(f"{float(v):g}" for v in list(value)[:3])
 
 
-def _clamped(value: float) -> float:
-    return min(max(value, 0.0), 1.0)
-
-
-# The shader nodes, by node.type: each reads its node into weighted lobes
-
-
-def _mix(reader, node, groups, weight):
-    factor = _clamped(reader.number(node, groups, "Fac"))
-    lobes = reader.shader(feed_of(node.inputs[1], groups), weight * (1.0 - factor))
-    lobes.add(reader.shader(feed_of(node.inputs[2], groups), weight * factor))
-    return lobes
-
-
-def _add(reader, node, groups, weight):
-    lobes = reader.shader(feed_of(node.inputs[0], groups), weight)
-    lobes.add(reader.shader(feed_of(node.inputs[1], groups), weight))
-    return lobes
-
-
-def _diffuse(reader, node, groups, weight):
-    colour, image = reader.colour(node, groups, "Color", textures=True)
-    if reader.number(node, groups, "Roughness") > 0.0:
-        reader.note(f"{node_label(node)}'s Roughness is not modelled (used: Lambert, 0)")
-    reader.linked(node, groups, "Normal", "the surface's own normal")
-    lobes = Lobes()
-    lobes.add_diffuse(weight, np.maximum(colour, 0.0), image)
-    return lobes
-
-
-def _glossy(reader, node, groups, weight):
-    colour, _ = reader.colour(node, groups, "Color")
-    roughness = _clamped(reader.number(node, groups, "Roughness"))
-    reader.linked(node, groups, "Normal", "the surface's own normal")
-    lobes = Lobes()
-    tint = np.maximum(colour, 0.0)
-    lobes.add_mirror(weight, tint, tint, roughness)
-    return lobes
-
-
-def _metallic(reader, node, groups, weight):
-    """Blender 4.3's Metallic BSDF: F82 Tint (Base Color to Edge Tint), as Schlick's."""
-    colour, _ = reader.colour(node, groups, "Base Color")
-    edge, _ = reader.colour(node, groups, "Edge Tint")
-    if getattr(node, "fresnel_type", "F82") != "F82":
-        reader.note(f"{node_label(node)}'s Physical Conductor Fresnel (used: F82 Tint)")
-    roughness = _clamped(reader.number(node, groups, "Roughness"))
-    lobes = Lobes()
-    lobes.add_mirror(weight, np.clip(colour, 0.0, 1.0), np.clip(edge, 0.0, 1.0), roughness)
-    return lobes
-
-
-def _glass(reader, node, groups, weight, fresnel=1.0):
-    colour, _ = reader.colour(node, groups, "Color")
-    ior = max(reader.number(node, groups, "IOR", default=1.45), 1e-5)
-    reader.linked(node, groups, "Normal", "the surface's own normal")
-    tint = np.maximum(colour, 0.0)
-    lobes = Lobes()
-    lobes.add_glass(weight, ior, tint * fresnel, tint, fresnel)
-    return lobes
-
-
-def _refraction(reader, node, groups, weight):
-    return _glass(reader, node, groups, weight, fresnel=0.0)
-
-
-def _transparent(reader, node, groups, weight):
-    colour, _ = reader.colour(node, groups, "Color")
-    if np.ptp(colour) > 1e-6:
-        reader.note(
-            f"{node_label(node)}'s colour tints what is seen through it, not the shadows it "
-            f"casts (used: its mean, {float(np.mean(colour)):.3g}, for shadows)"
-        )
-    lobes = Lobes()
-    lobes.transparent += weight * np.clip(colour, 0.0, 1.0)
-    return lobes
-
-
-def _emission(reader, node, groups, weight):
-    colour, _ = reader.colour(node, groups, "Color")
-    strength = reader.number(node, groups, "Strength", default=1.0)
-    lobes = Lobes()
-    lobes.emission += weight * np.maximum(colour * strength, 0.0)
-    return lobes
-
-
-def _holdout(reader, node, groups, weight):
-    lobes = Lobes()
-    lobes.holdout += weight
-    return lobes
-
-
-def _translucent(reader, node, groups, weight):
-    reader.note(f"{node_label(node)}: light through thin surfaces is not computed (used: black)")
-    return Lobes()
-
-
-def _principled(reader, node, groups, weight):
-    from .principled import principled_lobes
-
-    return principled_lobes(reader, node, groups, weight, PRINCIPLED_LAYERED)
-
-
-SHADERS = {
-    "MIX_SHADER": _mix,
-    "ADD_SHADER": _add,
-    "BSDF_PRINCIPLED": _principled,
-    "BSDF_DIFFUSE": _diffuse,
-    "BSDF_GLOSSY": _glossy,
-    "BSDF_ANISOTROPIC": _glossy,
-    "BSDF_METALLIC": _metallic,
-    "BSDF_GLASS": _glass,
-    "BSDF_REFRACTION": _refraction,
-    "BSDF_TRANSPARENT": _transparent,
-    "BSDF_TRANSLUCENT": _translucent,
-    "EMISSION": _emission,
-    "HOLDOUT": _holdout,
-}
+def closure_kinds(surface) -> list[str]:
+    """The closure kinds a graph renders with, for the material panel."""
+    found, stack, seen = [], [surface], set()
+    while stack:
+        node = stack.pop()
+        if node is None or id(node) in seen:
+            continue
+        seen.add(id(node))
+        if node.kind not in ("mix_shader", "add_shader") and node.kind not in found:
+            found.append(node.kind)
+        for given in node.inputs.values():
+            if isinstance(given, core.Link) and given.node.is_closure:
+                stack.append(given.node)
+    return found

@@ -4,7 +4,8 @@ cannot honour, or the report's material (Whitted Settings)."""
 import bpy
 
 from ..compat import node_tree_in_use
-from ..export.material import find_node, read_lobes
+from ..export.material import find_node, read_graph
+from ..export.shader_nodes import closure_kinds
 from .base import WhittedPanel, draw_warnings
 
 
@@ -43,7 +44,9 @@ class WHITTED_PT_material(WhittedPanel, bpy.types.Panel):
             layout.label(text="No nodes: its Viewport Display colour, as Lambert", icon="INFO")
             layout.prop(material, "diffuse_color", text="Color")
             return
-        lobes, problems = read_lobes(material)
+        surface, problems = read_graph(material, textures=False)
         layout.label(text="From the node tree, as Cycles reads it", icon="NODETREE")
-        layout.label(text="Renders as: " + (", ".join(lobes.kinds()) or "nothing (black)"))
+        kinds = closure_kinds(surface) if surface is not None else []
+        shown = ", ".join(kind.replace("_", " ") for kind in kinds) or "nothing (black)"
+        layout.label(text="Renders as: " + shown)
         draw_warnings(layout, context, [f"material '{material.name}': {p}" for p in problems])

@@ -33,7 +33,7 @@ from ..model import RenderSettings, Scene
 from .csg import owner_rows, pack_csg
 from .frame import pack_frame
 from .lights import pack_lights
-from .materials import pack_materials
+from .materials import pack_materials, shadow_shares
 from .meshes import pack_meshes
 from .shapes import pack_geometry
 from .surfaces import pack_surfaces
@@ -68,8 +68,10 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
     check_fits(estimate(shapes, settings))
     materials, material_of = pack_materials(shapes)
     meshes, mesh_of = pack_meshes(shapes)
+    lets_through = shadow_shares(materials)
+    shadow_share = [lets_through[material_of[id(s.material)]] for s in shapes]
     geometry = pack_geometry(scene.shapes, shapes, world_from_object, csg, tree_of_row,
-                             meshes, mesh_of)  # fmt: skip
+                             meshes, mesh_of, shadow_share)  # fmt: skip
     owners = [scene.shapes[row] for row in owner_rows(csg, tree_of_row, len(scene.shapes))]
     surfaces = pack_surfaces(shapes, owners, material_of, meshes)
     lights = pack_lights(scene.lights, scene.environment)

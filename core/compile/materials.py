@@ -1,14 +1,39 @@
 """Materials and their textures: one row per distinct `Material`, all texture pixels in one
-float32 array with an offset and size per texture (each `Texture` loaded once)."""
+float32 array with an offset and size per texture (each `Texture` loaded once), and the
+shader programs of node materials (core.compile.shader_program): a program that reads
+nothing of the hit is run here once and its terms stored in the row; the others run per hit.
+"""
 
 from __future__ import annotations
 
 import numpy as np
 
+from ..errors import SceneError
 from ..kernels.layout import Materials
+from ..kernels.shader_fold import FOLDED_COLUMNS, fold_surfaces
+from ..kernels.shader_program import SHADER_STACK
 from ..passes import crypto_id
 from ..textures import load_texture
 from .arrays import concatenated, rows
+from .shader_program import ProgramBuilder
+
+
+class _Textures:
+    """Each distinct Texture's pixels once, with its row."""
+
+    def __init__(self):
+        self.loaded: list = []  # (rgb (h, w, 3), alpha (h, w))
+        self.row_of: dict = {}
+
+    def row(self, texture, owner: str = "") -> int:
+        if id(texture) not in self.row_of:
+            self.row_of[id(texture)] = len(self.loaded)
+            rgb = load_texture(texture, owner)
+            alpha = np.ones(rgb.shape[:2], np.float32)
+            if texture.pixels is not None and np.asarray(texture.pixels).shape[2] == 4:
+                alpha = np.asarray(texture.pixels, np.float32)[:, :, 3]
+            self.loaded.append((rgb, alpha))
+        return self.row_of[id(texture)]
 
 
 def pack_materials(shapes: list) -> tuple[Materials, dict[int, int]]:
@@ -18,12 +43,13 @@ def pack_materials(shapes: list) -> tuple[Materials, dict[int, int]]:
         if id(shape.material) not in row_of:
             row_of[id(shape.material)] = len(materials)
             materials.append((shape.material, shape.owner))
-    textures, texture_of = [], {}
+    textures = _Textures()
+    texture_rows = []
     for material, user in materials:
+        owner = f"material '{material.name}' (on {user})"
         texture = material.texture
-        if texture is not None and id(texture) not in texture_of:
-            texture_of[id(texture)] = len(textures)
-            textures.append(load_texture(texture, f"material '{material.name}' (on {user})"))
+        texture_rows.append(-1 if texture is None else textures.row(texture, owner))
+    programs = [_program(m, user, textures) for m, user in materials]
     table = Materials(
         diffuse=rows([m.diffuse for m, _ in materials]),
         specular=rows([m.specular for m, _ in materials]),
@@ -31,14 +57,16 @@ def pack_materials(shapes: list) -> tuple[Materials, dict[int, int]]:
         reflectivity=np.array([m.reflectivity for m, _ in materials], float),
         transparency=np.array([m.transparency for m, _ in materials], float),
         ior=rows([(m.outer_ior, m.inner_ior) for m, _ in materials], 2),
-        texture=np.array([texture_of.get(id(m.texture), -1) for m, _ in materials], np.int32),
-        texture_pixels=concatenated([t.reshape(-1, 3) for t in textures], (0, 3), np.float32),
-        texture_offset=np.cumsum([0] + [t.shape[0] * t.shape[1] for t in textures])[:-1].astype(
-            np.int64
-        ),
-        texture_size=np.array([(t.shape[1], t.shape[0]) for t in textures], np.int64).reshape(
-            -1, 2
-        ),
+        texture=np.array(texture_rows, np.int32),
+        texture_pixels=concatenated(
+            [t.reshape(-1, 3) for t, _ in textures.loaded], (0, 3), np.float32
+        ),  # fmt: skip
+        texture_offset=np.cumsum([0] + [t.shape[0] * t.shape[1] for t, _ in textures.loaded])[
+            :-1
+        ].astype(np.int64),
+        texture_size=np.array(
+            [(t.shape[1], t.shape[0]) for t, _ in textures.loaded], np.int64
+        ).reshape(-1, 2),  # fmt: skip
         pass_index=np.array([m.pass_index for m, _ in materials], np.int32),
         crypto=np.array([crypto_id(m.name) for m, _ in materials], np.float32),
         mirror=_pairs([(m.mirror_colour, _edge(m)) for m, _ in materials]),
@@ -49,8 +77,100 @@ def pack_materials(shapes: list) -> tuple[Materials, dict[int, int]]:
         emission=rows([m.emission for m, _ in materials]),
         transparent=rows([m.transparent for m, _ in materials]),
         holdout=np.array([m.holdout for m, _ in materials], float),
+        texture_alpha=concatenated([a.ravel() for _, a in textures.loaded], (0,), np.float32),
+        **_program_tables(programs),
     )
+    _fold_constant_programs(table, programs)
     return table, row_of
+
+
+def _program(material, user: str, textures: _Textures):
+    """The material's shader program, or None; one too large for the kernels' stack is
+    refused (the kernels do not check bounds)."""
+    if material.surface is None:
+        return None
+    program = ProgramBuilder(textures.row).build(material.surface)
+    needed = len(program.constants) + program.values
+    if needed > SHADER_STACK:
+        raise SceneError(
+            f"material '{material.name}' (on {user})",
+            "surface",
+            f"its node graph needs {needed:,} numbers at a hit; at most {SHADER_STACK:,} fit: "
+            "simplify it (fewer nodes, or fewer Color Ramp stops)",
+        )
+    return program
+
+
+def _program_tables(programs: list) -> dict:
+    ops, constants, ranges, constant_ranges = [], [], [], []
+    step = constant = 0
+    for program in programs:
+        if program is None:
+            ranges.append((-1, -1))
+            constant_ranges.append((0, 0))
+            continue
+        program_ops, program_constants = program.resolved()
+        ranges.append((step, step + len(program_ops)))
+        constant_ranges.append((constant, constant + len(program_constants)))
+        ops.append(program_ops)
+        constants.append(program_constants)
+        step += len(program_ops)
+        constant += len(program_constants)
+    return dict(
+        shader_range=np.array(ranges, np.int64).reshape(-1, 2),
+        shader_constant_range=np.array(constant_ranges, np.int64).reshape(-1, 2),
+        shader_ops=concatenated(ops, (0, 8), np.int32),
+        shader_constants=concatenated(constants, (0,), np.float64),
+    )
+
+
+def _fold_constant_programs(table: Materials, programs: list) -> None:
+    """Run each program that reads nothing of the hit once; its terms become the row's."""
+    constant = [k for k, p in enumerate(programs) if p is not None and not p.varying]
+    if not constant:
+        return
+    out = np.zeros((len(constant), FOLDED_COLUMNS))
+    fold_surfaces(table, np.array(constant, np.int64), out)
+    for k, row in zip(constant, out, strict=True):
+        table.diffuse[k] = row[0:3]
+        table.specular[k] = row[3:6]
+        table.shininess[k] = row[6]
+        table.reflectivity[k] = row[7]
+        table.transparency[k] = row[8]
+        table.ior[k] = row[9:11]
+        table.mirror[k, 0], table.mirror[k, 1] = row[11:14], row[14:17]
+        table.mirror_hides_lights[k] = row[17] != 0.0
+        table.coat[k] = row[18:21]
+        table.glass_tint[k, 0], table.glass_tint[k, 1] = row[21:24], row[24:27]
+        table.refraction_fresnel[k] = row[27]
+        table.emission[k] = row[28:31]
+        table.transparent[k] = row[31:34]
+        table.holdout[k] = row[34]
+        table.shader_range[k] = (-1, -1)
+
+
+def shadow_shares(table: Materials) -> np.ndarray:
+    """What one crossing of each material's surface lets a shadow ray through: its
+    transparency plus the mean of what passes it straight, at most 1. A material whose
+    terms vary over the surface (a program run per hit) stops shadows for now."""
+    share = np.minimum(1.0, table.transparency + table.transparent.mean(axis=1))
+    share[table.shader_range[:, 0] >= 0] = 0.0
+    return share
+
+
+def folded_row(table: Materials, k: int) -> dict:
+    """What the kernels read of row k, by core.Material's field names (for tests)."""
+    return dict(
+        diffuse=table.diffuse[k], specular=table.specular[k], shininess=table.shininess[k],
+        reflectivity=table.reflectivity[k], transparency=table.transparency[k],
+        inner_ior=table.ior[k, 1], mirror_colour=table.mirror[k, 0],
+        mirror_edge=table.mirror[k, 1], mirror_sees_lights=not table.mirror_hides_lights[k],
+        coat=table.coat[k, 0], coat_ior=table.coat[k, 1], coat_hides=bool(table.coat[k, 2]),
+        glass_reflect=table.glass_tint[k, 0], glass_transmit=table.glass_tint[k, 1],
+        refraction_fresnel=table.refraction_fresnel[k], emission=table.emission[k],
+        transparent=table.transparent[k], holdout=table.holdout[k],
+        programmed=table.shader_range[k, 0] >= 0,
+    )  # fmt: skip
 
 
 def _edge(material):

@@ -26,9 +26,10 @@ _TOP_TRAVERSAL_COST = 1.0
 
 def pack_geometry(scene_shapes: list, shapes: list, world_from_object: np.ndarray,
                   csg: CsgTables, tree_of_row: dict, meshes: MeshTables,
-                  mesh_of: dict) -> Geometry:  # fmt: skip
+                  mesh_of: dict, shadow_share: list) -> Geometry:  # fmt: skip
     """`shapes` are the rows (scene shapes, then CSG operands), placed by world_from_object
-    (n, 4, 4); tree_of_row and mesh_of index the CSG and mesh tables."""
+    (n, 4, 4); tree_of_row and mesh_of index the CSG and mesh tables; shadow_share[i] is what
+    one crossing of row i's surface lets through (`materials.shadow_shares`)."""
     n = len(shapes)
     param = np.zeros((n, 2))
     shape_index = np.full(n, -1, np.int32)
@@ -72,7 +73,7 @@ def pack_geometry(scene_shapes: list, shapes: list, world_from_object: np.ndarra
         shape_object_from_world=object_from_world,
         shape_param=param,
         shape_index=shape_index,
-        shape_transparency=_shadow_transparency(shapes, scene_rows),
+        shape_transparency=_shadow_transparency(shapes, scene_rows, shadow_share),
         shape_bounds=np.ascontiguousarray(np.hstack([lo, hi]).reshape(n, 6)),
         mesh_root=np.array(meshes.root, np.int32),
         node_boxes=concatenated(meshes.node_boxes, (0, 6, WIDTH), np.float32),
@@ -83,22 +84,17 @@ def pack_geometry(scene_shapes: list, shapes: list, world_from_object: np.ndarra
     )
 
 
-def _shadow_transparency(shapes: list, scene_rows: int) -> np.ndarray:
-    """What each row lets through per surface crossed by a shadow ray: its material's
-    transparency plus the mean of what passes it straight (`Material.transparent`), at
-    most 1; 1 for a scene shape that casts no shadow (kernels skip such rows, which is
-    exact: 1^crossings = 1); for a CSG row 0, as its operands' rows decide."""
+def _shadow_transparency(shapes: list, scene_rows: int, shadow_share: list) -> np.ndarray:
+    """What each row lets through per surface crossed by a shadow ray: its material's share
+    (shadow_share); 1 for a scene shape that casts no shadow (kernels skip such rows, which
+    is exact: 1^crossings = 1); for a CSG row 0, as its operands' rows decide."""
     tau = np.empty(len(shapes))
     for i, shape in enumerate(shapes):
         if i < scene_rows and not shape.casts_shadows:
             tau[i] = 1.0
         else:
-            tau[i] = 0.0 if isinstance(shape, Csg) else _lets_through(shape.material)
+            tau[i] = 0.0 if isinstance(shape, Csg) else shadow_share[i]
     return tau
-
-
-def _lets_through(material) -> float:
-    return min(1.0, material.transparency + float(np.mean(material.transparent)))
 
 
 def _world_boxes(world_from_object, lo, hi):

@@ -8,6 +8,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..kernels.layout import VISIBLE_CAMERA, VISIBLE_GLOSSY, VISIBLE_TRANSMISSION, Surfaces
+from ..model.shapes import Mesh, Torus
 from ..passes import crypto_id
 from .arrays import concatenated
 from .meshes import MeshTables
@@ -33,7 +34,31 @@ def pack_surfaces(shapes: list, owners: list, material_of: dict, meshes: MeshTab
         shape_holdout=np.array([o.holdout for o in owners], np.uint8),
         shape_crypto=np.array([ids[o.name] for o in owners], np.float32),
         shape_visibility=np.array([_visibility(o) for o in owners], np.uint8),
+        shape_texspace=np.array([_texture_space(s) for s in shapes], float).reshape(-1, 6),
     )
+
+
+def _texture_space(shape) -> tuple:
+    """(centre xyz, half size xyz) of the shape's texture space: its own, or its box, with
+    Blender's guard against flat boxes (a zero size becomes 1, a tiny one 1e-5)."""
+    if shape.texture_space is not None:
+        centre, half = (np.asarray(v, float) for v in shape.texture_space)
+    else:
+        lo, hi = _object_box(shape)
+        centre, half = (lo + hi) / 2.0, (hi - lo) / 2.0
+    half = np.where(half == 0.0, 1.0, np.where(np.abs(half) < 1e-5, 1e-5, half))
+    return (*centre, *half)
+
+
+def _object_box(shape) -> tuple:
+    if isinstance(shape, Mesh) and len(shape.mesh.vertices):
+        vertices = np.asarray(shape.mesh.vertices, float)
+        return vertices.min(axis=0), vertices.max(axis=0)
+    if isinstance(shape, Torus):
+        reach = shape.major_radius + shape.minor_radius
+        return (np.array([-reach, -reach, -shape.minor_radius]),
+                np.array([reach, reach, shape.minor_radius]))  # fmt: skip
+    return -np.ones(3), np.ones(3)  # the canonical shapes fill [-1, 1]^3
 
 
 def _visibility(shape) -> int:

@@ -53,8 +53,10 @@ from .pass_record import (
     record_hit,
     record_lighting,
 )
+from .shader_program import run_program
 from .shading import Phong, ShadingPoint, local_colour
-from .surface import diffuse_colour, surface_at
+from .surface import diffuse_colour, hit_coordinates, surface_at
+from .surface_terms import table_surface, terms_from_lobes
 from .trace import closest_hit, spawn_point
 from .vec import add, dot, mul, normalize, row, scale, sub
 from .workspace import MAX_CROSSINGS, RAYS_TRACED
@@ -120,27 +122,10 @@ def _mean(w):
 
 
 @kernel
-def _glass_tint(mats, material, which):
-    """The dielectric's tint of its reflection (which 0) or of its refracted ray (1)."""
-    tints = mats.glass_tint
-    return (tints[material, which, 0], tints[material, which, 1], tints[material, which, 2])
-
-
-@kernel
-def _mirror_tint(mats, material, cos_i):
+def _mirror_tint(here, cos_i):
     """The mirror's tint at this incidence: Schlick's c0 + (c90 - c0)(1 - cos)^5."""
     toward_edge = (1.0 - cos_i) ** 5
-    normal_tint = (
-        mats.mirror[material, 0, 0],
-        mats.mirror[material, 0, 1],
-        mats.mirror[material, 0, 2],
-    )
-    edge_tint = (
-        mats.mirror[material, 1, 0],
-        mats.mirror[material, 1, 1],
-        mats.mirror[material, 1, 2],
-    )
-    return add(normal_tint, scale(sub(edge_tint, normal_tint), toward_edge))
+    return add(here.mirror_normal, scale(sub(here.mirror_edge, here.mirror_normal), toward_edge))
 
 
 @inlined_kernel
@@ -206,12 +191,22 @@ def trace_ray(ps, o, d, key, ws):
             continue
         material = surf.shape_material[shape]
         first = recording and depth == 0 and not hit_recorded
-        textured = mats.texture[material] >= 0
+        programmed = mats.shader_range[material, 0] >= 0
+        textured = mats.texture[material] >= 0 or programmed
         p, n_geometric, n_shading, u, v = surface_at(
             geo, surf, shape, part, b1, b2, o, d, t, textured or (first and with_uv)
         )
-        tau = mats.transparency[material]
-        rho = mats.reflectivity[material]
+        if programmed:  # a node material whose terms vary over the surface
+            hit = hit_coordinates(geo, surf, shape, p, n_shading, u, v)
+            run_program(mats, material, ws.shader_stack, ws.lobes, hit)
+            here = terms_from_lobes(ws.lobes)
+        else:
+            kd = (0.0, 0.0, 0.0)
+            if mats.transparency[material] < 1.0 or first:
+                kd = diffuse_colour(mats, material, u, v)
+            here = table_surface(mats, material, kd)
+        tau = here.transparency
+        rho = here.reflectivity
         # Face the side the ray came from
         entering = dot(d, n_geometric) < 0.0
         if not entering:
@@ -219,22 +214,21 @@ def trace_ray(ps, o, d, key, ws):
             n_shading = scale(n_shading, -1.0)
         outside = spawn_point(p, n_geometric, o)
         cos_i = min(1.0, max(0.0, -dot(d, n_shading)))
-        kd = diffuse_colour(mats, material, u, v) if tau < 1.0 or first else (0.0, 0.0, 0.0)
-        coat = mats.coat[material, 0]
+        kd = here.kd
         coat_reflects = 0.0
-        if coat > 0.0:
+        if here.coat > 0.0:
             # a layer on the surface, air on its outer side from either side (Cycles' specular
             # layer does not flip its IOR on back faces)
-            coat_f, _ = fresnel_dielectric(cos_i, 1.0, mats.coat[material, 1])
-            coat_reflects = coat * coat_f
-            if mats.coat[material, 2] != 0.0:
+            coat_f, _ = fresnel_dielectric(cos_i, 1.0, here.coat_ior)
+            coat_reflects = here.coat * coat_f
+            if here.coat_hides:
                 kd = scale(kd, 1.0 - coat_reflects)  # the diffuse seen through the coat
-        if depth == 0 and mats.holdout[material] > 0.0:
-            alpha -= _mean(w) * mats.holdout[material]
+        if depth == 0 and here.holdout > 0.0:
+            alpha -= _mean(w) * here.holdout
         if first:
             hit_recorded = True
             record_hit(record, surf, mats, shape, material, p, n_shading, u, v, 1.0 - tau, kd)
-        emission = row(mats.emission, material)
+        emission = here.emission
         if emission[0] > 0.0 or emission[1] > 0.0 or emission[2] > 0.0:
             seen = mul(w, emission)
             colour = add(colour, seen)
@@ -244,8 +238,8 @@ def trace_ray(ps, o, d, key, ws):
                 add_to(record, branch, seen)
         if tau < 1.0:
             point = ShadingPoint(outside, n_shading, scale(d, -1.0))
-            ks = row(mats.specular, material)
-            phong = Phong(kd, ks, mats.shininess[material])
+            ks = here.ks
+            phong = Phong(kd, ks, here.shininess)
             splitting = first and split
             local = local_colour(frame, lights, geo, stacks, point, phong, key, event, splitting)
             if lights.emitter_kind.shape[0] > 0:  # lights in Blender's units
@@ -266,7 +260,7 @@ def trace_ray(ps, o, d, key, ws):
             elif recording:
                 add_to(record, branch, seen)
         event += 1
-        straight = row(mats.transparent, material)
+        straight = here.transparent
         if (
             straight[0] > 0.0 or straight[1] > 0.0 or straight[2] > 0.0
         ) and crossed < MAX_CROSSINGS:
@@ -280,26 +274,26 @@ def trace_ray(ps, o, d, key, ws):
             continue
         reflect = (0.0, 0.0, 0.0)
         if rho > 0.0:
-            reflect = scale(_mirror_tint(mats, material, cos_i), (1.0 - tau) * rho)
+            reflect = scale(_mirror_tint(here, cos_i), (1.0 - tau) * rho)
         if coat_reflects > 0.0:
             reflect = add(reflect, scale((1.0, 1.0, 1.0), (1.0 - tau) * coat_reflects))
         if tau > 0.0:
-            outer, inner = mats.ior[material, 0], mats.ior[material, 1]
+            outer, inner = here.outer_ior, here.inner_ior
             n1, n2 = (outer, inner) if entering else (inner, outer)
             f, cos_t = fresnel_dielectric(cos_i, n1, n2)
-            reflect = add(reflect, scale(_glass_tint(mats, material, 0), tau * f))
+            reflect = add(reflect, scale(here.glass_reflect, tau * f))
             # the share Fresnel takes from the refracted ray: all of F for glass
-            f_lost = f * mats.refraction_fresnel[material]
+            f_lost = f * here.refraction_fresnel
             if f < 1.0:
                 refracted = refract(d, n_shading, n1 / n2, cos_i, cos_t)
                 inside = spawn_point(p, scale(n_geometric, -1.0), o)
                 through = REC_REFRACTION if depth == 0 else branch
-                weight = mul(w, scale(_glass_tint(mats, material, 1), tau * (1.0 - f_lost)))
+                weight = mul(w, scale(here.glass_transmit, tau * (1.0 - f_lost)))
                 top = _push(rays, top, inside, refracted, weight, depth + 1, through, RAY_REFRACTED)
         if reflect[0] > 0.0 or reflect[1] > 0.0 or reflect[2] > 0.0:
             reflected = sub(d, scale(n_shading, 2.0 * dot(d, n_shading)))
             mirrored = REC_REFLECTION if depth == 0 else branch
             weight = mul(w, reflect)
-            kind = RAY_ROUGH_REFLECTED if mats.mirror_hides_lights[material] else RAY_REFLECTED
+            kind = RAY_ROUGH_REFLECTED if here.mirror_hides_lights else RAY_REFLECTED
             top = _push(rays, top, outside, reflected, weight, depth + 1, mirrored, kind)
     return colour, alpha

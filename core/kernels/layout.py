@@ -76,6 +76,9 @@ class Surfaces(NamedTuple):
     shape_crypto: np.ndarray  # float32 (n,): the Cryptomatte id of its name
     # uint8 (n,): VISIBLE_* bits, the rays that see it (Object > Visibility > Ray Visibility)
     shape_visibility: np.ndarray
+    # float64 (n, 6): its texture space, centre xyz and half size xyz in object space
+    # (Blender's Generated coordinates map it to [0, 1])
+    shape_texspace: np.ndarray
 
 
 class Materials(NamedTuple):
@@ -97,6 +100,13 @@ class Materials(NamedTuple):
     glass_tint: np.ndarray  # float64 (q, 2, 3): the dielectric's reflection, transmission tint
     refraction_fresnel: np.ndarray  # float64 (q,): 1 glass, 0 all refracts (Refraction BSDF)
     mirror_hides_lights: np.ndarray  # uint8 (q,): 1 if its highlight holds the lights instead
+    texture_alpha: np.ndarray  # float32 (texels,): each texel's alpha
+    # shader programs (core.kernels.shader_program): rows [first, end) of shader_ops and of
+    # shader_constants per material; first -1: none (its terms are the table's)
+    shader_range: np.ndarray  # int64 (q, 2)
+    shader_constant_range: np.ndarray  # int64 (q, 2)
+    shader_ops: np.ndarray  # int32 (steps, 8)
+    shader_constants: np.ndarray  # float64 (c,)
     emission: np.ndarray  # float64 (q, 3): emitted radiance
     transparent: np.ndarray  # float64 (q, 3): share passing straight through
     holdout: np.ndarray  # float64 (q,): share of a camera ray's pixel cut out

@@ -148,3 +148,24 @@ def diffuse_colour(mats, material, u, v):
     pixels, first = mats.texture_pixels, mats.texture_offset[texture]
     width, height = mats.texture_size[texture, 0], mats.texture_size[texture, 1]
     return bilinear(pixels, first, width, height, u, v)
+
+
+@kernel
+def hit_coordinates(geo, surf, shape, p, n_world, u, v):
+    """A hit's texture coordinates, as Blender's Texture Coordinate node gives them:
+    (UV, Generated, Object, Normal), triples. Generated maps the shape's texture space (its
+    box, core.compile.surfaces) to [0, 1]; Normal is the object-space normal (exact under
+    rotations and uniform scales)."""
+    transforms = geo.shape_object_from_world
+    p_object = affine_point(transforms, shape, p)
+    space = surf.shape_texspace
+    generated = (
+        (p_object[0] - space[shape, 0]) / (2.0 * space[shape, 3]) + 0.5,
+        (p_object[1] - space[shape, 1]) / (2.0 * space[shape, 4]) + 0.5,
+        (p_object[2] - space[shape, 2]) / (2.0 * space[shape, 5]) + 0.5,
+    )
+    n_object = affine_vector(transforms, shape, n_world)
+    length = math.sqrt(n_object[0] ** 2 + n_object[1] ** 2 + n_object[2] ** 2)
+    if length > 0.0:
+        n_object = scale(n_object, 1.0 / length)
+    return (u, v, 0.0), generated, p_object, n_object

@@ -10,6 +10,7 @@ from .bvh_wide import WIDTH
 from .csg import CROSSING_CAPACITY, SPAN_CAPACITY
 from .light_pyramid import MAX_CANDIDATES, PYRAMID_ROWS
 from .pass_record import ACC_COUNT, REC_COUNT, TERM_ROWS
+from .shader_program import LOBE_COUNT, SHADER_STACK
 
 # Surfaces one ray may pass straight through (transparent shares, shapes its kind does not
 # see): Cycles' Max Bounces > Transparent is 8 by default; leaves on cards need more
@@ -91,6 +92,9 @@ class Workspace(NamedTuple):
     accum: np.ndarray  # float64 (ACC_COUNT,)
     crypto_ids: np.ndarray  # float64 (camera rays per pixel, 3), or (1, 3) without Cryptomatte
     crypto_distinct: np.ndarray  # float64 (the same rows, 2): scratch, (id, rays) per id
+    # a shader program's stack and the lobes it adds up (core.kernels.shader_program)
+    shader_stack: np.ndarray  # float64 (SHADER_STACK,)
+    lobes: np.ndarray  # float64 (LOBE_COUNT,)
 
 
 def new_workspace(
@@ -139,4 +143,6 @@ def new_workspace(
         np.zeros(ACC_COUNT),
         np.zeros((max(crypto_rays, 1), 3)),
         np.zeros((max(crypto_rays, 1), 2)),
+        np.zeros(SHADER_STACK),
+        np.zeros(LOBE_COUNT),
     )

@@ -5,6 +5,7 @@
     emitters.py   SphereLight, SpotLight, PanelLight, SunLight: lights in Blender's units
     environment.py  Environment: Blender's World, a colour or an equirectangular image
     materials.py  Material, Texture
+    shader.py     ShaderNode, Link: Blender's node graphs, run per hit
     shapes.py     Sphere, Box, Cylinder, Cone, Torus, TriangleMesh and Mesh, Csg
     scene.py      Scene
     settings.py   RenderSettings and its defaults and limits
@@ -25,6 +26,7 @@ from .lights import AreaLight, DirectionalLight, PointLight
 from .materials import Material, Texture
 from .scene import Scene
 from .settings import RenderSettings
+from .shader import Link, ShaderNode
 from .shapes import Box, Cone, Csg, Cylinder, Mesh, Shape, Sphere, Torus, TriangleMesh
 
 __all__ = [
@@ -36,12 +38,14 @@ __all__ = [
     "Cylinder",
     "DirectionalLight",
     "Environment",
+    "Link",
     "Material",
     "Mesh",
     "PanelLight",
     "PointLight",
     "RenderSettings",
     "Scene",
+    "ShaderNode",
     "Shape",
     "Sphere",
     "SphereLight",

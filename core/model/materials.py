@@ -9,6 +9,7 @@ import numpy as np
 
 from ..checks import Vec3, check_count, check_flag, check_number, check_vec3
 from ..errors import SceneError
+from .shader import ShaderNode
 
 
 @dataclass(eq=False)
@@ -78,6 +79,8 @@ class Material:
                       BSDF, alpha below 1); shadow rays pass its mean
     holdout        -- 0..1: share of a camera ray's pixel cut out (Holdout shader): alpha
                       lowered by it, nothing seen there
+    surface        -- a closure `ShaderNode` (core.model.shader): Blender's node graph, which
+                      then makes every term above per hit (name and pass_index still count)
     """
 
     diffuse: Vec3 = (0.8, 0.8, 0.8)
@@ -102,6 +105,7 @@ class Material:
     emission: Vec3 = (0.0, 0.0, 0.0)
     transparent: Vec3 = (0.0, 0.0, 0.0)
     holdout: float = 0.0
+    surface: ShaderNode | None = None
 
     def validate(self, user: str) -> None:
         owner = f"material '{self.name}' (on {user})"
@@ -126,6 +130,11 @@ class Material:
         if transparent.max() > 1.0:
             raise SceneError(owner, "transparent", f"got {self.transparent!r}; use 0..1 each")
         check_number(owner, "holdout", self.holdout, low=0.0, high=1.0)
+        if self.surface is not None:
+            if not isinstance(self.surface, ShaderNode) or not self.surface.is_closure:
+                raise SceneError(owner, "surface", f"got {self.surface!r}; need a closure "
+                                 "ShaderNode (a BSDF, Emission, Mix Shader...)")  # fmt: skip
+            self.surface.validate(owner, {})
         if self.texture is not None:
             if not isinstance(self.texture, Texture):
                 raise SceneError(owner, "texture", f"got {self.texture!r}; need a Texture")

@@ -28,6 +28,7 @@ from ..checks import (
     check_count,
     check_flag,
     check_number,
+    check_vec3,
 )
 from ..errors import SceneError
 from ..vocabulary import (
@@ -58,6 +59,9 @@ class Shape:
                      Object > Visibility > Holdout, and holdout collections); it still casts
                      shadows and shows in mirrors and through glass, as in Cycles
     pass_index    -- its value in the object index pass (Object > Relations > Pass Index)
+    texture_space -- (centre, half size), object-space triples: the box Blender's Generated
+                     texture coordinates map to [0, 1] (a mesh's Texture Space); None: the
+                     shape's own box
     seen_by_camera, seen_in_mirrors, seen_through_glass -- False: camera rays, reflected
                      rays or refracted rays pass through it as if it were not there
                      (Object > Visibility > Ray Visibility > Camera, Glossy, Transmission)
@@ -69,6 +73,7 @@ class Shape:
     casts_shadows: bool = field(default=True, kw_only=True)
     holdout: bool = field(default=False, kw_only=True)
     pass_index: int = field(default=0, kw_only=True)
+    texture_space: tuple | None = field(default=None, kw_only=True)
     seen_by_camera: bool = field(default=True, kw_only=True)
     seen_in_mirrors: bool = field(default=True, kw_only=True)
     seen_through_glass: bool = field(default=True, kw_only=True)
@@ -91,6 +96,11 @@ class Shape:
         check_flag(self.owner, "holdout", self.holdout)
         for name in ("seen_by_camera", "seen_in_mirrors", "seen_through_glass"):
             check_flag(self.owner, name, getattr(self, name))
+        if self.texture_space is not None:
+            if not isinstance(self.texture_space, tuple | list) or len(self.texture_space) != 2:
+                raise SceneError(self.owner, "texture_space", "give (centre, half size)")
+            check_vec3(self.owner, "texture_space centre", self.texture_space[0])
+            check_vec3(self.owner, "texture_space half size", self.texture_space[1])
         check_count(self.owner, "pass_index", self.pass_index, high=MAX_PASS_INDEX)
         if not isinstance(self.material, Material):
             raise SceneError(

@@ -190,6 +190,20 @@ def material_of(bpy, monkeypatch):
     return scene.shapes[0].material
 
 
+def compiled_material(bpy, monkeypatch):
+    """What the kernels read of the first shape's material, by core.Material's field names
+    (a node material's graph folded by the compile)."""
+    from types import SimpleNamespace
+
+    from core.compile import compile_scene
+    from core.compile.materials import folded_row
+
+    scene, settings, _ = exported(bpy, monkeypatch)
+    packed = compile_scene(scene, settings).packed
+    row = folded_row(packed.materials, int(packed.surfaces.shape_material[0]))
+    return SimpleNamespace(**{k: np.asarray(v) if k != "programmed" else v for k, v in row.items()})
+
+
 def principled(material):
     return next(n for n in material.node_tree.nodes if n.type == "BSDF_PRINCIPLED")
 
@@ -214,20 +228,20 @@ def test_untouched_materials_follow_their_principled_bsdf(empty_scene, monkeypat
     bsdf.inputs["Base Color"].default_value = (0.9, 0.6, 0.2, 1.0)
     bsdf.inputs["Metallic"].default_value = 1.0
     bsdf.inputs["Roughness"].default_value = 0.0
-    chrome = material_of(bpy, monkeypatch)
+    chrome = compiled_material(bpy, monkeypatch)
     assert chrome.reflectivity == pytest.approx(1.0) and chrome.diffuse == pytest.approx((0, 0, 0))
     assert chrome.mirror_colour == pytest.approx((0.9, 0.6, 0.2), abs=1e-6)
-    assert chrome.mirror_edge == pytest.approx((1, 1, 1)) and chrome.specular == (0, 0, 0)
+    assert chrome.mirror_edge == pytest.approx((1, 1, 1)) and np.all(chrome.specular == 0)
     bsdf.inputs["Metallic"].default_value = 0.0
     bsdf.inputs["Roughness"].default_value = 0.5
     bsdf.inputs["IOR"].default_value = 1.33
     transmission = "Transmission Weight" if bpy.app.version >= (4, 0, 0) else "Transmission"
     bsdf.inputs[transmission].default_value = 1.0
-    water = material_of(bpy, monkeypatch)
+    water = compiled_material(bpy, monkeypatch)
     assert water.transparency == pytest.approx(1.0) and water.inner_ior == pytest.approx(1.33)
     assert water.mirror_sees_lights  # glass stays sharp, lights seen in it
     bsdf.inputs[transmission].default_value = 0.0
-    plastic = material_of(bpy, monkeypatch)
+    plastic = compiled_material(bpy, monkeypatch)
     # Roughness 0.5: alpha 0.25, a Blinn-Phong exponent 2 / alpha^2 - 2 = 30, on R.V a quarter
     assert plastic.shininess == pytest.approx(7.5) and not plastic.mirror_sees_lights
     bsdf.inputs[transmission].default_value = 1.0
@@ -262,10 +276,10 @@ def test_nodes_whitted_cannot_evaluate_are_named_in_one_warning_per_material(
         assert named in mine[0], mine[0]
     # What was used instead: the Base Color's own value
     base = tuple(principled(material).inputs["Base Color"].default_value[:3])
-    assert scene.shapes[0].material.diffuse == pytest.approx(base, abs=1e-6)
+    assert scene.shapes[0].material.surface.inputs["Base Color"] == pytest.approx(base, abs=1e-6)
 
 
-def test_an_image_texture_on_the_base_colour_replaces_the_diffuse(empty_scene, monkeypatch):
+def test_an_image_texture_on_the_base_colour_is_read_with_its_pixels(empty_scene, monkeypatch):
     bpy = sys.modules["bpy"]
     _, material = sphere_with_material(bpy, "Checker")
     image = bpy.data.images.new("Ramp", 4, 2)
@@ -277,10 +291,11 @@ def test_an_image_texture_on_the_base_colour_replaces_the_diffuse(empty_scene, m
     node = material.node_tree.nodes.new("ShaderNodeTexImage")
     node.image = image
     material.node_tree.links.new(node.outputs["Color"], principled(material).inputs["Base Color"])
-    texture = material_of(bpy, monkeypatch).texture
-    assert texture is not None and texture.pixels.shape == (2, 4, 3)
-    np.testing.assert_allclose(texture.pixels[0, 0], (0, 0, 1))  # core: top row first
-    np.testing.assert_allclose(texture.pixels[1, 0], (1, 0, 0))
+    link = material_of(bpy, monkeypatch).surface.inputs["Base Color"]
+    texture = link.node.settings["texture"]
+    assert link.node.kind == "image" and texture.pixels.shape == (2, 4, 4)
+    np.testing.assert_allclose(texture.pixels[0, 0], (0, 0, 1, 1))  # core: top row first
+    np.testing.assert_allclose(texture.pixels[1, 0], (1, 0, 0, 1))
     image.filepath = "/nonexistent/missing.png"
     image.source = "FILE"
     with pytest.raises(RuntimeError, match=r"material 'Checker'.*image 'Ramp'.*missing"):

@@ -32,6 +32,7 @@ def ball_scene(bpy_with_whitted):
     scene.render.resolution_percentage = 100
     scene.render.film_transparent = False
     scene.whitted.pixel_samples = 1
+    scene.whitted.pixel_sampling = "GRID"  # the pixel's centre (another test may jitter)
     scene.world = None  # no World left by another test: a black background, no sky light
     for layer in list(scene.view_layers)[1:]:
         scene.view_layers.remove(layer)

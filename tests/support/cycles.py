@@ -52,6 +52,7 @@ def new_scene(bpy):
     plane.materials.append(white_lambertian(bpy))
     scene.collection.objects.link(bpy.data.objects.new("Plane", plane))
     scene.whitted.pixel_samples = 1
+    scene.whitted.pixel_sampling = "GRID"  # one ray through the pixel's centre, as Cycles'
     scene.whitted.shadow_samples = 256
     return scene
 

@@ -1,0 +1,250 @@
+"""Shader graphs (core.model.shader) into the flat programs core.kernels.shader_program runs.
+
+The graph is walked from the material's surface node down. Each value a node computes gets a
+triple of stack slots (a plain number sits in the first), each constant input a triple in the
+constants block the program starts from; node outputs are computed once however many inputs
+they feed. Closure nodes become steps that add lobes times a weight slot; a Mix Shader splits
+its weight. Colours used as numbers become their luminance, vectors their mean, and numbers
+used as triples are repeated, as in Blender.
+
+A program that reads nothing of the hit (no texture coordinate, no image) is `constant`: the
+compile runs it once and stores what it makes in the material table.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..kernels import shader_program as sp
+from ..model.shader import (
+    EXTENSIONS,
+    GRADIENT_TYPES,
+    MAPPING_TYPES,
+    MATH_OPERATIONS,
+    MIX_BLENDS,
+    RAMP_INTERPOLATIONS,
+    SHADER_NODES,
+    Link,
+)
+
+COORDS = {"UV": sp.COORD_UV, "Generated": sp.COORD_GENERATED, "Object": sp.COORD_OBJECT,
+          "Normal": sp.COORD_NORMAL}  # fmt: skip
+# Outputs that are colours (as numbers: their luminance) rather than vectors (their mean)
+COLOUR_OUTPUTS = {"Color"}
+
+
+@dataclass
+class Program:
+    ops: list = field(default_factory=list)  # rows of 8 ints; operands as ("c"|"v", index)
+    constants: list = field(default_factory=list)
+    values: int = 0  # computed slots used
+    varying: bool = False  # reads the hit (coordinates, images)
+    textures: list = field(default_factory=list)  # core Textures the image steps read
+
+    def constant(self, value) -> tuple:
+        v = np.asarray(value, float).ravel()
+        triple = np.repeat(v[:1], 3) if v.size == 1 else v[:3]
+        self.constants.extend(float(x) for x in triple)
+        return ("c", len(self.constants) - 3)
+
+    def slot(self) -> tuple:
+        self.values += 3
+        return ("v", self.values - 3)
+
+    def step(self, *row) -> None:
+        assert len(row) <= 8, row  # op and seven operands
+        self.ops.append(list(row) + [0] * (8 - len(row)))
+
+    def resolved(self) -> tuple[np.ndarray, np.ndarray]:
+        """(ops int32 (n, 8), constants float64): operands as stack slots, the constants
+        first and the computed values after them."""
+        base = len(self.constants)
+        rows = []
+        for row in self.ops:
+            rows.append([_slot(x, base) for x in row])
+        ops = np.array(rows, np.int32).reshape(-1, 8)
+        return ops, np.array(self.constants, float)
+
+
+def _slot(operand, base):
+    if isinstance(operand, tuple):
+        kind, index = operand
+        return index if kind == "c" else base + index
+    return int(operand)
+
+
+class ProgramBuilder:
+    """Builds one material's program; `texture_row(texture)` gives the row of a core
+    Texture in the material table's textures."""
+
+    def __init__(self, texture_row):
+        self.program = Program()
+        self.texture_row = texture_row
+        self.outputs: dict = {}  # (id(node), output) -> (operand, "value" | "triple")
+
+    def build(self, surface) -> Program:
+        weight = self.program.constant(1.0)
+        self.shader(surface, weight)
+        return self.program
+
+    # shaders
+
+    def shader(self, node, weight) -> None:
+        kind = node.kind
+        p = self.program
+        if kind in ("mix_shader", "add_shader"):
+            a, b = node.input("Shader A"), node.input("Shader B")
+            if kind == "add_shader":
+                for linked in (a, b):
+                    if isinstance(linked, Link):
+                        self.shader(linked.node, weight)
+                return
+            fac = self.value(node.input("Fac"), "value")
+            weight_a, weight_b = p.slot(), p.slot()
+            p.step(sp.OP_SPLIT, weight_a, weight_b, weight, fac)
+            for linked, share in ((a, weight_a), (b, weight_b)):
+                if isinstance(linked, Link):
+                    self.shader(linked.node, share)
+            return
+        if kind == "diffuse":
+            p.step(sp.OP_DIFFUSE, weight, self.value(node.input("Color"), "triple"))
+        elif kind == "glossy":
+            colour = self.value(node.input("Color"), "triple")
+            p.step(sp.OP_GLOSSY, weight, colour, self.value(node.input("Roughness"), "value"))
+        elif kind == "metallic":
+            p.step(sp.OP_METALLIC, weight, self.value(node.input("Base Color"), "triple"),
+                   self.value(node.input("Edge Tint"), "triple"),
+                   self.value(node.input("Roughness"), "value"))  # fmt: skip
+        elif kind in ("glass", "refraction"):
+            p.step(sp.OP_GLASS, weight, self.value(node.input("Color"), "triple"),
+                   self.value(node.input("IOR"), "value"), int(kind == "glass"))  # fmt: skip
+        elif kind == "transparent":
+            p.step(sp.OP_TRANSPARENT, weight, self.value(node.input("Color"), "triple"))
+        elif kind == "emission":
+            p.step(sp.OP_EMISSION, weight, self.value(node.input("Color"), "triple"),
+                   self.value(node.input("Strength"), "value"))  # fmt: skip
+        elif kind == "holdout":
+            p.step(sp.OP_HOLDOUT, weight)
+        elif kind == "principled":
+            v = self.value
+            p.step(sp.OP_PRINCIPLED, weight, v(node.input("Base Color"), "triple"),
+                   v(node.input("Metallic"), "value"), v(node.input("Roughness"), "value"),
+                   v(node.input("IOR"), "value"), v(node.input("Alpha"), "value"))  # fmt: skip
+            p.step(sp.OP_MORE, v(node.input("Transmission"), "value"),
+                   v(node.input("Emission Color"), "triple"),
+                   v(node.input("Emission Strength"), "value"), v(node.input("Specular"), "value"),
+                   v(node.input("Specular Tint"), "triple"),
+                   int(bool(node.setting("layered"))))  # fmt: skip
+
+    # values
+
+    def value(self, given, want: str, default_coord: int = sp.COORD_UV):
+        """The operand of an input: its constant, or what its link computes, converted to
+        `want` ("value" or "triple")."""
+        if given is None:  # a texture's own coordinates
+            return self._coord(default_coord)
+        if not isinstance(given, Link):
+            return self.program.constant(given)
+        operand, shape = self._output(given.node, given.output)
+        if want == shape:
+            return operand
+        out = self.program.slot()
+        if want == "triple":  # a number used as a colour or vector: repeated
+            self.program.step(sp.OP_COMBINE, out, operand, operand, operand)
+        elif given.output in COLOUR_OUTPUTS:
+            self.program.step(sp.OP_TO_VALUE, out, operand)
+        else:
+            self.program.step(sp.OP_AVERAGE, out, operand)
+        return out
+
+    def _coord(self, which: int):
+        key = ("coord", which)
+        if key not in self.outputs:
+            out = self.program.slot()
+            self.program.step(sp.OP_COORD, out, which)
+            self.program.varying = True
+            self.outputs[key] = (out, "triple")
+        return self.outputs[key][0]
+
+    def _output(self, node, output: str):
+        key = (id(node), output)
+        if key not in self.outputs:
+            self._emit(node)
+        return self.outputs[key]
+
+    def _emit(self, node) -> None:
+        """The steps computing every output of `node`, stored in self.outputs."""
+        p, v, kind = self.program, self.value, node.kind
+        outputs = SHADER_NODES[kind]["outputs"]
+        slots = {name: p.slot() for name in outputs}
+        for name, shape in outputs.items():
+            self.outputs[(id(node), name)] = (slots[name], shape)
+        if kind == "tex_coord":
+            for name, which in COORDS.items():
+                p.step(sp.OP_COORD, slots[name], which)
+            p.varying = True
+        elif kind == "mapping":
+            p.step(sp.OP_MAPPING, slots["Vector"], v(node.input("Vector"), "triple"),
+                   v(node.input("Location"), "triple"), v(node.input("Rotation"), "triple"),
+                   v(node.input("Scale"), "triple"), 0,
+                   MAPPING_TYPES.index(node.setting("type")))  # fmt: skip
+        elif kind == "image":
+            texture = node.setting("texture")
+            interpolation = 1 if node.setting("interpolation") == "Closest" else 0
+            p.step(sp.OP_IMAGE, slots["Color"], slots["Alpha"],
+                   v(node.input("Vector"), "triple", sp.COORD_UV), self.texture_row(texture),
+                   interpolation, EXTENSIONS.index(node.setting("extension")))  # fmt: skip
+            p.varying = True
+        elif kind == "checker":
+            p.step(sp.OP_CHECKER, slots["Color"], slots["Fac"],
+                   v(node.input("Vector"), "triple", sp.COORD_GENERATED),
+                   v(node.input("Color1"), "triple"), v(node.input("Color2"), "triple"),
+                   v(node.input("Scale"), "value"))  # fmt: skip
+        elif kind == "gradient":
+            p.step(sp.OP_GRADIENT, slots["Color"], slots["Fac"],
+                   v(node.input("Vector"), "triple", sp.COORD_GENERATED),
+                   GRADIENT_TYPES.index(node.setting("type")))  # fmt: skip
+        elif kind == "math":
+            p.step(sp.OP_MATH, slots["Value"], v(node.input("A"), "value"),
+                   v(node.input("B"), "value"), v(node.input("C"), "value"),
+                   MATH_OPERATIONS.index(node.setting("operation")),
+                   int(bool(node.setting("clamp"))))  # fmt: skip
+        elif kind == "mix_color":
+            p.step(sp.OP_MIX, slots["Color"], v(node.input("Fac"), "value"),
+                   v(node.input("A"), "triple"), v(node.input("B"), "triple"),
+                   MIX_BLENDS.index(node.setting("blend")),
+                   int(bool(node.setting("clamp"))))  # fmt: skip
+        elif kind == "invert":
+            p.step(sp.OP_INVERT, slots["Color"], v(node.input("Fac"), "value"),
+                   v(node.input("Color"), "triple"))  # fmt: skip
+        elif kind == "gamma":
+            p.step(sp.OP_GAMMA, slots["Color"], v(node.input("Color"), "triple"),
+                   v(node.input("Gamma"), "value"))  # fmt: skip
+        elif kind == "bright_contrast":
+            p.step(sp.OP_BRIGHT, slots["Color"], v(node.input("Color"), "triple"),
+                   v(node.input("Bright"), "value"),
+                   v(node.input("Contrast"), "value"))  # fmt: skip
+        elif kind == "hsv":
+            p.step(sp.OP_HSV, slots["Color"], v(node.input("Hue"), "value"),
+                   v(node.input("Saturation"), "value"), v(node.input("Value"), "value"),
+                   v(node.input("Fac"), "value"), v(node.input("Color"), "triple"))  # fmt: skip
+        elif kind == "color_ramp":
+            stops = sorted(node.setting("stops"), key=lambda stop: stop[0])
+            first = None
+            for position, rgba in stops:
+                start = len(p.constants)
+                p.constants.extend([float(position), *(float(c) for c in rgba)])
+                first = start if first is None else first
+            p.step(sp.OP_RAMP, slots["Color"], slots["Alpha"], v(node.input("Fac"), "value"),
+                   ("c", first), len(stops),
+                   RAMP_INTERPOLATIONS.index(node.setting("interpolation")))  # fmt: skip
+        elif kind == "separate":
+            p.step(sp.OP_SEPARATE, slots["X"], slots["Y"], slots["Z"],
+                   v(node.input("Vector"), "triple"))  # fmt: skip
+        elif kind == "combine":
+            p.step(sp.OP_COMBINE, slots["Vector"], v(node.input("X"), "value"),
+                   v(node.input("Y"), "value"), v(node.input("Z"), "value"))  # fmt: skip
+        elif kind == "to_bw":
+            p.step(sp.OP_TO_VALUE, slots["Val"], v(node.input("Color"), "triple"))

@@ -1,0 +1,311 @@
+"""A material's shader program, run at a hit: Blender's node graph as a flat list of steps
+over a small stack of numbers (the idea of Cycles' SVM), built by
+core.compile.shader_program.
+
+Each row of Materials.shader_ops is one step: (op, out, a, b, c, d, e, f), the out and input
+operands being stack slots (a triple takes three from its slot) or, for settings, plain
+integers. A material's constants are copied to the stack's first slots before its steps run.
+Value steps compute texture coordinates, textures and colours; closure steps add lobes
+(shader_lobes below), each times its weight, a slot that Mix Shader steps split. What the
+lobes make of the surface (`terms_from_lobes`) is Whitted's model, as
+blender_addon/export/shader_lobes.py documents it.
+"""
+
+import math
+
+from ..jit import kernel
+from .shader_values import (
+    bright_contrast,
+    checker,
+    clamp01,
+    colour_ramp,
+    gamma,
+    gradient,
+    hue_saturation_value,
+    invert,
+    luminance,
+    mapping,
+    math_node,
+    mix_colour,
+)
+from .texture_lookup import image_lookup
+
+# Steps (Materials.shader_ops[:, 0])
+OP_COORD = 1  # out, which (COORD_*)
+OP_MAPPING = 2  # out, vector, location, rotation, scale, type
+OP_IMAGE = 3  # out colour, out alpha, vector, texture, interpolation, extension
+OP_CHECKER = 4  # out colour, out fac, vector, colour 1, colour 2, scale
+OP_GRADIENT = 5  # out colour, out fac, vector, type
+OP_MATH = 6  # out, a, b, c, operation, clamp
+OP_MIX = 7  # out, fac, a, b, blend, clamp
+OP_INVERT = 8  # out, fac, colour
+OP_GAMMA = 9  # out, colour, gamma
+OP_BRIGHT = 10  # out, colour, bright, contrast
+OP_HSV = 11  # out, hue, saturation, value, fac, colour
+OP_RAMP = 12  # out colour, out alpha, fac, first stop, stops, interpolation
+OP_SEPARATE = 13  # out x, out y, out z, vector
+OP_COMBINE = 14  # out, x, y, z
+OP_TO_VALUE = 15  # out, colour: its luminance
+OP_SPLIT = 16  # out weight a, out weight b, weight, fac: w (1 - fac), w fac (fac in 0..1)
+OP_COPY = 17  # out, a: a triple
+OP_AVERAGE = 18  # out, vector: (x + y + z) / 3 (a vector used as a value)
+OP_DIFFUSE = 20  # weight, colour
+OP_GLOSSY = 21  # weight, colour, roughness
+OP_METALLIC = 22  # weight, base, edge tint, roughness
+OP_GLASS = 23  # weight, colour, IOR, 1 glass / 0 refraction
+OP_TRANSPARENT = 24  # weight, colour
+OP_EMISSION = 25  # weight, colour, strength
+OP_HOLDOUT = 26  # weight
+OP_PRINCIPLED = 27  # weight, base, metallic, roughness, IOR, alpha; its next row (OP_MORE):
+OP_MORE = 28  # transmission, emission colour, emission strength, specular level, tint, layered
+
+# Texture coordinates (OP_COORD)
+COORD_UV, COORD_GENERATED, COORD_OBJECT, COORD_NORMAL = 0, 1, 2, 3
+
+# Slots of the lobes a program adds up (Workspace.lobes)
+L_DIFFUSE = 0  # RGB
+L_MIRROR = 3  # RGB, at normal incidence
+L_EDGE = 6  # RGB, at grazing incidence
+L_COAT = 9
+L_COAT_IOR = 10  # times the coat's weight
+L_COAT_HIDES = 11
+L_GLASS = 12
+L_GLASS_IOR = 13  # times the glass's weight
+L_GLASS_REFLECT = 14  # RGB, times the glass's weight
+L_GLASS_TRANSMIT = 17  # RGB, times the glass's weight
+L_FRESNEL = 20  # refraction_fresnel, times the glass's weight
+L_HIGHLIGHT = 21  # RGB ks
+L_SHININESS = 24  # shininess times the highlight's mean ks
+L_EMISSION = 25  # RGB
+L_TRANSPARENT = 28  # RGB
+L_HOLDOUT = 31
+L_ROUGH = 32  # 1 if a rough lobe's highlight stands for the lights in its mirror
+LOBE_COUNT = 33
+
+# Slots of a program's stack: constants first, then every node output (a triple each)
+SHADER_STACK = 4096
+
+# Past this roughness a mirror or coat lobe also makes a highlight (shader_lobes.py's rule)
+SHARP_ROUGHNESS = 0.1
+MAX_SHININESS = 10000.0
+WEIGHT_CUTOFF = 1e-5
+
+
+@kernel
+def _triple(stack, slot):
+    return stack[slot], stack[slot + 1], stack[slot + 2]
+
+
+@kernel
+def _put(stack, slot, v):
+    stack[slot], stack[slot + 1], stack[slot + 2] = v[0], v[1], v[2]
+
+
+@kernel
+def _add3(lobes, slot, weight, v):
+    lobes[slot] += weight * v[0]
+    lobes[slot + 1] += weight * v[1]
+    lobes[slot + 2] += weight * v[2]
+
+
+@kernel
+def phong_exponent(roughness):
+    alpha = max(roughness, 1e-4) ** 2
+    return min(max((2.0 / (alpha * alpha) - 2.0) / 4.0, 0.0), MAX_SHININESS)
+
+
+@kernel
+def f0_of_ior(ior):
+    return ((ior - 1.0) / (ior + 1.0)) ** 2
+
+
+@kernel
+def ior_of_f0(f0):
+    root = math.sqrt(min(max(f0, 0.0), 0.9999))
+    return (1.0 + root) / (1.0 - root)
+
+
+@kernel
+def _highlight(lobes, f0, roughness):
+    if roughness <= SHARP_ROUGHNESS or max(f0[0], f0[1], f0[2]) <= 0.0:
+        return
+    shininess = phong_exponent(roughness)
+    peak = (2.0 * shininess + 1.0) / 4.0  # the GGX lobe's peak, seen and lit head-on
+    _add3(lobes, L_HIGHLIGHT, peak, f0)
+    lobes[L_SHININESS] += shininess * peak * (f0[0] + f0[1] + f0[2]) / 3.0
+    lobes[L_ROUGH] = 1.0
+
+
+@kernel
+def add_mirror(lobes, weight, normal, edge, roughness):
+    _add3(lobes, L_MIRROR, weight, normal)
+    _add3(lobes, L_EDGE, weight, edge)
+    _highlight(lobes, (weight * normal[0], weight * normal[1], weight * normal[2]), roughness)
+
+
+@kernel
+def add_coat(lobes, weight, ior, roughness, hides):
+    lobes[L_COAT] += weight
+    lobes[L_COAT_IOR] += weight * ior
+    if hides:
+        lobes[L_COAT_HIDES] = 1.0
+    f0 = weight * f0_of_ior(ior)
+    _highlight(lobes, (f0, f0, f0), roughness)
+
+
+@kernel
+def add_glass(lobes, weight, ior, reflect, transmit, fresnel):
+    lobes[L_GLASS] += weight
+    lobes[L_GLASS_IOR] += weight * ior
+    _add3(lobes, L_GLASS_REFLECT, weight, reflect)
+    _add3(lobes, L_GLASS_TRANSMIT, weight, transmit)
+    lobes[L_FRESNEL] += weight * fresnel
+
+
+@kernel
+def _nonnegative(c):
+    return max(c[0], 0.0), max(c[1], 0.0), max(c[2], 0.0)
+
+
+@kernel
+def _principled(lobes, w, base, metallic, roughness, ior, alpha, more):
+    """Cycles' Principled BSDF in lobes: blender_addon/export/principled.py documents it."""
+    transmission, emission, strength, level, tint, layered = more
+    base = _nonnegative(base)
+    clamped = (min(base[0], 1.0), min(base[1], 1.0), min(base[2], 1.0))
+    roughness = min(max(roughness, 0.0), 1.0)
+    metallic = min(max(metallic, 0.0), 1.0)
+    transmission = min(max(transmission, 0.0), 1.0)
+    alpha = min(max(alpha, 0.0), 1.0)
+    ior = max(ior, 1e-5)
+    _add3(lobes, L_TRANSPARENT, w * (1.0 - alpha), (1.0, 1.0, 1.0))
+    w *= alpha
+    _add3(lobes, L_EMISSION, w * max(strength, 0.0), _nonnegative(emission))
+    if layered:
+        tint = _nonnegative(tint)
+        if metallic > WEIGHT_CUTOFF:
+            add_mirror(lobes, w * metallic, clamped, (1.0, 1.0, 1.0), roughness)
+            w *= 1.0 - metallic
+        if transmission > WEIGHT_CUTOFF:
+            root = (math.sqrt(clamped[0]), math.sqrt(clamped[1]), math.sqrt(clamped[2]))
+            add_glass(lobes, w * transmission, ior, tint, root, 1.0)
+            w *= 1.0 - transmission
+        f0 = f0_of_ior(ior) * 2.0 * max(level, 0.0)
+        if f0 > 0.0 and w > WEIGHT_CUTOFF:
+            add_coat(lobes, w, ior_of_f0(f0), roughness, True)
+        _add3(lobes, L_DIFFUSE, w, base)
+        return
+    # Before Blender 4.0: additive lobes; `level` is Specular, tint[0] the Specular Tint
+    specular = max(level, 0.0)
+    tint_share = min(max(tint[0], 0.0), 1.0)
+    glass = transmission * (1.0 - metallic)
+    _add3(lobes, L_DIFFUSE, w * (1.0 - metallic) * (1.0 - transmission), base)
+    spec_weight = w * (1.0 - glass)
+    if metallic > WEIGHT_CUTOFF:
+        add_mirror(lobes, spec_weight * metallic, clamped, (1.0, 1.0, 1.0), roughness)
+    if specular > 0.0 and metallic < 1.0:
+        add_coat(lobes, spec_weight * (1.0 - metallic), ior_of_f0(0.08 * specular), roughness,
+                 False)  # fmt: skip
+    if glass > WEIGHT_CUTOFF:
+        reflect = (
+            (1.0 - tint_share) + clamped[0] * tint_share,
+            (1.0 - tint_share) + clamped[1] * tint_share,
+            (1.0 - tint_share) + clamped[2] * tint_share,
+        )
+        add_glass(lobes, w * glass, ior, reflect, clamped, 1.0)
+
+
+@kernel
+def run_program(mats, material, stack, lobes, hit):
+    """Run the material's program with `hit` = (uv, generated, object, normal) texture
+    coordinates (triples), leaving its lobes in `lobes` (LOBE_COUNT zeroed first)."""
+    lobes[:] = 0.0
+    first, end = mats.shader_range[material, 0], mats.shader_range[material, 1]
+    c0, c1 = mats.shader_constant_range[material, 0], mats.shader_constant_range[material, 1]
+    constants = mats.shader_constants
+    for k in range(c1 - c0):
+        stack[k] = constants[c0 + k]
+    ops = mats.shader_ops
+    s = stack
+    row = first
+    while row < end:
+        op, out, a, b = ops[row, 0], ops[row, 1], ops[row, 2], ops[row, 3]
+        c, d, e, f = ops[row, 4], ops[row, 5], ops[row, 6], ops[row, 7]
+        row += 1
+        if op == OP_COORD:
+            _put(s, out, hit[a])
+        elif op == OP_MAPPING:
+            v = mapping(f, _triple(s, a), _triple(s, b), _triple(s, c), _triple(s, d))
+            _put(s, out, v)
+        elif op == OP_IMAGE:
+            rgb, alpha = image_lookup(mats, c, _triple(s, b), d, e)
+            _put(s, out, rgb)
+            s[a] = alpha
+        elif op == OP_CHECKER:
+            fac = checker(_triple(s, b), s[e])
+            _put(s, out, _triple(s, c) if fac == 1.0 else _triple(s, d))
+            s[a] = fac
+        elif op == OP_GRADIENT:
+            fac = gradient(c, _triple(s, b))
+            _put(s, out, (fac, fac, fac))
+            s[a] = fac
+        elif op == OP_MATH:
+            value = math_node(d, s[a], s[b], s[c])
+            s[out] = min(max(value, 0.0), 1.0) if e else value
+        elif op == OP_MIX:
+            t = min(max(s[a], 0.0), 1.0)
+            mixed = mix_colour(d, t, _triple(s, b), _triple(s, c))
+            _put(s, out, clamp01(mixed) if e else mixed)
+        elif op == OP_INVERT:
+            _put(s, out, invert(s[a], _triple(s, b)))
+        elif op == OP_GAMMA:
+            _put(s, out, gamma(_triple(s, a), s[b]))
+        elif op == OP_BRIGHT:
+            _put(s, out, bright_contrast(_triple(s, a), s[b], s[c]))
+        elif op == OP_HSV:
+            _put(s, out, hue_saturation_value(s[a], s[b], s[c], s[d], _triple(s, e)))
+        elif op == OP_RAMP:
+            rgb, alpha = colour_ramp(s, c, d, e, s[b])
+            _put(s, out, rgb)
+            s[a] = alpha
+        elif op == OP_SEPARATE:
+            v = _triple(s, c)
+            s[out], s[a], s[b] = v[0], v[1], v[2]
+        elif op == OP_COMBINE:
+            _put(s, out, (s[a], s[b], s[c]))
+        elif op == OP_TO_VALUE:
+            s[out] = luminance(_triple(s, a))
+        elif op == OP_AVERAGE:
+            v = _triple(s, a)
+            s[out] = (v[0] + v[1] + v[2]) / 3.0
+        elif op == OP_COPY:
+            _put(s, out, _triple(s, a))
+        elif op == OP_SPLIT:
+            t = min(max(s[c], 0.0), 1.0)
+            w = s[b]
+            s[out], s[a] = w * (1.0 - t), w * t
+        elif op == OP_DIFFUSE:
+            _add3(lobes, L_DIFFUSE, s[out], _nonnegative(_triple(s, a)))
+        elif op == OP_GLOSSY:
+            tint = _nonnegative(_triple(s, a))
+            add_mirror(lobes, s[out], tint, tint, min(max(s[b], 0.0), 1.0))
+        elif op == OP_METALLIC:
+            add_mirror(lobes, s[out], clamp01(_triple(s, a)), clamp01(_triple(s, b)),
+                       min(max(s[c], 0.0), 1.0))  # fmt: skip
+        elif op == OP_GLASS:
+            tint = _nonnegative(_triple(s, a))
+            reflect = tint if c else (0.0, 0.0, 0.0)
+            add_glass(lobes, s[out], max(s[b], 1e-5), reflect, tint, float(c))
+        elif op == OP_TRANSPARENT:
+            _add3(lobes, L_TRANSPARENT, s[out], clamp01(_triple(s, a)))
+        elif op == OP_EMISSION:
+            _add3(lobes, L_EMISSION, s[out] * max(s[b], 0.0), _nonnegative(_triple(s, a)))
+        elif op == OP_HOLDOUT:
+            lobes[L_HOLDOUT] += s[out]
+        elif op == OP_PRINCIPLED:
+            m_op, m0, m1, m2 = ops[row, 0], ops[row, 1], ops[row, 2], ops[row, 3]
+            m3, m4, m5 = ops[row, 4], ops[row, 5], ops[row, 6]
+            row += 1
+            if m_op == OP_MORE:
+                more = (s[m0], _triple(s, m1), s[m2], s[m3], _triple(s, m4), m5 != 0)
+                _principled(lobes, s[out], _triple(s, a), s[b], s[c], s[d], s[e], more)

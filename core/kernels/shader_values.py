@@ -1,0 +1,399 @@
+"""The value nodes of a shader program, each as Blender's Cycles computes it: Math, Mix
+Color, Invert, Gamma, Bright/Contrast, Hue/Saturation/Value, RGB to BW, Color Ramp,
+Mapping, and the Checker and Gradient textures. Colours and vectors are triples."""
+
+import math
+
+import numpy as np
+
+from ..jit import kernel
+from .vec import add, scale, sub
+
+# Math node operations (core.model.shader.MATH_OPERATIONS, in that order)
+(M_ADD, M_SUBTRACT, M_MULTIPLY, M_DIVIDE, M_MULTIPLY_ADD, M_POWER, M_MINIMUM, M_MAXIMUM,
+ M_LESS_THAN, M_GREATER_THAN, M_ABSOLUTE, M_SQRT, M_FLOOR, M_CEIL, M_FRACT, M_MODULO, M_SINE,
+ M_COSINE, M_SNAP, M_ROUND, M_SIGN, M_EXPONENT, M_LOGARITHM, M_PINGPONG, M_WRAP,
+ M_SMOOTH_MIN, M_SMOOTH_MAX, M_COMPARE, M_TRUNC, M_INVERSE_SQRT, M_FLOORED_MODULO,
+ M_TANGENT, M_ARCSINE, M_ARCCOSINE, M_ARCTANGENT, M_ARCTAN2, M_SINH, M_COSH, M_TANH,
+ M_RADIANS, M_DEGREES) = range(41)  # fmt: skip
+# Mix Color blend types (core.model.shader.MIX_BLENDS)
+(B_MIX, B_ADD, B_MULTIPLY, B_SUBTRACT, B_SCREEN, B_DIVIDE, B_DIFFERENCE, B_DARKEN, B_LIGHTEN,
+ B_OVERLAY, B_EXCLUSION) = range(11)  # fmt: skip
+# Gradient texture types (core.model.shader.GRADIENT_TYPES)
+(G_LINEAR, G_QUADRATIC, G_EASING, G_DIAGONAL, G_RADIAL, G_QUADRATIC_SPHERE,
+ G_SPHERICAL) = range(7)  # fmt: skip
+# Mapping types (core.model.shader.MAPPING_TYPES)
+MAP_POINT, MAP_TEXTURE, MAP_VECTOR, MAP_NORMAL = range(4)
+# Color Ramp interpolations (core.model.shader.RAMP_INTERPOLATIONS)
+RAMP_LINEAR, RAMP_CONSTANT, RAMP_EASE = 0, 1, 2
+
+# Blender's scene-linear luminance weights (Rec. 709), for RGB to BW and colour -> value
+LUMA = (0.2126, 0.7152, 0.0722)
+
+
+@kernel
+def luminance(c):
+    return LUMA[0] * c[0] + LUMA[1] * c[1] + LUMA[2] * c[2]
+
+
+@kernel
+def _wrap(value, high, low):
+    span = high - low
+    return value - span * np.floor((value - low) / span) if span != 0.0 else low
+
+
+@kernel
+def _smooth_min(a, b, k):
+    if k == 0.0:
+        return min(a, b)
+    h = max(k - abs(a - b), 0.0) / k
+    return min(a, b) - h * h * h * k / 6.0
+
+
+@kernel
+def math_node(op, a, b, c):
+    """The Math node's operation on a, b (and c), with Cycles' safe variants."""
+    if op == M_ADD:
+        return a + b
+    if op == M_SUBTRACT:
+        return a - b
+    if op == M_MULTIPLY:
+        return a * b
+    if op == M_DIVIDE:
+        return a / b if b != 0.0 else 0.0
+    if op == M_MULTIPLY_ADD:
+        return a * b + c
+    if op == M_POWER:
+        if a >= 0.0:
+            return a**b if (a != 0.0 or b > 0.0) else (1.0 if b == 0.0 else 0.0)
+        return a**b if b == np.floor(b) else 0.0
+    if op == M_MINIMUM:
+        return min(a, b)
+    if op == M_MAXIMUM:
+        return max(a, b)
+    if op == M_LESS_THAN:
+        return 1.0 if a < b else 0.0
+    if op == M_GREATER_THAN:
+        return 1.0 if a > b else 0.0
+    if op == M_ABSOLUTE:
+        return abs(a)
+    if op == M_SQRT:
+        return math.sqrt(a) if a > 0.0 else 0.0
+    if op == M_FLOOR:
+        return np.floor(a)
+    if op == M_CEIL:
+        return np.ceil(a)
+    if op == M_FRACT:
+        return a - np.floor(a)
+    if op == M_MODULO:
+        return a - b * np.trunc(a / b) if b != 0.0 else 0.0  # C's fmod
+    if op == M_SINE:
+        return math.sin(a)
+    if op == M_COSINE:
+        return math.cos(a)
+    if op == M_SNAP:
+        return np.floor(a / b) * b if b != 0.0 else 0.0
+    if op == M_ROUND:
+        return np.floor(a + 0.5)
+    if op == M_SIGN:
+        return 1.0 if a > 0.0 else (-1.0 if a < 0.0 else 0.0)
+    if op == M_EXPONENT:
+        return math.exp(min(a, 700.0))
+    if op == M_LOGARITHM:
+        return math.log(a) / math.log(b) if a > 0.0 and b > 0.0 and b != 1.0 else 0.0
+    if op == M_PINGPONG:
+        if b == 0.0:
+            return 0.0
+        return abs((a - b) - 2.0 * b * np.floor((a - b) / (2.0 * b)) - b)
+    if op == M_WRAP:
+        return _wrap(a, b, c)
+    if op == M_SMOOTH_MIN:
+        return _smooth_min(a, b, c)
+    if op == M_SMOOTH_MAX:
+        return -_smooth_min(-a, -b, c)
+    if op == M_COMPARE:
+        return 1.0 if abs(a - b) <= max(c, 1e-5) else 0.0
+    if op == M_TRUNC:
+        return np.trunc(a)
+    return _more_math(op, a, b)
+
+
+@kernel
+def _more_math(op, a, b):
+    """The Math node's less common operations, as Cycles' safe variants."""
+    if op == M_INVERSE_SQRT:
+        return 1.0 / math.sqrt(a) if a > 0.0 else 0.0
+    if op == M_FLOORED_MODULO:
+        return a - np.floor(a / b) * b if b != 0.0 else 0.0
+    if op == M_TANGENT:
+        return math.tan(a)
+    if op == M_ARCSINE:
+        return math.asin(min(max(a, -1.0), 1.0))
+    if op == M_ARCCOSINE:
+        return math.acos(min(max(a, -1.0), 1.0))
+    if op == M_ARCTANGENT:
+        return math.atan(a)
+    if op == M_ARCTAN2:
+        return math.atan2(a, b)
+    if op == M_SINH:
+        return math.sinh(min(max(a, -700.0), 700.0))
+    if op == M_COSH:
+        return math.cosh(min(max(a, -700.0), 700.0))
+    if op == M_TANH:
+        return math.tanh(a)
+    if op == M_RADIANS:
+        return a * (math.pi / 180.0)
+    if op == M_DEGREES:
+        return a * (180.0 / math.pi)
+    return 0.0
+
+
+@kernel
+def _lerp(a, b, t):
+    return add(scale(a, 1.0 - t), scale(b, t))
+
+
+@kernel
+def mix_colour(blend, t, c1, c2):
+    """Mix Color (MixRGB) of blend type `blend`, factor t, as Cycles' svm_mix."""
+    if blend == B_ADD:
+        return _lerp(c1, add(c1, c2), t)
+    if blend == B_MULTIPLY:
+        return _lerp(c1, (c1[0] * c2[0], c1[1] * c2[1], c1[2] * c2[2]), t)
+    if blend == B_SUBTRACT:
+        return _lerp(c1, sub(c1, c2), t)
+    if blend == B_SCREEN:
+        tm = 1.0 - t
+        return (
+            1.0 - (tm + t * (1.0 - c2[0])) * (1.0 - c1[0]),
+            1.0 - (tm + t * (1.0 - c2[1])) * (1.0 - c1[1]),
+            1.0 - (tm + t * (1.0 - c2[2])) * (1.0 - c1[2]),
+        )
+    if blend == B_DIVIDE:
+        tm = 1.0 - t
+        return (
+            tm * c1[0] + t * c1[0] / c2[0] if c2[0] != 0.0 else c1[0],
+            tm * c1[1] + t * c1[1] / c2[1] if c2[1] != 0.0 else c1[1],
+            tm * c1[2] + t * c1[2] / c2[2] if c2[2] != 0.0 else c1[2],
+        )
+    if blend == B_DIFFERENCE:
+        return _lerp(c1, (abs(c1[0] - c2[0]), abs(c1[1] - c2[1]), abs(c1[2] - c2[2])), t)
+    if blend == B_DARKEN:
+        return _lerp(c1, (min(c1[0], c2[0]), min(c1[1], c2[1]), min(c1[2], c2[2])), t)
+    if blend == B_LIGHTEN:
+        return _lerp(c1, (max(c1[0], c2[0]), max(c1[1], c2[1]), max(c1[2], c2[2])), t)
+    if blend == B_OVERLAY:
+        return (_overlay(t, c1[0], c2[0]), _overlay(t, c1[1], c2[1]), _overlay(t, c1[2], c2[2]))
+    if blend == B_EXCLUSION:
+        e = _lerp(c1, (c1[0] + c2[0] - 2.0 * c1[0] * c2[0], c1[1] + c2[1] - 2.0 * c1[1] * c2[1],
+                       c1[2] + c2[2] - 2.0 * c1[2] * c2[2]), t)  # fmt: skip
+        return (max(e[0], 0.0), max(e[1], 0.0), max(e[2], 0.0))
+    return _lerp(c1, c2, t)
+
+
+@kernel
+def _overlay(t, a, b):
+    tm = 1.0 - t
+    if a < 0.5:
+        return a * (tm + 2.0 * t * b)
+    return 1.0 - (tm + 2.0 * t * (1.0 - b)) * (1.0 - a)
+
+
+@kernel
+def clamp01(c):
+    return (min(max(c[0], 0.0), 1.0), min(max(c[1], 0.0), 1.0), min(max(c[2], 0.0), 1.0))
+
+
+@kernel
+def invert(fac, c):
+    return _lerp(c, (1.0 - c[0], 1.0 - c[1], 1.0 - c[2]), fac)
+
+
+@kernel
+def gamma(c, g):
+    return (
+        c[0] ** g if c[0] > 0.0 else c[0],
+        c[1] ** g if c[1] > 0.0 else c[1],
+        c[2] ** g if c[2] > 0.0 else c[2],
+    )
+
+
+@kernel
+def bright_contrast(c, bright, contrast):
+    a = 1.0 + contrast
+    b = bright - contrast * 0.5
+    return (max(a * c[0] + b, 0.0), max(a * c[1] + b, 0.0), max(a * c[2] + b, 0.0))
+
+
+@kernel
+def _rgb_to_hsv(c):
+    r, g, b = c
+    top = max(r, g, b)
+    bottom = min(r, g, b)
+    delta = top - bottom
+    v = top
+    if top == 0.0 or delta == 0.0:
+        return 0.0, 0.0, v
+    s = delta / top
+    if r == top:
+        h = (g - b) / delta
+    elif g == top:
+        h = 2.0 + (b - r) / delta
+    else:
+        h = 4.0 + (r - g) / delta
+    h /= 6.0
+    if h < 0.0:
+        h += 1.0
+    return h, s, v
+
+
+@kernel
+def _hsv_to_rgb(h, s, v):
+    if s == 0.0:
+        return v, v, v
+    if h == 1.0:
+        h = 0.0
+    h *= 6.0
+    i = np.floor(h)
+    f = h - i
+    p = v * (1.0 - s)
+    q = v * (1.0 - s * f)
+    t = v * (1.0 - s * (1.0 - f))
+    if i == 0.0:
+        return v, t, p
+    if i == 1.0:
+        return q, v, p
+    if i == 2.0:
+        return p, v, t
+    if i == 3.0:
+        return p, q, v
+    if i == 4.0:
+        return t, p, v
+    return v, p, q
+
+
+@kernel
+def hue_saturation_value(hue, saturation, value, fac, c):
+    h, s, v = _rgb_to_hsv(c)
+    h = h + hue + 0.5
+    h -= math.floor(h)
+    s = min(max(s * saturation, 0.0), 1.0)
+    v *= value
+    out = _hsv_to_rgb(h, s, v)
+    mixed = _lerp(c, out, fac)
+    return (max(mixed[0], 0.0), max(mixed[1], 0.0), max(mixed[2], 0.0))
+
+
+@kernel
+def colour_ramp(stack, first, count, interpolation, t):
+    """(RGB, alpha) of a Color Ramp whose `count` stops sit in the stack from `first`, five
+    numbers each (position, R, G, B, A), in increasing position."""
+    if t <= stack[first] or count == 1:
+        k = first
+        return (stack[k + 1], stack[k + 2], stack[k + 3]), stack[k + 4]
+    last = first + 5 * (count - 1)
+    if t >= stack[last]:
+        return (stack[last + 1], stack[last + 2], stack[last + 3]), stack[last + 4]
+    k = first
+    while stack[k + 5] < t:
+        k += 5
+    if interpolation == RAMP_CONSTANT:
+        return (stack[k + 1], stack[k + 2], stack[k + 3]), stack[k + 4]
+    span = stack[k + 5] - stack[k]
+    f = (t - stack[k]) / span if span > 0.0 else 0.0
+    if interpolation == RAMP_EASE:
+        f = f * f * (3.0 - 2.0 * f)
+    rgba = (
+        stack[k + 1] * (1.0 - f) + stack[k + 6] * f,
+        stack[k + 2] * (1.0 - f) + stack[k + 7] * f,
+        stack[k + 3] * (1.0 - f) + stack[k + 8] * f,
+    )
+    return rgba, stack[k + 4] * (1.0 - f) + stack[k + 9] * f
+
+
+@kernel
+def _euler_rows(r):
+    """Rows of Blender's XYZ Euler rotation matrix (X first, then Y, then Z)."""
+    cx, cy, cz = math.cos(r[0]), math.cos(r[1]), math.cos(r[2])
+    sx, sy, sz = math.sin(r[0]), math.sin(r[1]), math.sin(r[2])
+    return (
+        (cy * cz, sx * sy * cz - cx * sz, cx * sy * cz + sx * sz),
+        (cy * sz, sx * sy * sz + cx * cz, cx * sy * sz - sx * cz),
+        (-sy, sx * cy, cx * cy),
+    )
+
+
+@kernel
+def _rows_times(m, v):
+    return (
+        m[0][0] * v[0] + m[0][1] * v[1] + m[0][2] * v[2],
+        m[1][0] * v[0] + m[1][1] * v[1] + m[1][2] * v[2],
+        m[2][0] * v[0] + m[2][1] * v[1] + m[2][2] * v[2],
+    )
+
+
+@kernel
+def _columns_times(m, v):
+    return (
+        m[0][0] * v[0] + m[1][0] * v[1] + m[2][0] * v[2],
+        m[0][1] * v[0] + m[1][1] * v[1] + m[2][1] * v[2],
+        m[0][2] * v[0] + m[1][2] * v[1] + m[2][2] * v[2],
+    )
+
+
+@kernel
+def _safe_divide(a, b):
+    return (
+        a[0] / b[0] if b[0] != 0.0 else 0.0,
+        a[1] / b[1] if b[1] != 0.0 else 0.0,
+        a[2] / b[2] if b[2] != 0.0 else 0.0,
+    )
+
+
+@kernel
+def mapping(kind, v, location, rotation, size):
+    """The Mapping node of type `kind` (MAP_*), as Cycles' svm_mapping."""
+    rows = _euler_rows(rotation)
+    if kind == MAP_POINT:
+        return add(_rows_times(rows, (v[0] * size[0], v[1] * size[1], v[2] * size[2])), location)
+    if kind == MAP_TEXTURE:
+        return _safe_divide(_columns_times(rows, sub(v, location)), size)
+    if kind == MAP_VECTOR:
+        return _rows_times(rows, (v[0] * size[0], v[1] * size[1], v[2] * size[2]))
+    n = _rows_times(rows, _safe_divide(v, size))
+    length = math.sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2])
+    return scale(n, 1.0 / length) if length > 0.0 else (0.0, 0.0, 0.0)
+
+
+@kernel
+def checker(p, scale_):
+    """The Checker texture's factor at p (1: Color1's squares), as Cycles' svm_checker."""
+    x = (p[0] * scale_ + 0.000001) * 0.999999
+    y = (p[1] * scale_ + 0.000001) * 0.999999
+    z = (p[2] * scale_ + 0.000001) * 0.999999
+    xi = abs(int(math.floor(x)))
+    yi = abs(int(math.floor(y)))
+    zi = abs(int(math.floor(z)))
+    return 1.0 if ((xi % 2 == yi % 2) == (zi % 2 == 1)) else 0.0
+
+
+@kernel
+def gradient(kind, p):
+    """The Gradient texture's factor at p, clamped to [0, 1], as Cycles' svm_gradient."""
+    x, y, z = p
+    if kind == G_LINEAR:
+        f = x
+    elif kind == G_QUADRATIC:
+        r = max(x, 0.0)
+        f = r * r
+    elif kind == G_EASING:
+        r = min(max(x, 0.0), 1.0)
+        f = 3.0 * r * r - 2.0 * r * r * r
+    elif kind == G_DIAGONAL:
+        f = (x + y) * 0.5
+    elif kind == G_RADIAL:
+        f = math.atan2(y, x) / (2.0 * math.pi) + 0.5
+    else:
+        r = max(0.999999 - math.sqrt(x * x + y * y + z * z), 0.0)
+        f = r * r if kind == G_QUADRATIC_SPHERE else r
+    return min(max(f, 0.0), 1.0)

@@ -1,0 +1,142 @@
+"""What a hit's material is, in the integrator's terms (`Surface`): read from the material
+table, or made from the lobes its shader program added up at the hit (`terms_from_lobes`,
+the same rule core.compile.shader_program folds constant programs with)."""
+
+from typing import NamedTuple
+
+from ..jit import kernel
+from .shader_program import (
+    L_COAT,
+    L_COAT_HIDES,
+    L_COAT_IOR,
+    L_DIFFUSE,
+    L_EDGE,
+    L_EMISSION,
+    L_FRESNEL,
+    L_GLASS,
+    L_GLASS_IOR,
+    L_GLASS_REFLECT,
+    L_GLASS_TRANSMIT,
+    L_HIGHLIGHT,
+    L_HOLDOUT,
+    L_MIRROR,
+    L_ROUGH,
+    L_SHININESS,
+    L_TRANSPARENT,
+)
+from .vec import row
+
+# The surface's share below which a material is all glass (its lobes are divided by it)
+SURFACE_CUTOFF = 1e-9
+
+
+class Surface(NamedTuple):
+    """A material at one hit (core.model.Material names the terms)."""
+
+    kd: tuple
+    ks: tuple
+    shininess: float
+    reflectivity: float
+    transparency: float
+    outer_ior: float
+    inner_ior: float
+    mirror_normal: tuple
+    mirror_edge: tuple
+    mirror_hides_lights: bool
+    coat: float
+    coat_ior: float
+    coat_hides: bool
+    glass_reflect: tuple
+    glass_transmit: tuple
+    refraction_fresnel: float
+    emission: tuple
+    transparent: tuple
+    holdout: float
+
+
+@kernel
+def _pair(table, material, which):
+    return (
+        table[material, which, 0],
+        table[material, which, 1],
+        table[material, which, 2],
+    )
+
+
+@kernel
+def table_surface(mats, material, kd):
+    """The material's row of the table, with its diffuse colour kd (its texture's at the
+    hit, or its own)."""
+    return Surface(
+        kd,
+        row(mats.specular, material),
+        mats.shininess[material],
+        mats.reflectivity[material],
+        mats.transparency[material],
+        mats.ior[material, 0],
+        mats.ior[material, 1],
+        _pair(mats.mirror, material, 0),
+        _pair(mats.mirror, material, 1),
+        mats.mirror_hides_lights[material] != 0,
+        mats.coat[material, 0],
+        mats.coat[material, 1],
+        mats.coat[material, 2] != 0.0,
+        _pair(mats.glass_tint, material, 0),
+        _pair(mats.glass_tint, material, 1),
+        mats.refraction_fresnel[material],
+        row(mats.emission, material),
+        row(mats.transparent, material),
+        mats.holdout[material],
+    )
+
+
+@kernel
+def _scaled(lobes, slot, factor):
+    return (
+        max(lobes[slot] * factor, 0.0),
+        max(lobes[slot + 1] * factor, 0.0),
+        max(lobes[slot + 2] * factor, 0.0),
+    )
+
+
+@kernel
+def terms_from_lobes(lobes):
+    """The Surface the lobes make: the glass's weight is the transparency, the other lobes
+    are shares of the rest (the integrator scales them by 1 - transparency)."""
+    glass = min(lobes[L_GLASS], 1.0)
+    rest = 1.0 - glass
+    per_rest = 1.0 / rest if rest > SURFACE_CUTOFF else 0.0
+    per_glass = 1.0 / lobes[L_GLASS] if lobes[L_GLASS] > 0.0 else 0.0
+    mirror_normal = _scaled(lobes, L_MIRROR, per_rest)
+    mirror_edge = _scaled(lobes, L_EDGE, per_rest)
+    mirrors = max(mirror_normal) > 0.0 or max(mirror_edge) > 0.0
+    ks = _scaled(lobes, L_HIGHLIGHT, per_rest)
+    mean_ks = (lobes[L_HIGHLIGHT] + lobes[L_HIGHLIGHT + 1] + lobes[L_HIGHLIGHT + 2]) / 3.0
+    shininess = lobes[L_SHININESS] / mean_ks if mean_ks > 0.0 else 1.0
+    coat = lobes[L_COAT]
+    white = (1.0, 1.0, 1.0)
+    return Surface(
+        _scaled(lobes, L_DIFFUSE, per_rest),
+        ks,
+        shininess,
+        1.0 if mirrors else 0.0,
+        glass,
+        1.0,
+        lobes[L_GLASS_IOR] * per_glass if glass > 0.0 else 1.0,
+        mirror_normal if mirrors else white,
+        mirror_edge if mirrors else white,
+        lobes[L_ROUGH] != 0.0,
+        min(coat * per_rest, 1.0),
+        lobes[L_COAT_IOR] / coat if coat > 0.0 else 1.5,
+        lobes[L_COAT_HIDES] != 0.0,
+        _scaled(lobes, L_GLASS_REFLECT, per_glass) if glass > 0.0 else white,
+        _scaled(lobes, L_GLASS_TRANSMIT, per_glass) if glass > 0.0 else white,
+        lobes[L_FRESNEL] * per_glass if glass > 0.0 else 1.0,
+        _scaled(lobes, L_EMISSION, 1.0),
+        (
+            min(max(lobes[L_TRANSPARENT], 0.0), 1.0),
+            min(max(lobes[L_TRANSPARENT + 1], 0.0), 1.0),
+            min(max(lobes[L_TRANSPARENT + 2], 0.0), 1.0),
+        ),
+        min(lobes[L_HOLDOUT], 1.0),
+    )

@@ -1,0 +1,241 @@
+"""Shader graphs: a material as Blender's nodes describe it, without Blender.
+
+A `ShaderNode` is one node: its kind (SHADER_NODES names them, with their inputs, outputs
+and settings), its inputs (a constant number or RGB/XYZ triple, or a `Link` to another
+node's output) and its settings. A `Material` whose `surface` is a closure node (a BSDF,
+Emission, Mix Shader...) renders from the graph below it: `core.compile.shader_program`
+turns it into a flat program the kernels run at each hit (`core.kernels.shader_program`),
+folded into the material table when nothing in it varies over the surface.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import SceneError
+
+# Each node kind: its inputs with their defaults (a float, or a triple for colours and
+# vectors; None for a vector whose default is a texture coordinate), its outputs (name:
+# "value" or "triple"), and whether it is a closure (its output is a shader).
+# The vector default `None` means the texture's own default coordinates: UV for images,
+# Generated for procedural textures, as in Blender.
+RGB = (0.8, 0.8, 0.8)
+SHADER_NODES = {
+    # closures
+    "principled": dict(
+        inputs={
+            "Base Color": RGB,
+            "Metallic": 0.0,
+            "Roughness": 0.5,
+            "IOR": 1.5,
+            "Alpha": 1.0,
+            "Transmission": 0.0,
+            "Emission Color": (1.0, 1.0, 1.0),
+            "Emission Strength": 0.0,
+            "Specular": 0.5,
+            "Specular Tint": (1.0, 1.0, 1.0),
+        },
+        closure=True,
+        settings={"layered": True},
+    ),  # fmt: skip
+    "diffuse": dict(inputs={"Color": RGB}, closure=True),
+    "glossy": dict(inputs={"Color": RGB, "Roughness": 0.5}, closure=True),
+    "metallic": dict(
+        inputs={"Base Color": RGB, "Edge Tint": (1.0, 1.0, 1.0), "Roughness": 0.5}, closure=True
+    ),  # fmt: skip
+    "glass": dict(inputs={"Color": (1.0, 1.0, 1.0), "IOR": 1.5}, closure=True),
+    "refraction": dict(inputs={"Color": (1.0, 1.0, 1.0), "IOR": 1.5}, closure=True),
+    "transparent": dict(inputs={"Color": (1.0, 1.0, 1.0)}, closure=True),
+    "emission": dict(inputs={"Color": (1.0, 1.0, 1.0), "Strength": 1.0}, closure=True),
+    "holdout": dict(inputs={}, closure=True),
+    "mix_shader": dict(inputs={"Fac": 0.5, "Shader A": None, "Shader B": None}, closure=True),
+    "add_shader": dict(inputs={"Shader A": None, "Shader B": None}, closure=True),
+    # values
+    "tex_coord": dict(
+        inputs={},
+        outputs={"UV": "triple", "Generated": "triple", "Object": "triple", "Normal": "triple"},
+    ),  # fmt: skip
+    "mapping": dict(
+        inputs={
+            "Vector": (0.0, 0.0, 0.0),
+            "Location": (0.0, 0.0, 0.0),
+            "Rotation": (0.0, 0.0, 0.0),
+            "Scale": (1.0, 1.0, 1.0),
+        },
+        outputs={"Vector": "triple"},
+        settings={"type": "POINT"},
+    ),  # fmt: skip
+    "image": dict(
+        inputs={"Vector": None},
+        outputs={"Color": "triple", "Alpha": "value"},
+        settings={"texture": None, "interpolation": "Linear", "extension": "REPEAT"},
+    ),  # fmt: skip
+    "checker": dict(
+        inputs={"Vector": None, "Color1": (0.8, 0.8, 0.8), "Color2": (0.2, 0.2, 0.2), "Scale": 5.0},
+        outputs={"Color": "triple", "Fac": "value"},
+    ),  # fmt: skip
+    "gradient": dict(
+        inputs={"Vector": None},
+        outputs={"Color": "triple", "Fac": "value"},
+        settings={"type": "LINEAR"},
+    ),  # fmt: skip
+    "math": dict(
+        inputs={"A": 0.5, "B": 0.5, "C": 0.0},
+        outputs={"Value": "value"},
+        settings={"operation": "ADD", "clamp": False},
+    ),  # fmt: skip
+    "mix_color": dict(
+        inputs={"Fac": 0.5, "A": (0.5, 0.5, 0.5), "B": (0.5, 0.5, 0.5)},
+        outputs={"Color": "triple"},
+        settings={"blend": "MIX", "clamp": False},
+    ),  # fmt: skip
+    "invert": dict(inputs={"Fac": 1.0, "Color": (0.0, 0.0, 0.0)}, outputs={"Color": "triple"}),
+    "gamma": dict(inputs={"Color": (1.0, 1.0, 1.0), "Gamma": 1.0}, outputs={"Color": "triple"}),
+    "bright_contrast": dict(
+        inputs={"Color": (1.0, 1.0, 1.0), "Bright": 0.0, "Contrast": 0.0},
+        outputs={"Color": "triple"},
+    ),  # fmt: skip
+    "hsv": dict(
+        inputs={"Hue": 0.5, "Saturation": 1.0, "Value": 1.0, "Fac": 1.0, "Color": (0.8, 0.8, 0.8)},
+        outputs={"Color": "triple"},
+    ),  # fmt: skip
+    "color_ramp": dict(
+        inputs={"Fac": 0.5},
+        outputs={"Color": "triple", "Alpha": "value"},
+        settings={
+            "stops": ((0.0, (0.0, 0.0, 0.0, 1.0)), (1.0, (1.0,) * 4)),
+            "interpolation": "LINEAR",
+        },
+    ),  # fmt: skip
+    "separate": dict(
+        inputs={"Vector": (0.0, 0.0, 0.0)}, outputs={"X": "value", "Y": "value", "Z": "value"}
+    ),  # fmt: skip
+    "combine": dict(inputs={"X": 0.0, "Y": 0.0, "Z": 0.0}, outputs={"Vector": "triple"}),
+    "to_bw": dict(inputs={"Color": (0.5, 0.5, 0.5)}, outputs={"Val": "value"}),
+}
+
+MATH_OPERATIONS = ("ADD", "SUBTRACT", "MULTIPLY", "DIVIDE", "MULTIPLY_ADD", "POWER",
+                   "MINIMUM", "MAXIMUM", "LESS_THAN", "GREATER_THAN", "ABSOLUTE", "SQRT",
+                   "FLOOR", "CEIL", "FRACT", "MODULO", "SINE", "COSINE", "SNAP",
+                   "ROUND", "SIGN", "EXPONENT", "LOGARITHM", "PINGPONG", "WRAP",
+                   "SMOOTH_MIN", "SMOOTH_MAX", "COMPARE", "TRUNC", "INVERSE_SQRT",
+                   "FLOORED_MODULO", "TANGENT", "ARCSINE", "ARCCOSINE", "ARCTANGENT",
+                   "ARCTAN2", "SINH", "COSH", "TANH", "RADIANS", "DEGREES")  # fmt: skip
+MIX_BLENDS = ("MIX", "ADD", "MULTIPLY", "SUBTRACT", "SCREEN", "DIVIDE", "DIFFERENCE",
+              "DARKEN", "LIGHTEN", "OVERLAY", "EXCLUSION")  # fmt: skip
+GRADIENT_TYPES = ("LINEAR", "QUADRATIC", "EASING", "DIAGONAL", "RADIAL", "QUADRATIC_SPHERE",
+                  "SPHERICAL")  # fmt: skip
+MAPPING_TYPES = ("POINT", "TEXTURE", "VECTOR", "NORMAL")
+# The deepest chain of nodes a graph may have: the graph is walked recursively
+MAX_GRAPH_DEPTH = 100
+INTERPOLATIONS = ("Linear", "Closest", "Cubic", "Smart")
+EXTENSIONS = ("REPEAT", "EXTEND", "CLIP", "MIRROR")
+RAMP_INTERPOLATIONS = ("LINEAR", "CONSTANT", "EASE", "CARDINAL", "B_SPLINE")
+
+
+@dataclass(frozen=True, eq=False)
+class Link:
+    """The output `output` of `node`, feeding an input."""
+
+    node: ShaderNode
+    output: str = ""
+
+
+@dataclass(eq=False)
+class ShaderNode:
+    kind: str
+    inputs: dict = field(default_factory=dict)
+    settings: dict = field(default_factory=dict)
+    name: str = ""
+
+    def input(self, name: str):
+        """The value or Link on input `name`, or its default."""
+        if name in self.inputs:
+            return self.inputs[name]
+        return SHADER_NODES[self.kind]["inputs"][name]
+
+    def setting(self, name: str):
+        if name in self.settings:
+            return self.settings[name]
+        return SHADER_NODES[self.kind].get("settings", {})[name]
+
+    @property
+    def is_closure(self) -> bool:
+        return bool(SHADER_NODES.get(self.kind, {}).get("closure"))
+
+    def validate(self, owner: str, seen: dict, depth: int = 0) -> None:
+        """Check this node and those it links to (each once; `seen` marks the nodes on the
+        current path "open", so a cycle is found)."""
+        label = f"node '{self.name or self.kind}'"
+        if depth > MAX_GRAPH_DEPTH:
+            raise SceneError(owner, label, f"lies more than {MAX_GRAPH_DEPTH} nodes deep in "
+                             "its graph: flatten it (nested node groups count)")  # fmt: skip
+        if self.kind not in SHADER_NODES:
+            raise SceneError(owner, label, f"unknown kind {self.kind!r}")
+        if seen.get(id(self)) == "open":
+            raise SceneError(owner, label, "is linked into itself (a cycle)")
+        if id(self) in seen:
+            return
+        seen[id(self)] = "open"
+        spec = SHADER_NODES[self.kind]
+        for name, value in self.inputs.items():
+            if name not in spec["inputs"]:
+                raise SceneError(owner, f"{label} input {name!r}", "no such input")
+            _check_input(owner, f"{label} input '{name}'", value, spec["inputs"][name], seen,
+                         depth)  # fmt: skip
+        for name in self.settings:
+            if name not in spec.get("settings", {}):
+                raise SceneError(owner, f"{label} setting {name!r}", "no such setting")
+        _check_settings(owner, label, self)
+        seen[id(self)] = "done"
+
+
+def _check_input(owner, label, value, default, seen, depth) -> None:
+    if isinstance(value, Link):
+        if not isinstance(value.node, ShaderNode):
+            raise SceneError(owner, label, "links to something that is not a ShaderNode")
+        outputs = SHADER_NODES.get(value.node.kind, {}).get("outputs", {})
+        shader_input = default is None and label.endswith(("Shader A'", "Shader B'"))
+        if shader_input != value.node.is_closure:
+            wanted = "a shader" if shader_input else "a value"
+            raise SceneError(owner, label, f"needs {wanted}, got node '{value.node.kind}'")
+        if not value.node.is_closure and value.output not in outputs:
+            raise SceneError(owner, label, f"node '{value.node.kind}' has no output "
+                             f"{value.output!r}; use one of {', '.join(outputs)}")  # fmt: skip
+        value.node.validate(owner, seen, depth + 1)
+        return
+    if value is None:
+        return
+    v = np.asarray(value, float) if not isinstance(value, bool) else None
+    if v is None or v.shape not in ((), (3,)) or not np.all(np.isfinite(v)):
+        raise SceneError(owner, label, f"got {value!r}; use a finite number or three")
+
+
+def _check_settings(owner, label, node) -> None:
+    choices = {
+        ("math", "operation"): MATH_OPERATIONS,
+        ("mix_color", "blend"): MIX_BLENDS,
+        ("gradient", "type"): GRADIENT_TYPES,
+        ("mapping", "type"): MAPPING_TYPES,
+        ("image", "interpolation"): INTERPOLATIONS,
+        ("image", "extension"): EXTENSIONS,
+        ("color_ramp", "interpolation"): RAMP_INTERPOLATIONS,
+    }
+    for (kind, name), allowed in choices.items():
+        if node.kind == kind and node.setting(name) not in allowed:
+            given = node.setting(name)
+            raise SceneError(owner, f"{label} {name}",
+                             f"got {given!r}; use one of {', '.join(allowed)}")  # fmt: skip
+    if node.kind == "image":
+        from .materials import Texture
+
+        texture = node.setting("texture")
+        if not isinstance(texture, Texture):
+            raise SceneError(owner, f"{label} texture", f"got {texture!r}; need a Texture")
+        texture.validate(owner)
+    if node.kind == "color_ramp":
+        stops = node.setting("stops")
+        if len(stops) < 1 or any(len(colour) != 4 for _, colour in stops):
+            raise SceneError(owner, f"{label} stops", "give (position, RGBA) pairs, at least one")

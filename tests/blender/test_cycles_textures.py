@@ -1,0 +1,206 @@
+"""Textures through the node graph, side by side with Cycles (tests/support/cycles.py), in
+every Blender version the tests run: a plane seen from above whose Emission colour (or
+strength, or a Mix Shader's factor) comes out of a chain of texture, coordinate, Mapping,
+colour and math nodes. Emission shows the graph's value itself, so each pixel must be
+Cycles' to within float rounding (Cycles' textures are float32), bar the few pixels where
+a checker or a texel edge passes through the pixel's centre.
+
+Before issue 39 Whitted used an Image Texture only when it fed a Principled Base Color
+directly (no mapping), and nothing else: every picture here was a flat colour."""
+
+import math
+
+import numpy as np
+import pytest
+
+from tests.support.cycles import new_scene, side_by_side
+
+pytestmark = pytest.mark.bpy
+
+# A pixel agrees when within this of Cycles' (absolute, the values being 0..2)
+CLOSE = 2e-3
+# Pixels allowed to differ: centres on an edge of a checker square or of a Closest texel
+EDGE_SHARE = 0.01
+
+
+def _uv_plane(bpy, scene):
+    """The plane's UVs: (0, 0) to (1, 1) across its 20 units (the view sees 0.3 to 0.7)."""
+    mesh = bpy.data.objects["Plane"].data
+    layer = mesh.uv_layers.new(name="UVMap")
+    for corner, uv in zip(layer.data, ((0, 0), (1, 0), (1, 1), (0, 1)), strict=True):
+        corner.uv = uv
+    return bpy.data.objects["Plane"]
+
+
+def _glowing(bpy, scene, build):
+    """Give the plane a material whose Emission (strength 1) colour is build(tree)'s output
+    socket; build may instead return ("strength", socket) or ("mix", factor socket)."""
+    plane = _uv_plane(bpy, scene)
+    material = bpy.data.materials.new("Graph")
+    material.use_nodes = True
+    tree = material.node_tree
+    tree.nodes.clear()
+    output = tree.nodes.new("ShaderNodeOutputMaterial")
+    emission = tree.nodes.new("ShaderNodeEmission")
+    fed = build(bpy, tree)
+    role, socket = fed if isinstance(fed, tuple) else ("color", fed)
+    if role == "mix":
+        red = tree.nodes.new("ShaderNodeEmission")
+        red.inputs["Color"].default_value = (1.0, 0.1, 0.1, 1.0)
+        emission.inputs["Color"].default_value = (0.1, 0.2, 1.0, 1.0)
+        mix = tree.nodes.new("ShaderNodeMixShader")
+        tree.links.new(socket, mix.inputs[0])
+        tree.links.new(red.outputs[0], mix.inputs[1])
+        tree.links.new(emission.outputs[0], mix.inputs[2])
+        tree.links.new(mix.outputs[0], output.inputs[0])
+    else:
+        tree.links.new(socket, emission.inputs["Color" if role == "color" else "Strength"])
+        tree.links.new(emission.outputs[0], output.inputs[0])
+    plane.data.materials.clear()
+    plane.data.materials.append(material)
+
+
+def _float_image(bpy, name, width, height, seed):
+    """A float (linear) image of random colours: no colour management between the two."""
+    rng = np.random.default_rng(seed)
+    image = bpy.data.images.new(name, width, height, alpha=True, float_buffer=True)
+    rgba = np.ones((height, width, 4), np.float32)
+    rgba[..., :3] = rng.uniform(0.05, 1.0, (height, width, 3))
+    image.pixels.foreach_set(rgba.ravel())
+    image.pack()
+    return image
+
+
+def _image_through_mapping(bpy, tree, interpolation="Linear", extension="REPEAT"):
+    coords = tree.nodes.new("ShaderNodeTexCoord")
+    mapping = tree.nodes.new("ShaderNodeMapping")
+    mapping.vector_type = "POINT"
+    mapping.inputs["Location"].default_value = (0.1, -0.05, 0.0)
+    mapping.inputs["Rotation"].default_value = (0.0, 0.0, math.radians(30.0))
+    mapping.inputs["Scale"].default_value = (2.0, 3.0, 1.0)
+    image = tree.nodes.new("ShaderNodeTexImage")
+    image.image = _float_image(bpy, "Random", 6, 4, seed=1)
+    image.interpolation = interpolation
+    image.extension = extension
+    tree.links.new(coords.outputs["UV"], mapping.inputs["Vector"])
+    tree.links.new(mapping.outputs["Vector"], image.inputs["Vector"])
+    return image.outputs["Color"]
+
+
+def _image_closest(bpy, tree):
+    return _image_through_mapping(bpy, tree, "Closest", "EXTEND")
+
+
+def _checker_generated(bpy, tree):
+    checker = tree.nodes.new("ShaderNodeTexChecker")
+    checker.inputs["Scale"].default_value = 7.0
+    checker.inputs["Color1"].default_value = (1.0, 0.8, 0.1, 1.0)
+    checker.inputs["Color2"].default_value = (0.1, 0.3, 0.9, 1.0)
+    return checker.outputs["Color"]
+
+
+def _checker_object(bpy, tree):
+    coords = tree.nodes.new("ShaderNodeTexCoord")
+    checker = tree.nodes.new("ShaderNodeTexChecker")
+    checker.inputs["Scale"].default_value = 1.3
+    tree.links.new(coords.outputs["Object"], checker.inputs["Vector"])
+    return checker.outputs["Color"]
+
+
+def _colour_chain(bpy, tree):
+    """Image -> Hue/Saturation/Value -> Mix Color (Multiply) -> Invert, and a Color Ramp on
+    the image's brightness mixed in by Gamma."""
+    colour = _image_through_mapping(bpy, tree)
+    hsv = tree.nodes.new("ShaderNodeHueSaturation")
+    hsv.inputs["Hue"].default_value = 0.6
+    hsv.inputs["Saturation"].default_value = 0.8
+    tree.links.new(colour, hsv.inputs["Color"])
+    mix = tree.nodes.new("ShaderNodeMixRGB")
+    mix.blend_type = "MULTIPLY"
+    mix.inputs["Fac"].default_value = 0.7
+    mix.inputs["Color2"].default_value = (0.9, 0.5, 0.3, 1.0)
+    tree.links.new(hsv.outputs["Color"], mix.inputs["Color1"])
+    bw = tree.nodes.new("ShaderNodeRGBToBW")
+    tree.links.new(colour, bw.inputs["Color"])
+    ramp = tree.nodes.new("ShaderNodeValToRGB")
+    ramp.color_ramp.elements[0].color = (0.1, 0.0, 0.3, 1.0)
+    ramp.color_ramp.elements[1].color = (1.0, 0.9, 0.2, 1.0)
+    middle = ramp.color_ramp.elements.new(0.4)
+    middle.color = (0.0, 0.8, 0.4, 1.0)
+    tree.links.new(bw.outputs["Val"], ramp.inputs["Fac"])
+    screen = tree.nodes.new("ShaderNodeMixRGB")
+    screen.blend_type = "SCREEN"
+    screen.inputs["Fac"].default_value = 0.5
+    tree.links.new(mix.outputs["Color"], screen.inputs["Color1"])
+    tree.links.new(ramp.outputs["Color"], screen.inputs["Color2"])
+    gamma = tree.nodes.new("ShaderNodeGamma")
+    gamma.inputs["Gamma"].default_value = 1.7
+    tree.links.new(screen.outputs["Color"], gamma.inputs["Color"])
+    invert = tree.nodes.new("ShaderNodeInvert")
+    invert.inputs["Fac"].default_value = 0.2
+    tree.links.new(gamma.outputs["Color"], invert.inputs["Color"])
+    return invert.outputs["Color"]
+
+
+def _gradient_math(bpy, tree):
+    """A Gradient on Object coordinates, through Math (Multiply, Fract), as Emission
+    Strength."""
+    coords = tree.nodes.new("ShaderNodeTexCoord")
+    gradient = tree.nodes.new("ShaderNodeTexGradient")
+    gradient.gradient_type = "DIAGONAL"
+    tree.links.new(coords.outputs["Object"], gradient.inputs["Vector"])
+    times = tree.nodes.new("ShaderNodeMath")
+    times.operation = "MULTIPLY"
+    times.inputs[1].default_value = 2.7  # no jump of Fract on a pixel centre
+    tree.links.new(gradient.outputs["Fac"], times.inputs[0])
+    fract = tree.nodes.new("ShaderNodeMath")
+    fract.operation = "FRACT"
+    tree.links.new(times.outputs["Value"], fract.inputs[0])
+    plus = tree.nodes.new("ShaderNodeMath")
+    plus.operation = "ADD"
+    plus.inputs[1].default_value = 0.25
+    tree.links.new(fract.outputs["Value"], plus.inputs[0])
+    return ("strength", plus.outputs["Value"])
+
+
+def _textured_mix_factor(bpy, tree):
+    """A mask: a checker's factor mixing a red and a blue Emission."""
+    checker = tree.nodes.new("ShaderNodeTexChecker")
+    checker.inputs["Scale"].default_value = 5.0
+    return ("mix", checker.outputs["Fac"])
+
+
+def _separate_combine(bpy, tree):
+    """Generated coordinates taken apart and put back swapped, as a colour."""
+    coords = tree.nodes.new("ShaderNodeTexCoord")
+    separate = tree.nodes.new("ShaderNodeSeparateXYZ")
+    combine = tree.nodes.new("ShaderNodeCombineXYZ")
+    tree.links.new(coords.outputs["Generated"], separate.inputs[0])
+    tree.links.new(separate.outputs["X"], combine.inputs["Y"])
+    tree.links.new(separate.outputs["Y"], combine.inputs["Z"])
+    tree.links.new(separate.outputs["Z"], combine.inputs["X"])
+    return combine.outputs["Vector"]
+
+
+GRAPHS = {
+    "image_through_mapping": _image_through_mapping,
+    "image_closest_extend": _image_closest,
+    "checker_generated": _checker_generated,
+    "checker_object": _checker_object,
+    "colour_chain": _colour_chain,
+    "gradient_math_strength": _gradient_math,
+    "textured_mix_factor": _textured_mix_factor,
+    "separate_combine": _separate_combine,
+}
+
+
+@pytest.mark.parametrize("kind", list(GRAPHS))
+def test_a_texture_graph_gives_cycles_pixels(bpy_with_whitted, tmp_path, kind):
+    bpy = bpy_with_whitted
+    scene = new_scene(bpy)
+    _glowing(bpy, scene, GRAPHS[kind])
+    cycles, whitted = side_by_side(bpy, scene, tmp_path, samples=16)
+    off = np.abs(whitted - cycles).max(axis=-1) > CLOSE
+    print(f"{kind}: {off.mean():.4f} of pixels off, largest {np.abs(whitted - cycles).max():.4f}")
+    assert cycles.max() > 0.1  # the graph shows
+    assert off.mean() <= EDGE_SHARE, off.mean()
