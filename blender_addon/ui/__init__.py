@@ -12,7 +12,7 @@ from . import add_menu
 from .base import ENGINE
 from .light import WHITTED_PT_light
 from .material import WHITTED_PT_material
-from .object import WHITTED_PT_object_shape
+from .object import WHITTED_PT_object_ray_visibility, WHITTED_PT_object_shape
 from .render import WHITTED_PT_render
 from .view_layer import PANELS as VIEW_LAYER_PANELS
 from .world import WHITTED_PT_world
@@ -63,6 +63,7 @@ _opened = []  # the panels register() opened, to close on unregister
 _classes = (
     WHITTED_PT_render,
     WHITTED_PT_object_shape,
+    WHITTED_PT_object_ray_visibility,
     WHITTED_PT_material,
     WHITTED_PT_light,
     WHITTED_PT_world,

@@ -31,3 +31,28 @@ class WHITTED_PT_object_shape(WhittedPanel, bpy.types.Panel):
             for modifier in booleans:
                 operands = ", ".join(o.name for o in operand_objects(modifier)) or "(none)"
                 box.label(text=f"{OPERATIONS[modifier.operation]} {operands}")
+
+
+class WHITTED_PT_object_ray_visibility(WhittedPanel, bpy.types.Panel):
+    """Object Properties › Visibility › Ray Visibility: the rays that see the object, as
+    Cycles' panel draws them (Blender's own Visibility panel has none for other engines)."""
+
+    bl_label = "Ray Visibility"
+    bl_context = "object"
+    bl_parent_id = "OBJECT_PT_visibility"
+
+    @classmethod
+    def poll(cls, context):
+        obj = context.object
+        return super().poll(context) and obj is not None and obj.type not in {"LIGHT", "CAMERA"}
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        obj = context.object
+        column = layout.column(heading="Ray Visibility", align=True)
+        column.prop(obj, "visible_camera", text="Camera", toggle=False)
+        column.prop(obj, "visible_shadow", text="Shadow", toggle=False)
+        column.prop(obj, "visible_glossy", text="Glossy", toggle=False)
+        column.prop(obj, "visible_transmission", text="Transmission", toggle=False)

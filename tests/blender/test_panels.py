@@ -77,3 +77,26 @@ def test_one_light_panel_draws_the_type_row(bpy_with_whitted):
     light_panels = [n for n in shown if n in ("DATA_PT_light", "DATA_PT_EEVEE_light")]
     assert light_panels == []
     assert bpy.types.WHITTED_PT_light.bl_label == "Light"
+
+
+def test_ray_visibility_is_drawn_under_whitted_and_each_switch_reaches_the_export(
+    sample_scene, bpy_with_whitted
+):
+    """Object › Visibility › Ray Visibility (Blender's own panel has it for Cycles only):
+    Whitted's sub-panel draws the four switches the export reads."""
+    bpy = bpy_with_whitted
+    panel = bpy.types.WHITTED_PT_object_ray_visibility
+    assert panel.bl_parent_id == "OBJECT_PT_visibility"
+    assert "OBJECT_PT_visibility" in shown_panels(bpy)
+    ball = next(o for o in sample_scene.objects if o.type == "MESH" and o.whitted.shape == "SPHERE")
+    switches = {
+        "visible_camera": "seen_by_camera",
+        "visible_glossy": "seen_in_mirrors",
+        "visible_transmission": "seen_through_glass",
+        "visible_shadow": "casts_shadows",
+    }
+    for switch, field in switches.items():
+        setattr(ball, switch, False)
+        shape = next(s for s in exported(bpy)[0].shapes if s.name == ball.name)
+        assert getattr(shape, field) is False, switch
+        setattr(ball, switch, True)
