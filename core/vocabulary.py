@@ -53,6 +53,10 @@ PASS_SLOT = {name: slot for slot, name in enumerate(PASS_NAMES)}
 EMITTER_SPHERE, EMITTER_FACING_DISK = 0, 1
 EMITTER_RECTANGLE, EMITTER_ELLIPSE = 2, 3
 EMITTER_SUN_CONE, EMITTER_SUN_DISK = 4, 5
+# An emissive surface lighting the scene (core.compile.glowing): its triangles, sampled by
+# area. Kernels test for it first, before the ranges above
+EMITTER_MESH = 6
 EMITTER_KINDS = {"sphere": EMITTER_SPHERE, "facing_disk": EMITTER_FACING_DISK,
                  "rectangle": EMITTER_RECTANGLE, "ellipse": EMITTER_ELLIPSE,
-                 "sun_cone": EMITTER_SUN_CONE, "sun_disk": EMITTER_SUN_DISK}  # fmt: skip
+                 "sun_cone": EMITTER_SUN_CONE, "sun_disk": EMITTER_SUN_DISK,
+                 "mesh": EMITTER_MESH}  # fmt: skip

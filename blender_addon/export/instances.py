@@ -15,6 +15,7 @@ from .mesh import MeshCache
 
 # core.Shape's flags and the Object properties they come from
 RAY_VISIBILITY = (
+    ("lights_diffuse", "visible_diffuse"),
     ("seen_by_camera", "visible_camera"),
     ("seen_in_mirrors", "visible_glossy"),
     ("seen_through_glass", "visible_transmission"),

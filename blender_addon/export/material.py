@@ -42,7 +42,22 @@ def convert(material, warn=None) -> core.Material:
         tree = node_tree_in_use(material)
         colour = lambert if tree is None else (0.0, 0.0, 0.0)  # nothing linked: black
         return core.Material(diffuse=colour, name=material.name, pass_index=material.pass_index)
-    return core.Material(name=material.name, pass_index=material.pass_index, surface=surface)
+    return core.Material(name=material.name, pass_index=material.pass_index, surface=surface,
+                         emission_lights=emission_lights(material))  # fmt: skip
+
+
+def emission_lights(material) -> bool:
+    """Whitted Material › Emission Lights: Auto follows Cycles' Emission Sampling (Blender
+    4.0 on) or Multiple Importance (before): lights unless it is None or off."""
+    choice = material.whitted.emission_lights
+    if choice != "AUTO":
+        return choice == "ON"
+    cycles = getattr(material, "cycles", None)
+    if cycles is None:
+        return True
+    if hasattr(cycles, "emission_sampling"):
+        return cycles.emission_sampling != "NONE"
+    return bool(getattr(cycles, "sample_as_light", True))
 
 
 def read_graph(material, textures: bool = True):

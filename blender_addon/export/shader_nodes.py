@@ -64,6 +64,8 @@ OUTPUTS = {
     "RGBTOBW": ("to_bw", {"Val": "Val"}),
     "TEX_CHECKER": ("checker", {"Color": "Color", "Fac": "Fac"}),
     "TEX_GRADIENT": ("gradient", {"Color": "Color", "Fac": "Fac"}),
+    "BUMP": ("bump", {"Normal": "Normal"}),
+    "NORMAL_MAP": ("normal_map", {"Normal": "Normal"}),
 }
 
 
@@ -77,6 +79,7 @@ class GraphReader:
         self.problems: list[str] = []
         self.made: dict = {}  # (node, group path) -> core ShaderNode
         self.depth = 0  # value nodes being read, one inside the other
+        self.displaced = None  # the Material Output's Displacement, as a bump normal
 
     def note(self, text: str) -> None:
         if text not in self.problems:
@@ -88,12 +91,40 @@ class GraphReader:
         if output is None:
             self.note("its node tree has no Material Output: rendered black")
             return None
-        for name in ("Volume", "Displacement"):
-            socket = output.inputs.get(name)
-            if socket is not None and socket.is_linked:
-                used = "the surface's own normal" if name == "Displacement" else "nothing"
-                self.note(f"the Material Output's {name} is not rendered (used: {used})")
+        volume = output.inputs.get("Volume")
+        if volume is not None and volume.is_linked:
+            self.note("the Material Output's Volume is not rendered (used: nothing)")
+        self.displaced = self._displacement(output)
         return self.shader(feed_of(output.inputs["Surface"]))
+
+    def _displacement(self, output):
+        """The Material Output's Displacement as a Link to the bump normal it makes (Cycles'
+        Displacement Only Bump, as Whitted renders every method), or None."""
+        socket = output.inputs.get("Displacement")
+        if socket is None or feed_of(socket).node is None:
+            return None
+        method = getattr(getattr(self.material, "cycles", None), "displacement_method", "BUMP")
+        if method not in ("BUMP", "DISPLACEMENT_BUMP"):
+            self.note(f"Displacement Method {method.title()} (used: Bump Only)")
+        feed = feed_of(socket)
+        if feed.node.type != "DISPLACEMENT":
+            self.note(f"node {node_label(feed.node)} on the Material Output's Displacement "
+                      "(used: the surface's own normal; a Displacement node is read)")  # fmt: skip
+            return None
+        node = feed.node
+        if getattr(node, "space", "OBJECT") != "OBJECT":
+            self.note(f"{node_label(node)}'s {node.space.title()} space (used: Object)")
+        # Its height along the normal, (Height - Midlevel) x Scale, as a bump of distance 1
+        v = self.value
+        offset = core.ShaderNode("math", {"A": v(node, feed.groups, "Height"),
+                                          "B": v(node, feed.groups, "Midlevel")},
+                                 {"operation": "SUBTRACT"}, name=node.name)  # fmt: skip
+        height = core.ShaderNode("math", {"A": core.Link(offset, "Value"),
+                                          "B": v(node, feed.groups, "Scale")},
+                                 {"operation": "MULTIPLY"}, name=node.name)  # fmt: skip
+        bump = core.ShaderNode("bump", {"Height": core.Link(height, "Value"), "Distance": 1.0},
+                               name=node.name)  # fmt: skip
+        return core.Link(bump, "Normal")
 
     # shaders
 
@@ -160,14 +191,24 @@ class GraphReader:
                 self.note(f"{node_label(node)}'s colour tints what is seen through it, not "
                           f"the shadows it casts (used: its mean, {float(np.mean(colour)):.3g}, "
                           "for shadows)")  # fmt: skip
-        self.linked(node, groups, "Normal", "the surface's own normal")
+        self._normal(made, node, groups)
         return made
+
+    def _normal(self, made, node, groups) -> None:
+        """A closure's Normal input: what feeds it, else the displacement's bump normal."""
+        socket = node.inputs.get("Normal")
+        if socket is None or "Normal" not in core.model.shader.SHADER_NODES[made.kind]["inputs"]:
+            return
+        if feed_of(socket, groups).node is not None:
+            made.inputs["Normal"] = self.value(node, groups, "Normal")
+        elif self.displaced is not None:
+            made.inputs["Normal"] = self.displaced
 
     def _principled(self, node, groups):
         for name, neutral, used in _UNMODELLED:
             if node.inputs.get(name) is not None and self._number(node, name) != neutral:
                 self.note(f"{node_label(node)}'s {name} is not modelled (used: {used})")
-        for name in ("Normal", "Coat Normal", "Clearcoat Normal", "Tangent"):
+        for name in ("Coat Normal", "Clearcoat Normal", "Tangent"):
             self.linked(node, groups, name, "the surface's own normal")
         v = self.value
         made = core.ShaderNode("principled", name=node.name,
@@ -193,6 +234,7 @@ class GraphReader:
         dielectric = made.inputs.get("Metallic", 0.0) != 1.0
         if PRINCIPLED_LAYERED and constant_tint and dielectric and not np.allclose(tint, 1.0):
             self.note(f"{node_label(node)}'s Specular Tint on a dielectric (used: white)")
+        self._normal(made, node, groups)
         return made
 
     # values
@@ -303,6 +345,18 @@ class GraphReader:
                 made.inputs[name] = v(node, groups, name)
         elif t == "RGBTOBW":
             made.inputs["Color"] = v(node, groups, "Color")
+        elif t == "BUMP":
+            for name in ("Strength", "Distance", "Height"):
+                made.inputs[name] = v(node, groups, name)
+            made.settings["invert"] = bool(node.invert)
+            self.linked(node, groups, "Normal", "the surface's own normal, bumped")
+        elif t == "NORMAL_MAP":
+            space = node.space if node.space in ("TANGENT", "OBJECT", "WORLD") else "OBJECT"
+            if node.space != space:
+                self.note(f"{node_label(node)}'s {node.space.title()} space (used: Object)")
+            made.settings["space"] = space
+            for name in ("Strength", "Color"):
+                made.inputs[name] = v(node, groups, name)
         return made
 
     def _vector(self, node, groups, name):

@@ -3,6 +3,7 @@
 import bpy
 from bpy.props import (
     BoolProperty,
+    EnumProperty,
     FloatProperty,
     FloatVectorProperty,
     PointerProperty,
@@ -62,6 +63,17 @@ class WhittedMaterialSettings(bpy.types.PropertyGroup):
         min=0.0,
         soft_max=1.0,
         default=(0.5, 0.5, 0.5),
+    )
+    emission_lights: EnumProperty(
+        name="Emission Lights",
+        description="Whether the material's emission lights other surfaces, sampled like an "
+        "area light (meshes and evenly scaled spheres), or is only seen",
+        items=[
+            ("AUTO", "Auto", "As Cycles' Emission Sampling says: lights unless it is None"),
+            ("ON", "On", "Lights the scene"),
+            ("OFF", "Off", "Only seen, lighting nothing (cheaper)"),
+        ],
+        default="AUTO",
     )
     shininess: FloatProperty(
         name="Shininess",

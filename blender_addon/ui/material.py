@@ -49,4 +49,6 @@ class WHITTED_PT_material(WhittedPanel, bpy.types.Panel):
         kinds = closure_kinds(surface) if surface is not None else []
         shown = ", ".join(kind.replace("_", " ") for kind in kinds) or "nothing (black)"
         layout.label(text="Renders as: " + shown)
+        if {"emission", "principled"} & set(kinds):
+            layout.prop(material.whitted, "emission_lights")
         draw_warnings(layout, context, [f"material '{material.name}': {p}" for p in problems])

@@ -32,6 +32,7 @@ from ..memory_estimate import check_fits, estimate
 from ..model import RenderSettings, Scene
 from .csg import owner_rows, pack_csg
 from .frame import pack_frame
+from .glowing import glowing_shapes
 from .lights import pack_lights
 from .materials import pack_materials, shadow_shares
 from .meshes import pack_meshes
@@ -74,13 +75,14 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
                              meshes, mesh_of, shadow_share)  # fmt: skip
     owners = [scene.shapes[row] for row in owner_rows(csg, tree_of_row, len(scene.shapes))]
     surfaces = pack_surfaces(shapes, owners, material_of, meshes)
-    lights = pack_lights(scene.lights, scene.environment)
+    glowing = glowing_shapes(scene.shapes, materials, material_of)
+    lights = pack_lights(scene.lights, scene.environment, glowing)
     packed = kernel_ready(PackedScene(frame, geometry, surfaces, materials, lights))
     warnings = [
         f"mesh '{name}': dropped {count} degenerate (zero-area) triangle"
         + ("s" if count != 1 else "")
         for name, count in meshes.dropped.items()
-    ]
+    ] + glowing.warnings
     mesh_bytes = sum(
         getattr(group, name).nbytes
         for group in (geometry, surfaces)

@@ -20,16 +20,19 @@ from ..kernels.layout import (
 from ..model import AreaLight, DirectionalLight, PointLight
 from ..model.emitters import EMITTERS, PanelLight, SphereLight, SpotLight, SunLight
 from ..vocabulary import EMITTER_KINDS
-from .arrays import rows
+from .arrays import concatenated, rows
 from .environment import pack_environment
 
 
-def pack_lights(lights: list, environment=None) -> Lights:
+def pack_lights(lights: list, environment=None, glowing=None) -> Lights:
+    """`glowing`: emissive surfaces as lights (core.compile.glowing), after the lights."""
     points = [light for light in lights if isinstance(light, PointLight)]
     areas = [light for light in lights if isinstance(light, AreaLight)]
     suns = [light for light in lights if isinstance(light, DirectionalLight)]
     toward = [-np.asarray(sun.direction, float) / np.linalg.norm(sun.direction) for sun in suns]
     emitters = [_emitter_row(light) for light in lights if isinstance(light, EMITTERS)]
+    if glowing is not None:
+        emitters += glowing.rows
     return Lights(
         point_position=rows([light.position for light in points]),
         point_intensity=rows([light.intensity for light in points]),
@@ -47,6 +50,8 @@ def pack_lights(lights: list, environment=None) -> Lights:
         emitter_frame=np.array([e[3] for e in emitters], float).reshape(-1, 3, 3),
         emitter_param=rows([e[4] for e in emitters], 4),
         emitter_radiance=rows([e[5] for e in emitters]),
+        glow_triangles=concatenated(glowing.triangles if glowing else [], (0, 9), np.float64),
+        glow_cdf=concatenated(glowing.cdfs if glowing else [], (0,), np.float64),
         **pack_environment(environment),
     )
 

@@ -24,6 +24,7 @@ from ..model.shader import (
     MAPPING_TYPES,
     MATH_OPERATIONS,
     MIX_BLENDS,
+    NORMAL_MAP_SPACES,
     RAMP_INTERPOLATIONS,
     SHADER_NODES,
     Link,
@@ -82,7 +83,9 @@ class ProgramBuilder:
     def __init__(self, texture_row):
         self.program = Program()
         self.texture_row = texture_row
-        self.outputs: dict = {}  # (id(node), output) -> (operand, "value" | "triple")
+        self.outputs: dict = {}  # (id(node), output, where) -> (operand, shape)
+        # where the values are wanted: 0 the hit, 1 and 2 a step across (a Bump's heights)
+        self.where = 0
 
     def build(self, surface) -> Program:
         weight = self.program.constant(1.0)
@@ -108,18 +111,21 @@ class ProgramBuilder:
                 if isinstance(linked, Link):
                     self.shader(linked.node, share)
             return
+        v = self.value
         if kind == "diffuse":
-            p.step(sp.OP_DIFFUSE, weight, self.value(node.input("Color"), "triple"))
+            p.step(sp.OP_DIFFUSE, weight, v(node.input("Color"), "triple"), 0, 0, 0, 0,
+                   self._normal(node))  # fmt: skip
         elif kind == "glossy":
-            colour = self.value(node.input("Color"), "triple")
-            p.step(sp.OP_GLOSSY, weight, colour, self.value(node.input("Roughness"), "value"))
+            p.step(sp.OP_GLOSSY, weight, v(node.input("Color"), "triple"),
+                   v(node.input("Roughness"), "value"), 0, 0, 0, self._normal(node))  # fmt: skip
         elif kind == "metallic":
-            p.step(sp.OP_METALLIC, weight, self.value(node.input("Base Color"), "triple"),
-                   self.value(node.input("Edge Tint"), "triple"),
-                   self.value(node.input("Roughness"), "value"))  # fmt: skip
+            p.step(sp.OP_METALLIC, weight, v(node.input("Base Color"), "triple"),
+                   v(node.input("Edge Tint"), "triple"), v(node.input("Roughness"), "value"),
+                   0, 0, self._normal(node))  # fmt: skip
         elif kind in ("glass", "refraction"):
-            p.step(sp.OP_GLASS, weight, self.value(node.input("Color"), "triple"),
-                   self.value(node.input("IOR"), "value"), int(kind == "glass"))  # fmt: skip
+            p.step(sp.OP_GLASS, weight, v(node.input("Color"), "triple"),
+                   v(node.input("IOR"), "value"), int(kind == "glass"), 0, 0,
+                   self._normal(node))  # fmt: skip
         elif kind == "transparent":
             p.step(sp.OP_TRANSPARENT, weight, self.value(node.input("Color"), "triple"))
         elif kind == "emission":
@@ -128,15 +134,22 @@ class ProgramBuilder:
         elif kind == "holdout":
             p.step(sp.OP_HOLDOUT, weight)
         elif kind == "principled":
-            v = self.value
             p.step(sp.OP_PRINCIPLED, weight, v(node.input("Base Color"), "triple"),
                    v(node.input("Metallic"), "value"), v(node.input("Roughness"), "value"),
-                   v(node.input("IOR"), "value"), v(node.input("Alpha"), "value"))  # fmt: skip
+                   v(node.input("IOR"), "value"), v(node.input("Alpha"), "value"),
+                   self._normal(node))  # fmt: skip
             p.step(sp.OP_MORE, v(node.input("Transmission"), "value"),
                    v(node.input("Emission Color"), "triple"),
                    v(node.input("Emission Strength"), "value"), v(node.input("Specular"), "value"),
                    v(node.input("Specular Tint"), "triple"),
                    int(bool(node.setting("layered"))))  # fmt: skip
+
+    def _normal(self, node):
+        """The operand of a closure's Normal input, or -1 (the surface's own normal)."""
+        given = node.input("Normal")
+        if not isinstance(given, Link):
+            return -1
+        return self.value(given, "triple")
 
     # values
 
@@ -160,16 +173,16 @@ class ProgramBuilder:
         return out
 
     def _coord(self, which: int):
-        key = ("coord", which)
+        key = ("coord", which, self.where)
         if key not in self.outputs:
             out = self.program.slot()
-            self.program.step(sp.OP_COORD, out, which)
+            self.program.step(sp.OP_COORD, out, which, self.where)
             self.program.varying = True
             self.outputs[key] = (out, "triple")
         return self.outputs[key][0]
 
     def _output(self, node, output: str):
-        key = (id(node), output)
+        key = (id(node), output, self.where)
         if key not in self.outputs:
             self._emit(node)
         return self.outputs[key]
@@ -180,10 +193,28 @@ class ProgramBuilder:
         outputs = SHADER_NODES[kind]["outputs"]
         slots = {name: p.slot() for name in outputs}
         for name, shape in outputs.items():
-            self.outputs[(id(node), name)] = (slots[name], shape)
+            self.outputs[(id(node), name, self.where)] = (slots[name], shape)
         if kind == "tex_coord":
             for name, which in COORDS.items():
-                p.step(sp.OP_COORD, slots[name], which)
+                p.step(sp.OP_COORD, slots[name], which, self.where)
+            p.varying = True
+        elif kind == "bump":
+            heights = []
+            for where in (0, 1, 2):  # the height here, and a step along u and along v
+                outer, self.where = self.where, where
+                heights.append(v(node.input("Height"), "value"))
+                self.where = outer
+            strength, distance = (
+                v(node.input("Strength"), "value"),
+                v(node.input("Distance"), "value"),
+            )
+            invert = int(bool(node.setting("invert")))
+            p.step(sp.OP_BUMP, slots["Normal"], *heights, strength, distance, invert)
+            p.varying = True
+        elif kind == "normal_map":
+            p.step(sp.OP_NORMAL_MAP, slots["Normal"], v(node.input("Color"), "triple"),
+                   v(node.input("Strength"), "value"),
+                   NORMAL_MAP_SPACES.index(node.setting("space")))  # fmt: skip
             p.varying = True
         elif kind == "mapping":
             p.step(sp.OP_MAPPING, slots["Vector"], v(node.input("Vector"), "triple"),

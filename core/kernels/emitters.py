@@ -19,11 +19,13 @@ from ..jit import kernel
 from .borrow import borrowed
 from .layout import (
     EMITS_DIFFUSE,
+    EMITS_FROM_SURFACE,
     EMITS_SHADOW,
     EMITS_SPECULAR,
     EMITS_SPOT,
     EMITS_SPOT_COSINE,
 )
+from .light_mesh import SHORT_OF_SURFACE, mesh_sample
 from .light_panel import panel_sample
 from .light_pyramid import TRAVERSE_ALL
 from .light_samples import square_point
@@ -32,6 +34,7 @@ from .light_sun import sun_sample
 from .options import (
     EMITTER_ELLIPSE,
     EMITTER_FACING_DISK,
+    EMITTER_MESH,
     EMITTER_RECTANGLE,
     EMITTER_SPHERE,
     EMITTER_SUN_CONE,
@@ -63,6 +66,8 @@ def _frame_rows(frames, light):
 def samples_needed(lights, light, samples):
     """1 for a light every sample of which is the same (a point, a sun without angle)."""
     kind, param = lights.emitter_kind[light], lights.emitter_param
+    if kind == EMITTER_MESH:
+        return samples
     if kind <= EMITTER_FACING_DISK:
         return 1 if param[light, 0] == 0.0 else samples
     if kind >= EMITTER_SUN_CONE:
@@ -75,6 +80,8 @@ def emitter_sample(lights, light, origin, normal, a, b):
     """(unit direction, distance, weight) of light `light`'s sample (a, b) from `origin`;
     distance 0 or weight 0 for a sample that brings nothing."""
     kind = lights.emitter_kind[light]
+    if kind == EMITTER_MESH:
+        return mesh_sample(lights, light, origin, a, b)
     position = row(lights.emitter_position, light)
     param = lights.emitter_param
     if kind >= EMITTER_SUN_CONE:
@@ -121,11 +128,13 @@ def emitted_colour(frame, lights, geo, stacks, point, phong, key, event, split):
         shift = (0.0, 0.0)
         if pattern == SHADOW_HALTON:
             shift = uniform2(key, PURPOSE_LIGHT_SHIFT, stream, 0)
+        # an emissive surface's samples lie on it: the shadow rays stop just short
+        short = 1.0 - SHORT_OF_SURFACE if lights.emitter_flags[light] & EMITS_FROM_SURFACE else 1.0
         for j in range(count):
             a, b = square_point(pattern, count, j, key, stream, shift)
             direction, t, weight = emitter_sample(lights, light, origin, n, a, b)
             targets[j, 0], targets[j, 1], targets[j, 2] = direction
-            targets[j, 3] = t if weight > 0.0 else 0.0
+            targets[j, 3] = t * short if weight > 0.0 else 0.0
             targets[j, 4] = weight
         flags = lights.emitter_flags[light]
         if flags & EMITS_SHADOW:

@@ -55,7 +55,7 @@ from .pass_record import (
 )
 from .shader_program import run_program
 from .shading import Phong, ShadingPoint, local_colour
-from .surface import diffuse_colour, hit_coordinates, surface_at
+from .surface import diffuse_colour, hit_frame, normal_rows, surface_at
 from .surface_terms import table_surface, terms_from_lobes
 from .trace import closest_hit, spawn_point
 from .vec import add, dot, mul, normalize, row, scale, sub
@@ -197,9 +197,12 @@ def trace_ray(ps, o, d, key, ws):
             geo, surf, shape, part, b1, b2, o, d, t, textured or (first and with_uv)
         )
         if programmed:  # a node material whose terms vary over the surface
-            hit = hit_coordinates(geo, surf, shape, p, n_shading, u, v)
-            run_program(mats, material, ws.shader_stack, ws.lobes, hit)
+            hit, across = hit_frame(geo, surf, shape, part, p, n_shading, u, v)
+            rows = normal_rows(geo.shape_object_from_world, shape)
+            run_program(mats, material, ws.shader_stack, ws.lobes, hit, across, rows)
             here = terms_from_lobes(ws.lobes)
+            if here.normal[0] != 0.0 or here.normal[1] != 0.0 or here.normal[2] != 0.0:
+                n_shading = here.normal  # Bump, Normal Map: the graph's shading normal
         else:
             kd = (0.0, 0.0, 0.0)
             if mats.transparency[material] < 1.0 or first:

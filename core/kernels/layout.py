@@ -134,6 +134,11 @@ class Lights(NamedTuple):
     # blend in cos; a sun's 1 - cos and tan of its half angle
     emitter_param: np.ndarray
     emitter_radiance: np.ndarray  # float64 (e, 3): see core.kernels.emitters
+    # emissive surfaces as lights (EMITTER_MESH rows; emitter_param: first triangle, count,
+    # total area): world-space corners of each triangle, and the running share of its
+    # emitter's area up to and including it
+    glow_triangles: np.ndarray  # float64 (t, 9)
+    glow_cdf: np.ndarray  # float64 (t,)
     # the environment (core.compile.environment, core.kernels.environment); its kind is
     # OPTION_ENVIRONMENT
     env_colour: np.ndarray  # float64 (3,): the uniform radiance, or the image's tint
@@ -151,6 +156,7 @@ EMITS_SPECULAR = 4  # makes highlights
 EMITS_SPOT = 8  # masked to a cone (a spot light)
 EMITS_SPOT_COSINE = 16  # and scaled by the cosine from its axis (Blender before 4.0)
 EMITS_TRANSMISSION = 32  # seen through glass (its Ray Visibility > Transmission)
+EMITS_FROM_SURFACE = 64  # an emissive surface of the scene: shadow rays stop short of it
 
 
 class PackedScene(NamedTuple):

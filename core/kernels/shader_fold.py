@@ -25,8 +25,10 @@ def fold_surfaces(mats, rows, out):
     stack = np.zeros(SHADER_STACK)
     lobes = np.zeros(LOBE_COUNT)
     zero = (0.0, 0.0, 0.0)
+    here = (zero, zero, zero, zero)
+    rows3 = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
     for k in range(rows.shape[0]):
-        run_program(mats, rows[k], stack, lobes, (zero, zero, zero, zero))
+        run_program(mats, rows[k], stack, lobes, (here, here, here), (zero, zero, zero), rows3)
         s = terms_from_lobes(lobes)
         o = out[k]
         _three(o, 0, s.kd)

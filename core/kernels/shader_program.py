@@ -29,9 +29,10 @@ from .shader_values import (
     mix_colour,
 )
 from .texture_lookup import image_lookup
+from .vec import add, cross, dot, normalize, scale, sub
 
 # Steps (Materials.shader_ops[:, 0])
-OP_COORD = 1  # out, which (COORD_*)
+OP_COORD = 1  # out, which (COORD_*), where (0 the hit, 1 and 2 a step across: for Bump)
 OP_MAPPING = 2  # out, vector, location, rotation, scale, type
 OP_IMAGE = 3  # out colour, out alpha, vector, texture, interpolation, extension
 OP_CHECKER = 4  # out colour, out fac, vector, colour 1, colour 2, scale
@@ -49,6 +50,10 @@ OP_TO_VALUE = 15  # out, colour: its luminance
 OP_SPLIT = 16  # out weight a, out weight b, weight, fac: w (1 - fac), w fac (fac in 0..1)
 OP_COPY = 17  # out, a: a triple
 OP_AVERAGE = 18  # out, vector: (x + y + z) / 3 (a vector used as a value)
+OP_BUMP = 19  # out, height here, height a step along u, along v, strength, distance; f invert
+OP_NORMAL_MAP = 29  # out, colour, strength, space (NORMAL_MAP_*)
+OP_GEOMETRY_NORMAL = 30  # out: the surface's world normal (an unlinked Normal input)
+# Closures take their Normal input's slot in the last column (f), or -1 for the surface's
 OP_DIFFUSE = 20  # weight, colour
 OP_GLOSSY = 21  # weight, colour, roughness
 OP_METALLIC = 22  # weight, base, edge tint, roughness
@@ -61,6 +66,8 @@ OP_MORE = 28  # transmission, emission colour, emission strength, specular level
 
 # Texture coordinates (OP_COORD)
 COORD_UV, COORD_GENERATED, COORD_OBJECT, COORD_NORMAL = 0, 1, 2, 3
+# Normal Map spaces (OP_NORMAL_MAP)
+NORMAL_MAP_TANGENT, NORMAL_MAP_OBJECT, NORMAL_MAP_WORLD = 0, 1, 2
 
 # Slots of the lobes a program adds up (Workspace.lobes)
 L_DIFFUSE = 0  # RGB
@@ -80,7 +87,9 @@ L_EMISSION = 25  # RGB
 L_TRANSPARENT = 28  # RGB
 L_HOLDOUT = 31
 L_ROUGH = 32  # 1 if a rough lobe's highlight stands for the lights in its mirror
-LOBE_COUNT = 33
+L_NORMAL = 33  # world normal times weight, from closures given a Normal
+L_NORMAL_WEIGHT = 36
+LOBE_COUNT = 37
 
 # Slots of a program's stack: constants first, then every node output (a triple each)
 SHADER_STACK = 4096
@@ -216,9 +225,55 @@ def _principled(lobes, w, base, metallic, roughness, ior, alpha, more):
 
 
 @kernel
-def run_program(mats, material, stack, lobes, hit):
-    """Run the material's program with `hit` = (uv, generated, object, normal) texture
-    coordinates (triples), leaving its lobes in `lobes` (LOBE_COUNT zeroed first)."""
+def _bump(stack, out, h0, hx, hy, strength, distance, invert, frame):
+    """Cycles' bump: the normal tilted by the height's differences over the steps frame[0]
+    and frame[1] (world vectors across the surface), frame[2] the normal."""
+    dp_x, dp_y, n = frame
+    rx = cross(dp_y, n)
+    ry = cross(n, dp_x)
+    det = dot(dp_x, rx)
+    gradient = add(scale(rx, hx - h0), scale(ry, hy - h0))
+    distance = -distance if invert else distance
+    sign = 1.0 if det >= 0.0 else -1.0
+    tilted = normalize(sub(scale(n, abs(det)), scale(gradient, distance * sign)))
+    strength = max(strength, 0.0)
+    _put(stack, out, normalize(add(scale(tilted, strength), scale(n, 1.0 - strength))))
+
+
+@kernel
+def _normal_map(stack, out, colour, strength, space, frame, normal_rows):
+    """Cycles' Normal Map: a tangent-space colour (2c - 1 in the frame of the tangent, the
+    bitangent and the normal), or an object- or world-space one, mixed with the normal by
+    strength."""
+    dp_x, dp_y, n = frame
+    m = (2.0 * colour[0] - 1.0, 2.0 * colour[1] - 1.0, 2.0 * colour[2] - 1.0)
+    if space == NORMAL_MAP_TANGENT:
+        mapped = add(add(scale(normalize(dp_x), m[0]), scale(normalize(dp_y), m[1])),
+                     scale(n, m[2]))  # fmt: skip
+    elif space == NORMAL_MAP_OBJECT:  # normal_rows: the object-to-world normal transform
+        mapped = (dot(normal_rows[0], m), dot(normal_rows[1], m), dot(normal_rows[2], m))
+    else:
+        mapped = m
+    mapped = normalize(mapped)
+    if strength != 1.0:
+        mapped = normalize(add(n, scale(sub(mapped, n), max(strength, 0.0))))
+    _put(stack, out, mapped)
+
+
+@kernel
+def _add_normal(lobes, stack, weight, slot):
+    if slot >= 0:
+        _add3(lobes, L_NORMAL, weight, _triple(stack, slot))
+        lobes[L_NORMAL_WEIGHT] += weight
+
+
+@kernel
+def run_program(mats, material, stack, lobes, hit, frame, normal_rows):
+    """Run the material's program with `hit` = the texture coordinates (uv, generated,
+    object, normal) at the hit and a step along u and v (core.kernels.surface.hit_frame),
+    `frame` = (step along u, step along v, normal) in world space, `normal_rows` the rows
+    of the object-to-world normal transform, leaving its lobes in `lobes` (LOBE_COUNT
+    zeroed first)."""
     lobes[:] = 0.0
     first, end = mats.shader_range[material, 0], mats.shader_range[material, 1]
     c0, c1 = mats.shader_constant_range[material, 0], mats.shader_constant_range[material, 1]
@@ -233,7 +288,13 @@ def run_program(mats, material, stack, lobes, hit):
         c, d, e, f = ops[row, 4], ops[row, 5], ops[row, 6], ops[row, 7]
         row += 1
         if op == OP_COORD:
-            _put(s, out, hit[a])
+            _put(s, out, hit[b][a])
+        elif op == OP_BUMP:
+            _bump(s, out, s[a], s[b], s[c], s[d], s[e], f != 0, frame)
+        elif op == OP_NORMAL_MAP:
+            _normal_map(s, out, _triple(s, a), s[b], c, frame, normal_rows)
+        elif op == OP_GEOMETRY_NORMAL:
+            _put(s, out, frame[2])
         elif op == OP_MAPPING:
             v = mapping(f, _triple(s, a), _triple(s, b), _triple(s, c), _triple(s, d))
             _put(s, out, v)
@@ -286,16 +347,20 @@ def run_program(mats, material, stack, lobes, hit):
             s[out], s[a] = w * (1.0 - t), w * t
         elif op == OP_DIFFUSE:
             _add3(lobes, L_DIFFUSE, s[out], _nonnegative(_triple(s, a)))
+            _add_normal(lobes, s, s[out], f)
         elif op == OP_GLOSSY:
             tint = _nonnegative(_triple(s, a))
             add_mirror(lobes, s[out], tint, tint, min(max(s[b], 0.0), 1.0))
+            _add_normal(lobes, s, s[out], f)
         elif op == OP_METALLIC:
             add_mirror(lobes, s[out], clamp01(_triple(s, a)), clamp01(_triple(s, b)),
                        min(max(s[c], 0.0), 1.0))  # fmt: skip
+            _add_normal(lobes, s, s[out], f)
         elif op == OP_GLASS:
             tint = _nonnegative(_triple(s, a))
             reflect = tint if c else (0.0, 0.0, 0.0)
             add_glass(lobes, s[out], max(s[b], 1e-5), reflect, tint, float(c))
+            _add_normal(lobes, s, s[out], f)
         elif op == OP_TRANSPARENT:
             _add3(lobes, L_TRANSPARENT, s[out], clamp01(_triple(s, a)))
         elif op == OP_EMISSION:
@@ -303,6 +368,7 @@ def run_program(mats, material, stack, lobes, hit):
         elif op == OP_HOLDOUT:
             lobes[L_HOLDOUT] += s[out]
         elif op == OP_PRINCIPLED:
+            _add_normal(lobes, s, s[out], f)
             m_op, m0, m1, m2 = ops[row, 0], ops[row, 1], ops[row, 2], ops[row, 3]
             m3, m4, m5 = ops[row, 4], ops[row, 5], ops[row, 6]
             row += 1

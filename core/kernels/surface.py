@@ -11,6 +11,7 @@ from .vec import (
     affine_transpose_vector,
     affine_vector,
     cross,
+    dot,
     normalize,
     row,
     scale,
@@ -150,22 +151,126 @@ def diffuse_colour(mats, material, u, v):
     return bilinear(pixels, first, width, height, u, v)
 
 
+# Bump mapping's finite differences step this far across the surface, in object space,
+# relative to the point's distance from the object's origin (at least 1)
+BUMP_STEP = 1e-4
+
+
 @kernel
-def hit_coordinates(geo, surf, shape, p, n_world, u, v):
-    """A hit's texture coordinates, as Blender's Texture Coordinate node gives them:
-    (UV, Generated, Object, Normal), triples. Generated maps the shape's texture space (its
-    box, core.compile.surfaces) to [0, 1]; Normal is the object-space normal (exact under
-    rotations and uniform scales)."""
-    transforms = geo.shape_object_from_world
-    p_object = affine_point(transforms, shape, p)
+def _coordinates(surf, shape, p_object, n_object, u, v):
+    """(UV, Generated, Object, Normal) triples at an object-space point."""
     space = surf.shape_texspace
     generated = (
         (p_object[0] - space[shape, 0]) / (2.0 * space[shape, 3]) + 0.5,
         (p_object[1] - space[shape, 1]) / (2.0 * space[shape, 4]) + 0.5,
         (p_object[2] - space[shape, 2]) / (2.0 * space[shape, 5]) + 0.5,
     )
-    n_object = affine_vector(transforms, shape, n_world)
-    length = math.sqrt(n_object[0] ** 2 + n_object[1] ** 2 + n_object[2] ** 2)
-    if length > 0.0:
-        n_object = scale(n_object, 1.0 / length)
     return (u, v, 0.0), generated, p_object, n_object
+
+
+@kernel
+def _mesh_uv_gradient(geo, surf, shape, tri):
+    """(dP/du, dP/dv) in object space over a mesh triangle, from its corners and UVs; zero
+    vectors when it has none (or they are degenerate)."""
+    mesh = geo.shape_index[shape]
+    uv_row = surf.mesh_uv_offset[mesh]
+    zero = (0.0, 0.0, 0.0)
+    if uv_row < 0:
+        return zero, zero
+    r = uv_row + tri - surf.mesh_tri_offset[mesh]
+    index, uvs = surf.tri_uv_index, surf.uvs
+    i0, i1, i2 = index[r, 0], index[r, 1], index[r, 2]
+    du1, dv1 = uvs[i1, 0] - uvs[i0, 0], uvs[i1, 1] - uvs[i0, 1]
+    du2, dv2 = uvs[i2, 0] - uvs[i0, 0], uvs[i2, 1] - uvs[i0, 1]
+    det = du1 * dv2 - du2 * dv1
+    if det == 0.0:
+        return zero, zero
+    corners = geo.tri_corners
+    v0 = _corner(corners, tri, 0)
+    e1, e2 = sub(_corner(corners, tri, 3), v0), sub(_corner(corners, tri, 6), v0)
+    dp_du = scale(sub(scale(e1, dv2), scale(e2, dv1)), 1.0 / det)
+    dp_dv = scale(sub(scale(e2, du1), scale(e1, du2)), 1.0 / det)
+    return dp_du, dp_dv
+
+
+@kernel
+def hit_frame(geo, surf, shape, part, p, n_world, u, v):
+    """A hit's texture coordinates, as Blender's Texture Coordinate node gives them, at the
+    hit and at two points a small step away across the surface (for Bump's differences):
+    ((UV, Generated, Object, Normal) x 3), and in world space the two steps (along
+    increasing u, and v) and the normal. Generated maps the shape's texture space
+    (core.compile.surfaces) to [0, 1]; Normal is the object-space normal (exact under
+    rotations and uniform scales). Tangents: a mesh triangle's UV gradient (Cycles
+    interpolates MikkTSpace tangents over the vertices); on analytic shapes the direction
+    of u, round the z axis."""
+    transforms = geo.shape_object_from_world
+    p_object = affine_point(transforms, shape, p)
+    n_object = normalize(affine_vector(transforms, shape, n_world))
+    kind = geo.shape_kind[shape]
+    if kind == SHAPE_MESH:
+        dp_du, dp_dv = _mesh_uv_gradient(geo, surf, shape, part)
+    else:
+        dp_du = cross((0.0, 0.0, 1.0), n_object)
+        dp_dv = cross(n_object, dp_du)
+    if dot(dp_du, dp_du) == 0.0:  # no UVs: any direction across the surface
+        helper = (1.0, 0.0, 0.0) if abs(n_object[0]) < 0.9 else (0.0, 1.0, 0.0)
+        dp_du = cross(helper, n_object)
+        dp_dv = cross(n_object, dp_du)
+    # The object-space tangent frame, made orthonormal about the normal
+    t_object = normalize(sub(dp_du, scale(n_object, dot(dp_du, n_object))))
+    b_object = cross(n_object, t_object)
+    if dot(b_object, dp_dv) < 0.0:
+        b_object = scale(b_object, -1.0)
+    step = BUMP_STEP * max(1.0, math.sqrt(dot(p_object, p_object)))
+    base = _coordinates(surf, shape, p_object, n_object, u, v)
+    # UVs one step along each direction: the UV gradient's inverse, by projection
+    uu, vv = dot(dp_du, dp_du), dot(dp_dv, dp_dv)
+    du_t = dot(t_object, dp_du) / uu if uu > 0.0 else 0.0
+    dv_t = dot(t_object, dp_dv) / vv if vv > 0.0 else 0.0
+    du_b = dot(b_object, dp_du) / uu if uu > 0.0 else 0.0
+    dv_b = dot(b_object, dp_dv) / vv if vv > 0.0 else 0.0
+    p_x = add(p_object, scale(t_object, step))
+    p_y = add(p_object, scale(b_object, step))
+    if kind == SHAPE_MESH:
+        u_x, v_x = u + step * du_t, v + step * dv_t
+        u_y, v_y = u + step * du_b, v + step * dv_b
+    else:
+        u_x, v_x = analytic_uv(kind, geo.shape_param[shape, 0], p_x, part)
+        u_y, v_y = analytic_uv(kind, geo.shape_param[shape, 0], p_y, part)
+    along_x = _coordinates(surf, shape, p_x, n_object, u_x, v_x)
+    along_y = _coordinates(surf, shape, p_y, n_object, u_y, v_y)
+    # The steps in world space, and the normal as given
+    dp_x = _to_world(transforms, shape, scale(t_object, step))
+    dp_y = _to_world(transforms, shape, scale(b_object, step))
+    return (base, along_x, along_y), (dp_x, dp_y, n_world)
+
+
+@kernel
+def _to_world(transforms, shape, v_object):
+    """An object-space vector in world space: the inverse of affine_vector, by solving the
+    3 x 3 system (the table keeps object-from-world only)."""
+    m = transforms
+    a, b, c = m[shape, 0, 0], m[shape, 0, 1], m[shape, 0, 2]
+    d, e, f = m[shape, 1, 0], m[shape, 1, 1], m[shape, 1, 2]
+    g, h, i = m[shape, 2, 0], m[shape, 2, 1], m[shape, 2, 2]
+    det = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
+    if det == 0.0:
+        return v_object
+    x, y, z = v_object
+    return (
+        ((e * i - f * h) * x - (b * i - c * h) * y + (b * f - c * e) * z) / det,
+        (-(d * i - f * g) * x + (a * i - c * g) * y - (a * f - c * d) * z) / det,
+        ((d * h - e * g) * x - (a * h - b * g) * y + (a * e - b * d) * z) / det,
+    )
+
+
+@kernel
+def normal_rows(transforms, shape):
+    """Rows of the object-to-world normal transform: the object-from-world matrix's
+    transpose (normals transform by the inverse transpose)."""
+    m = transforms
+    return (
+        (m[shape, 0, 0], m[shape, 1, 0], m[shape, 2, 0]),
+        (m[shape, 0, 1], m[shape, 1, 1], m[shape, 2, 1]),
+        (m[shape, 0, 2], m[shape, 1, 2], m[shape, 2, 2]),
+    )

@@ -2,6 +2,7 @@
 table, or made from the lobes its shader program added up at the hit (`terms_from_lobes`,
 the same rule core.compile.shader_program folds constant programs with)."""
 
+import math
 from typing import NamedTuple
 
 from ..jit import kernel
@@ -20,6 +21,8 @@ from .shader_program import (
     L_HIGHLIGHT,
     L_HOLDOUT,
     L_MIRROR,
+    L_NORMAL,
+    L_NORMAL_WEIGHT,
     L_ROUGH,
     L_SHININESS,
     L_TRANSPARENT,
@@ -52,6 +55,7 @@ class Surface(NamedTuple):
     emission: tuple
     transparent: tuple
     holdout: float
+    normal: tuple  # the shading normal its graph gives (world), or zero: the surface's own
 
 
 @kernel
@@ -87,6 +91,7 @@ def table_surface(mats, material, kd):
         row(mats.emission, material),
         row(mats.transparent, material),
         mats.holdout[material],
+        (0.0, 0.0, 0.0),
     )
 
 
@@ -139,4 +144,17 @@ def terms_from_lobes(lobes):
             min(max(lobes[L_TRANSPARENT + 2], 0.0), 1.0),
         ),
         min(lobes[L_HOLDOUT], 1.0),
+        _normal(lobes),
     )
+
+
+@kernel
+def _normal(lobes):
+    """The weighted mean of the Normal inputs the closures were given, unit, or zero."""
+    if lobes[L_NORMAL_WEIGHT] <= 0.0:
+        return 0.0, 0.0, 0.0
+    n = (lobes[L_NORMAL], lobes[L_NORMAL + 1], lobes[L_NORMAL + 2])
+    length = math.sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2])
+    if length == 0.0:
+        return 0.0, 0.0, 0.0
+    return n[0] / length, n[1] / length, n[2] / length

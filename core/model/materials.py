@@ -79,6 +79,8 @@ class Material:
                       BSDF, alpha below 1); shadow rays pass its mean
     holdout        -- 0..1: share of a camera ray's pixel cut out (Holdout shader): alpha
                       lowered by it, nothing seen there
+    emission_lights -- whether its emission lights other surfaces (core.compile.glowing) or
+                      is only seen
     surface        -- a closure `ShaderNode` (core.model.shader): Blender's node graph, which
                       then makes every term above per hit (name and pass_index still count)
     """
@@ -105,6 +107,7 @@ class Material:
     emission: Vec3 = (0.0, 0.0, 0.0)
     transparent: Vec3 = (0.0, 0.0, 0.0)
     holdout: float = 0.0
+    emission_lights: bool = True
     surface: ShaderNode | None = None
 
     def validate(self, user: str) -> None:
@@ -125,6 +128,7 @@ class Material:
         check_number(owner, "coat_ior", self.coat_ior, low=0.0, low_open=True)
         check_flag(owner, "coat_hides", self.coat_hides)
         check_flag(owner, "mirror_sees_lights", self.mirror_sees_lights)
+        check_flag(owner, "emission_lights", self.emission_lights)
         check_number(owner, "refraction_fresnel", self.refraction_fresnel, low=0.0, high=1.0)
         transparent = check_vec3(owner, "transparent", self.transparent, nonnegative=True)
         if transparent.max() > 1.0:

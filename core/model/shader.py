@@ -36,17 +36,21 @@ SHADER_NODES = {
             "Emission Strength": 0.0,
             "Specular": 0.5,
             "Specular Tint": (1.0, 1.0, 1.0),
+            "Normal": None,
         },
         closure=True,
         settings={"layered": True},
     ),  # fmt: skip
-    "diffuse": dict(inputs={"Color": RGB}, closure=True),
-    "glossy": dict(inputs={"Color": RGB, "Roughness": 0.5}, closure=True),
+    "diffuse": dict(inputs={"Color": RGB, "Normal": None}, closure=True),
+    "glossy": dict(inputs={"Color": RGB, "Roughness": 0.5, "Normal": None}, closure=True),
     "metallic": dict(
-        inputs={"Base Color": RGB, "Edge Tint": (1.0, 1.0, 1.0), "Roughness": 0.5}, closure=True
+        inputs={"Base Color": RGB, "Edge Tint": (1.0, 1.0, 1.0), "Roughness": 0.5, "Normal": None},
+        closure=True,
     ),  # fmt: skip
-    "glass": dict(inputs={"Color": (1.0, 1.0, 1.0), "IOR": 1.5}, closure=True),
-    "refraction": dict(inputs={"Color": (1.0, 1.0, 1.0), "IOR": 1.5}, closure=True),
+    "glass": dict(inputs={"Color": (1.0, 1.0, 1.0), "IOR": 1.5, "Normal": None}, closure=True),
+    "refraction": dict(
+        inputs={"Color": (1.0, 1.0, 1.0), "IOR": 1.5, "Normal": None}, closure=True
+    ),  # fmt: skip
     "transparent": dict(inputs={"Color": (1.0, 1.0, 1.0)}, closure=True),
     "emission": dict(inputs={"Color": (1.0, 1.0, 1.0), "Strength": 1.0}, closure=True),
     "holdout": dict(inputs={}, closure=True),
@@ -114,7 +118,19 @@ SHADER_NODES = {
     ),  # fmt: skip
     "combine": dict(inputs={"X": 0.0, "Y": 0.0, "Z": 0.0}, outputs={"Vector": "triple"}),
     "to_bw": dict(inputs={"Color": (0.5, 0.5, 0.5)}, outputs={"Val": "value"}),
+    # shading normals (a closure's Normal input)
+    "bump": dict(
+        inputs={"Strength": 1.0, "Distance": 1.0, "Height": 1.0},
+        outputs={"Normal": "triple"},
+        settings={"invert": False},
+    ),  # fmt: skip
+    "normal_map": dict(
+        inputs={"Strength": 1.0, "Color": (0.5, 0.5, 1.0)},
+        outputs={"Normal": "triple"},
+        settings={"space": "TANGENT"},
+    ),  # fmt: skip
 }
+NORMAL_MAP_SPACES = ("TANGENT", "OBJECT", "WORLD")
 
 MATH_OPERATIONS = ("ADD", "SUBTRACT", "MULTIPLY", "DIVIDE", "MULTIPLY_ADD", "POWER",
                    "MINIMUM", "MAXIMUM", "LESS_THAN", "GREATER_THAN", "ABSOLUTE", "SQRT",
@@ -222,6 +238,7 @@ def _check_settings(owner, label, node) -> None:
         ("image", "interpolation"): INTERPOLATIONS,
         ("image", "extension"): EXTENSIONS,
         ("color_ramp", "interpolation"): RAMP_INTERPOLATIONS,
+        ("normal_map", "space"): NORMAL_MAP_SPACES,
     }
     for (kind, name), allowed in choices.items():
         if node.kind == kind and node.setting(name) not in allowed:

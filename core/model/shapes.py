@@ -62,6 +62,8 @@ class Shape:
     texture_space -- (centre, half size), object-space triples: the box Blender's Generated
                      texture coordinates map to [0, 1] (a mesh's Texture Space); None: the
                      shape's own box
+    lights_diffuse -- False: its material's emission lights no diffuse surface (Blender's Ray
+                     Visibility > Diffuse off), however the material says
     seen_by_camera, seen_in_mirrors, seen_through_glass -- False: camera rays, reflected
                      rays or refracted rays pass through it as if it were not there
                      (Object > Visibility > Ray Visibility > Camera, Glossy, Transmission)
@@ -74,6 +76,7 @@ class Shape:
     holdout: bool = field(default=False, kw_only=True)
     pass_index: int = field(default=0, kw_only=True)
     texture_space: tuple | None = field(default=None, kw_only=True)
+    lights_diffuse: bool = field(default=True, kw_only=True)
     seen_by_camera: bool = field(default=True, kw_only=True)
     seen_in_mirrors: bool = field(default=True, kw_only=True)
     seen_through_glass: bool = field(default=True, kw_only=True)
@@ -94,7 +97,7 @@ class Shape:
             check_affine(self.owner, "world_from_object", self.world_from_object)
         check_flag(self.owner, "casts_shadows", self.casts_shadows)
         check_flag(self.owner, "holdout", self.holdout)
-        for name in ("seen_by_camera", "seen_in_mirrors", "seen_through_glass"):
+        for name in ("seen_by_camera", "seen_in_mirrors", "seen_through_glass", "lights_diffuse"):
             check_flag(self.owner, name, getattr(self, name))
         if self.texture_space is not None:
             if not isinstance(self.texture_space, tuple | list) or len(self.texture_space) != 2:

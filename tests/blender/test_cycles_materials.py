@@ -293,3 +293,31 @@ def test_ray_visibility_hides_an_object_from_the_camera_and_from_mirrors(
     # the grey World (0.4) in the brass mirror (0.9, 0.6, 0.2), the hidden ball gone
     np.testing.assert_allclose(centre, (0.36, 0.24, 0.08), rtol=1e-3)
     assert mirror_ball.visible_camera
+
+
+def test_emissive_surfaces_light_the_scene_as_in_cycles(bpy_with_whitted, tmp_path):
+    """An emissive mesh panel and an emissive ball (a tagged sphere), hidden from the camera,
+    light the white plane as Cycles' mesh lights do (diffuse bounces 0: their direct light);
+    Whitted Material › Emission Lights Off makes them light nothing."""
+    bpy = bpy_with_whitted
+    scene = new_scene(bpy)
+    panel = bpy.data.meshes.new("Panel")
+    panel.from_pydata([(-1.5, -0.5, 1.5), (0.5, -0.5, 1.8), (0.5, 1.0, 1.8), (-1.5, 1.0, 1.5)],
+                      [], [(0, 1, 2, 3)])  # fmt: skip
+    warm = node_material(bpy, "Warm", "ShaderNodeEmission", Color=(1.0, 0.6, 0.3),
+                         Strength=4.0)[0]  # fmt: skip
+    panel.materials.append(warm)
+    lamp = bpy.data.objects.new("Panel", panel)
+    scene.collection.objects.link(lamp)
+    cool = node_material(bpy, "Cool", "ShaderNodeEmission", Color=(0.3, 0.6, 1.0),
+                         Strength=6.0)[0]  # fmt: skip
+    ball = add_ball(bpy, scene, cool, location=(1.8, -1.2, 1.2), radius=0.5)
+    for obj in (lamp, ball):
+        obj.visible_camera = False
+    cycles, whitted = side_by_side(bpy, scene, tmp_path, samples=1024)
+    print(f"emissive surfaces: {disagreement(cycles, whitted):.4f}")
+    assert disagreement(cycles, whitted) < TOLERANCE
+    for material in (warm, cool):
+        material.whitted.emission_lights = "OFF"
+    _, dark = side_by_side(bpy, scene, tmp_path, samples=16)
+    assert dark.max() == 0.0

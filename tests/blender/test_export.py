@@ -264,8 +264,8 @@ def test_nodes_whitted_cannot_evaluate_are_named_in_one_warning_per_material(
     tree = material.node_tree
     noise = tree.nodes.new("ShaderNodeTexNoise")
     tree.links.new(noise.outputs["Color"], principled(material).inputs["Base Color"])
-    bump = tree.nodes.new("ShaderNodeBump")
-    tree.links.new(bump.outputs["Normal"], principled(material).inputs["Normal"])
+    voronoi = tree.nodes.new("ShaderNodeTexVoronoi")
+    tree.links.new(voronoi.outputs["Color"], principled(material).inputs["Normal"])
     volume = tree.nodes.new("ShaderNodeVolumePrincipled")
     output = next(n for n in tree.nodes if n.type == "OUTPUT_MATERIAL")
     tree.links.new(volume.outputs[0], output.inputs["Volume"])

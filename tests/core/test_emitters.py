@@ -41,13 +41,14 @@ def pixel_points():
     return np.stack([x, y, np.zeros_like(x)], axis=-1)
 
 
-def rendered(lights, shadow_samples=64, pattern="stratified") -> np.ndarray:
-    """The plane under `lights`, times pi: the irradiance each pixel's point receives."""
+def rendered(lights, shadow_samples=64, pattern="stratified", shapes=()) -> np.ndarray:
+    """The plane under `lights` (and any `shapes`, which the camera should not see), times
+    pi: the irradiance each pixel's point receives."""
     camera = Camera(eye=(0.0, 0.0, 10.0), view=(0.0, 0.0, -1.0), up=(0.0, 1.0, 0.0),
                     projection="orthographic", ortho_height=VIEW)  # fmt: skip
     settings = RenderSettings(SIZE, SIZE, pixel_samples=1, shadow_samples=shadow_samples,
                               shadow_sampling=pattern)  # fmt: skip
-    image = render(Scene(camera, [plane()], lights), settings).image
+    image = render(Scene(camera, [plane(), *shapes], lights), settings).image
     return image[..., 0].astype(float) * math.pi
 
 

@@ -229,3 +229,53 @@ def test_a_graph_too_deep_to_walk_is_refused_by_name():
     material = Material(name="Well", surface=_node("emission", Strength=value))
     with pytest.raises(SceneError, match=r"material 'Well'.*deep"):
         _image(material=material)
+
+
+def _lit_plane(surface, light_direction=(0.0, 0.0, -1.0)):
+    """A mesh plane z = 0 with UVs along x and y, seen from above, lit by a sun of
+    irradiance pi: a white Lambertian pixel shows n.l for its shading normal n."""
+    from core import Camera, Mesh, SunLight, TriangleMesh
+
+    vertices = np.array([[-2, -2, 0], [2, -2, 0], [2, 2, 0], [-2, 2, 0]], float)
+    mesh = TriangleMesh(vertices, np.array([[0, 1, 2], [0, 2, 3]]),
+                        vertex_uvs=(vertices[:, :2] + 2.0) / 4.0)  # fmt: skip
+    plane = Mesh("Plane", Material(surface=surface), mesh=mesh)
+    camera = Camera(eye=(0.0, 0.0, 5.0), view=(0.0, 0.0, -1.0), up=(0.0, 1.0, 0.0),
+                    projection="orthographic", ortho_height=2.0)  # fmt: skip
+    sun = SunLight(direction=light_direction, irradiance=(np.pi,) * 3)
+    scene = Scene(camera, [plane], [sun])
+    return render(scene, RenderSettings(SIZE, SIZE, pixel_samples=1)).image[..., 0].astype(float)
+
+
+def test_bump_on_a_linear_height_tilts_the_normal_by_its_slope():
+    """Height k x with Distance D: Cycles' bump gives the normal (-D k, 0, 1), normalised;
+    lit from (-1, 0, -1) a white plane shows n.l."""
+    coords = ShaderNode("tex_coord")
+    separate = _node("separate", Vector=Link(coords, "Object"))
+    k, distance = 0.6, 0.8
+    height = _node("math", A=Link(separate, "X"), B=k, set_operation="MULTIPLY")
+    bump = _node("bump", Height=Link(height, "Value"), Distance=distance)
+    white = ShaderNode("diffuse", {"Color": (1.0, 1.0, 1.0), "Normal": Link(bump, "Normal")})
+    image = _lit_plane(white, light_direction=(-1.0, 0.0, -1.0))
+    n = np.array([-distance * k, 0.0, 1.0]) / np.hypot(distance * k, 1.0)
+    to_light = np.array([1.0, 0.0, 1.0]) / np.sqrt(2.0)
+    np.testing.assert_allclose(image, n @ to_light, rtol=1e-6)
+    flat = _lit_plane(ShaderNode("diffuse", {"Color": (1.0, 1.0, 1.0)}), (-1.0, 0.0, -1.0))
+    np.testing.assert_allclose(flat, to_light[2], rtol=1e-6)  # no bump: the plane's own
+
+
+def test_a_tangent_space_normal_map_turns_the_normal_in_the_uv_frame():
+    """A constant normal-map colour c on a plane whose u runs along x and v along y: the
+    normal is 2c - 1 in (x, y, z), normalised, and at Strength 0.5 halfway to (0, 0, 1)."""
+    colour = (0.8, 0.35, 0.9)
+    m = 2.0 * np.array(colour) - 1.0
+    for strength in (1.0, 0.5):
+        normal_map = _node("normal_map", Color=colour, Strength=strength)
+        white = ShaderNode("diffuse", {"Color": (1.0, 1.0, 1.0),
+                                       "Normal": Link(normal_map, "Normal")})  # fmt: skip
+        image = _lit_plane(white)  # lit straight down: the pixel is n.z
+        n = m / np.linalg.norm(m)
+        if strength != 1.0:
+            n = np.array([0.0, 0.0, 1.0]) + (n - (0.0, 0.0, 1.0)) * strength
+            n /= np.linalg.norm(n)
+        np.testing.assert_allclose(image, n[2], rtol=1e-6)

@@ -1,0 +1,83 @@
+"""Emissive surfaces lighting the scene (core.compile.glowing) against closed forms, on the
+white plane of tests/core/test_emitters.py (each pixel shows E / pi):
+
+- an emissive mesh quad of radiance L: Lambert's polygon formula for its irradiance, whatever
+  the quad's tilt, triangles and the side it is seen from (both sides emit)
+- an emissive ball of radius r and radiance L above the plane: E = pi L cos (r / d)^2 where
+  the whole ball is above the horizon
+- switched off (Material.emission_lights, Shape.lights_diffuse) it lights nothing, and a
+  surface whose emission varies over it says that it lights nothing"""
+
+import math
+
+import numpy as np
+
+from core import Material, Mesh, ShaderNode, Sphere, TriangleMesh
+from core.compile import compile_scene
+from tests.core.test_emitters import (
+    assert_converged,
+    pixel_points,
+    point_irradiance,
+    polygon_irradiance,
+    rendered,
+)
+
+L = 3.0  # the surfaces' radiance
+
+
+def _glow(**fields):
+    return Material(diffuse=(0.0, 0.0, 0.0), emission=(L, L, L), **fields)
+
+
+def _quad(corners, material=None, flip=False):
+    triangles = np.array([[0, 1, 2], [0, 2, 3]])
+    if flip:
+        triangles = triangles[:, ::-1]
+    mesh = TriangleMesh(np.asarray(corners, float), triangles)
+    return Mesh("Lamp", material or _glow(), mesh=mesh, seen_by_camera=False)
+
+
+# A tilted quad, flat (a bent one shades itself where the polygon formula does not)
+_XY = np.array([[-0.8, -0.5], [0.9, -0.6], [1.0, 0.7], [-0.7, 0.6]])
+CORNERS = np.column_stack([_XY, 1.6 + 0.2 * _XY[:, 0] + 0.25 * _XY[:, 1]])
+
+
+def _expected(corners):
+    return np.array([[polygon_irradiance(list(corners), p, L) for p in r] for r in pixel_points()])
+
+
+def test_an_emissive_mesh_lights_as_lamberts_polygon_formula_from_either_side():
+    expected = _expected(CORNERS)
+    for flip in (False, True):
+        # picking a triangle, then a point on it, stratifies less well than a panel's square
+        got = rendered([], 4096, shapes=[_quad(CORNERS, flip=flip)])
+        assert_converged(got, expected, rtol=6e-3)
+
+
+def test_an_emissive_ball_lights_as_a_sphere_of_its_radiance():
+    radius, centre = 0.6, (0.4, -0.3, 2.4)
+    m = np.diag([radius, radius, radius, 1.0])
+    m[:3, 3] = centre
+    ball = Sphere("Glow", _glow(), m, seen_by_camera=False)
+    # pi L r^2 cos / d^2: a sphere's irradiance is its centre's, with intensity L pi r^2
+    expected = point_irradiance(centre, L * math.pi * radius**2)
+    assert_converged(rendered([], 1024, shapes=[ball]), expected)
+
+
+def test_switched_off_an_emissive_surface_lights_nothing():
+    off = _quad(CORNERS, _glow(emission_lights=False))
+    assert np.all(rendered([], 16, shapes=[off]) == 0.0)
+    unlit = _quad(CORNERS)
+    unlit.lights_diffuse = False
+    assert np.all(rendered([], 16, shapes=[unlit]) == 0.0)
+
+
+def test_an_emission_that_varies_over_the_surface_says_it_lights_nothing():
+    from core import Camera, Link, RenderSettings, Scene
+
+    checker = ShaderNode("checker")
+    surface = ShaderNode("emission", {"Color": Link(checker, "Color")})
+    lamp = _quad(CORNERS, Material(name="Patchy", surface=surface))
+    camera = Camera(eye=(0.0, 0.0, 10.0), view=(0.0, 0.0, -1.0), up=(0.0, 1.0, 0.0))
+    compiled = compile_scene(Scene(camera, [lamp]), RenderSettings(4, 4))
+    assert any("'Lamp'" in w and "varies" in w for w in compiled.warnings), compiled.warnings
