@@ -349,6 +349,10 @@ class GraphReader:
             for name in ("Strength", "Distance", "Height"):
                 made.inputs[name] = v(node, groups, name)
             made.settings["invert"] = bool(node.invert)
+            width = node.inputs.get("Filter Width")
+            if width is not None and self._number(node, "Filter Width") > 0.1 + 1e-6:
+                self.note(f"{node_label(node)}'s Filter Width above 0.1 (used: the height's "
+                          "slope at the point)")  # fmt: skip
             self.linked(node, groups, "Normal", "the surface's own normal, bumped")
         elif t == "NORMAL_MAP":
             space = node.space if node.space in ("TANGENT", "OBJECT", "WORLD") else "OBJECT"
