@@ -279,3 +279,34 @@ def test_a_tangent_space_normal_map_turns_the_normal_in_the_uv_frame():
             n = np.array([0.0, 0.0, 1.0]) + (n - (0.0, 0.0, 1.0)) * strength
             n /= np.linalg.norm(n)
         np.testing.assert_allclose(image, n[2], rtol=1e-6)
+
+
+def test_an_images_alpha_cuts_the_surface_exactly_at_its_texels():
+    """A leaf card: an 8 x 8 image whose alpha is 0 or 1 per texel (Closest) feeding a
+    Principled BSDF's Alpha. Seen straight on, 4 x 4 pixels a texel, each pixel shows the
+    card or, through the cut, the World behind: the mask's own texels, every one."""
+    from core import Camera, Environment, Mesh, TriangleMesh
+
+    rng = np.random.default_rng(11)
+    mask = rng.uniform(size=(8, 8)) < 0.5
+    pixels = np.zeros((8, 8, 4))
+    pixels[..., 0] = 1.0  # the card is red where it stays
+    pixels[..., 3] = mask
+    image = ShaderNode("image", settings={"texture": Texture(pixels=pixels, srgb=False),
+                                          "interpolation": "Closest"})  # fmt: skip
+    card = ShaderNode("principled", {"Base Color": (0.0, 0.0, 0.0), "Alpha": Link(image, "Alpha"),
+                                     "Emission Color": Link(image, "Color"),
+                                     "Emission Strength": 1.0, "Specular": 0.0})  # fmt: skip
+    vertices = np.array([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], float)
+    mesh = TriangleMesh(vertices, np.array([[0, 1, 2], [0, 2, 3]]),
+                        vertex_uvs=(vertices[:, :2] + 1.0) / 2.0)  # fmt: skip
+    camera = Camera(eye=(0.0, 0.0, 5.0), view=(0.0, 0.0, -1.0), up=(0.0, 1.0, 0.0),
+                    projection="orthographic", ortho_height=2.0)  # fmt: skip
+    scene = Scene(camera, [Mesh("Card", Material(surface=card), mesh=mesh)],
+                  environment=Environment(colour=(0.0, 0.0, 1.0)))  # fmt: skip
+    out = render(scene, RenderSettings(32, 32, pixel_samples=1)).image
+    red = out[..., 0] > 0.5
+    blue = out[..., 2] > 0.5
+    assert np.all(red != blue)  # each pixel wholly card or wholly World
+    # the image's row 0 is its top, as the picture's
+    np.testing.assert_array_equal(red, np.kron(mask, np.ones((4, 4), bool)))
