@@ -5,7 +5,7 @@ import bpy
 
 from ..compat import node_tree_in_use
 from ..export.material import find_node, read_graph
-from ..export.shader_nodes import closure_kinds
+from ..export.shader_nodes import closure_kinds, emits
 from .base import WhittedPanel, draw_warnings
 
 
@@ -45,10 +45,10 @@ class WHITTED_PT_material(WhittedPanel, bpy.types.Panel):
             layout.prop(material, "diffuse_color", text="Color")
             return
         surface, problems = read_graph(material, textures=False)
-        layout.label(text="From the node tree, as Cycles reads it", icon="NODETREE")
+        layout.label(text="Read from the node tree", icon="NODETREE")
         kinds = closure_kinds(surface) if surface is not None else []
         shown = ", ".join(kind.replace("_", " ") for kind in kinds) or "nothing (black)"
         layout.label(text="Renders as: " + shown)
-        if {"emission", "principled"} & set(kinds):
+        if surface is not None and emits(surface):
             layout.prop(material.whitted, "emission_lights")
         draw_warnings(layout, context, [f"material '{material.name}': {p}" for p in problems])

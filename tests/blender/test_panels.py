@@ -100,3 +100,20 @@ def test_ray_visibility_is_drawn_under_whitted_and_each_switch_reaches_the_expor
         shape = next(s for s in exported(bpy)[0].shapes if s.name == ball.name)
         assert getattr(shape, field) is False, switch
         setattr(ball, switch, True)
+
+
+def test_the_material_panel_offers_emission_lights_only_where_something_emits(bpy_with_whitted):
+    bpy = bpy_with_whitted
+    nodes = sys.modules["whitted.export.shader_nodes"]
+    material = sys.modules["whitted.export.material"]
+    plain = bpy.data.materials.new("Plain")
+    if bpy.app.version < (5, 0, 0):
+        plain.use_nodes = True
+    surface, _ = material.read_graph(plain, textures=False)
+    assert not nodes.emits(surface)  # a new Principled: black emission, or strength 0
+    principled = plain.node_tree.nodes["Principled BSDF"]
+    colour = "Emission Color" if "Emission Color" in principled.inputs else "Emission"
+    principled.inputs[colour].default_value = (1.0, 0.5, 0.2, 1.0)
+    principled.inputs["Emission Strength"].default_value = 2.0
+    surface, _ = material.read_graph(plain, textures=False)
+    assert nodes.emits(surface)
