@@ -51,6 +51,11 @@ def new_scene(bpy):
     plane.from_pydata([(-10, -10, 0), (10, -10, 0), (10, 10, 0), (-10, 10, 0)], [], [(0, 1, 2, 3)])
     plane.materials.append(white_lambertian(bpy))
     scene.collection.objects.link(bpy.data.objects.new("Plane", plane))
+    # Whitted's render settings at their defaults, whatever another test left (a Jittered
+    # pixel pattern, a Uniform shadow pattern made these tests depend on their order)
+    for prop in scene.whitted.bl_rna.properties:
+        if not prop.is_readonly:
+            scene.whitted.property_unset(prop.identifier)
     scene.whitted.pixel_samples = 1
     scene.whitted.pixel_sampling = "GRID"  # one ray through the pixel's centre, as Cycles'
     scene.whitted.shadow_samples = 256
