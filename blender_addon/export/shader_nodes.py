@@ -441,25 +441,3 @@ def closure_kinds(surface) -> list[str]:
             if isinstance(given, core.Link) and given.node.is_closure:
                 stack.append(given.node)
     return found
-
-
-def emits(surface) -> bool:
-    """Whether a graph can emit light: an Emission shader, or a Principled BSDF whose
-    Emission Strength and Color are both linked or above 0."""
-    found, stack, seen = False, [surface], set()
-    while stack and not found:
-        node = stack.pop()
-        if node is None or id(node) in seen:
-            continue
-        seen.add(id(node))
-        if node.kind == "emission":
-            found = True
-        elif node.kind == "principled":
-            found = all(
-                isinstance(given, core.Link) or float(np.max(given)) > 0.0
-                for given in (node.input("Emission Strength"), node.input("Emission Color"))
-            )
-        for given in node.inputs.values():
-            if isinstance(given, core.Link) and given.node.is_closure:
-                stack.append(given.node)
-    return found

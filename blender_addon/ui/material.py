@@ -4,8 +4,9 @@ cannot honour, or the report's material (Whitted Settings)."""
 import bpy
 
 from ..compat import node_tree_in_use
+from ..core.model.shader import emits
 from ..export.material import find_node, read_graph
-from ..export.shader_nodes import closure_kinds, emits
+from ..export.shader_nodes import closure_kinds
 from .base import WhittedPanel, draw_warnings
 
 

@@ -20,8 +20,13 @@ import math
 import numpy as np
 
 from ..kernels.layout import EMITS_DIFFUSE, EMITS_FROM_SURFACE, EMITS_SHADOW
+from ..model.shader import emits
 from ..model.shapes import Mesh, Sphere
 from ..vocabulary import EMITTER_KINDS
+
+# The most emissive surfaces that light the scene: each adds shadow rays at every shading
+# point (Cycles' light tree picks among many; this keeps the brightest)
+MAX_GLOWING = 64
 
 
 class Glowing:
@@ -38,12 +43,13 @@ class Glowing:
 def glowing_shapes(scene_shapes: list, materials, material_of: dict) -> Glowing:
     """The emissive scene shapes as lights; `materials` is the packed table (folded)."""
     out = Glowing()
+    candidates = []
     for shape in scene_shapes:
         row = material_of.get(id(shape.material))
         if row is None or not (shape.material.emission_lights and shape.lights_diffuse):
             continue
         if materials.shader_range[row, 0] >= 0:
-            if shape.material.surface is not None:
+            if emits(shape.material.surface):
                 out.warnings.append(
                     f"{shape.owner}: its material '{shape.material.name}' emits a radiance that "
                     "varies over the surface: seen, but not lighting the scene"
@@ -52,15 +58,29 @@ def glowing_shapes(scene_shapes: list, materials, material_of: dict) -> Glowing:
         radiance = np.asarray(materials.emission[row], float)
         if not np.any(radiance > 0.0):
             continue
-        if isinstance(shape, Mesh):
-            _mesh(out, shape, radiance)
-        elif isinstance(shape, Sphere) and _uniform_scale(shape.world_from_object) is not None:
-            _sphere(out, shape, radiance)
+        if isinstance(shape, Mesh) or (
+            isinstance(shape, Sphere) and _uniform_scale(shape.world_from_object) is not None
+        ):
+            candidates.append((shape, radiance))
         else:
             out.warnings.append(
                 f"{shape.owner}: emits light that lights nothing else (only meshes and "
                 "evenly scaled spheres light the scene): tag it as a mesh to light with it"
             )
+    if len(candidates) > MAX_GLOWING:
+        # Every shading point samples every one: keep the brightest
+        candidates.sort(key=lambda c: -_power(*c))
+        out.warnings.append(
+            f"{len(candidates)} emissive objects would light the scene; the {MAX_GLOWING} "
+            "brightest do (each costs shadow rays at every point); set Whitted Material › "
+            "Emission Lights to Off on the others"
+        )
+        candidates = candidates[:MAX_GLOWING]
+    for shape, radiance in candidates:
+        if isinstance(shape, Mesh):
+            _mesh(out, shape, radiance)
+        else:
+            _sphere(out, shape, radiance)
     return out
 
 
@@ -93,6 +113,24 @@ def _sphere(out: Glowing, shape, radiance) -> None:
     flags = EMITS_SHADOW | EMITS_DIFFUSE | EMITS_FROM_SURFACE
     out.rows.append((EMITTER_KINDS["sphere"], flags, tuple(m[:3, 3]), np.eye(3),
                      [r, 0.0, 0.0, 0.0], radiance * r * r))  # fmt: skip
+
+
+def _power(shape, radiance) -> float:
+    """The surface's emitted power, up to a constant: its area times its mean radiance."""
+    m = np.asarray(shape.world_from_object, float)
+    if isinstance(shape, Mesh):
+        corners = (np.asarray(shape.mesh.vertices, float) @ m[:3, :3].T)[
+            np.asarray(shape.mesh.triangles, np.int64)
+        ]
+        area = (
+            0.5
+            * np.linalg.norm(
+                np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]), axis=1
+            ).sum()
+        )
+    else:
+        area = 4.0 * math.pi * _uniform_scale(m) ** 2
+    return float(area * np.mean(radiance))
 
 
 def _uniform_scale(m) -> float | None:

@@ -117,6 +117,7 @@ def _program_tables(programs: list) -> dict:
         step += len(program_ops)
         constant += len(program_constants)
     return dict(
+        shader_frame=np.array([p is not None and p.needs_frame for p in programs], np.uint8),
         shader_range=np.array(ranges, np.int64).reshape(-1, 2),
         shader_constant_range=np.array(constant_ranges, np.int64).reshape(-1, 2),
         shader_ops=concatenated(ops, (0, 8), np.int32),

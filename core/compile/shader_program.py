@@ -42,6 +42,7 @@ class Program:
     constants: list = field(default_factory=list)
     values: int = 0  # computed slots used
     varying: bool = False  # reads the hit (coordinates, images)
+    needs_frame: bool = False  # reads the surface's tangents or steps across it
     textures: list = field(default_factory=list)  # core Textures the image steps read
 
     def constant(self, value) -> tuple:
@@ -210,12 +211,12 @@ class ProgramBuilder:
             )
             invert = int(bool(node.setting("invert")))
             p.step(sp.OP_BUMP, slots["Normal"], *heights, strength, distance, invert)
-            p.varying = True
+            p.varying = p.needs_frame = True
         elif kind == "normal_map":
             p.step(sp.OP_NORMAL_MAP, slots["Normal"], v(node.input("Color"), "triple"),
                    v(node.input("Strength"), "value"),
                    NORMAL_MAP_SPACES.index(node.setting("space")))  # fmt: skip
-            p.varying = True
+            p.varying = p.needs_frame = True
         elif kind == "mapping":
             p.step(sp.OP_MAPPING, slots["Vector"], v(node.input("Vector"), "triple"),
                    v(node.input("Location"), "triple"), v(node.input("Rotation"), "triple"),

@@ -197,7 +197,8 @@ def trace_ray(ps, o, d, key, ws):
             geo, surf, shape, part, b1, b2, o, d, t, textured or (first and with_uv)
         )
         if programmed:  # a node material whose terms vary over the surface
-            hit, across = hit_frame(geo, surf, shape, part, p, n_shading, u, v)
+            with_frame = mats.shader_frame[material] != 0
+            hit, across = hit_frame(geo, surf, shape, part, p, n_shading, u, v, with_frame)
             rows = normal_rows(geo.shape_object_from_world, shape)
             run_program(mats, material, ws.shader_stack, ws.lobes, hit, across, rows)
             here = terms_from_lobes(ws.lobes)

@@ -107,6 +107,9 @@ class Materials(NamedTuple):
     shader_constant_range: np.ndarray  # int64 (q, 2)
     shader_ops: np.ndarray  # int32 (steps, 8)
     shader_constants: np.ndarray  # float64 (c,)
+    # uint8 (q,): 1 if its program needs the surface's frame and the steps across it (Bump,
+    # Normal Map); the others are given the hit's own coordinates only
+    shader_frame: np.ndarray
     emission: np.ndarray  # float64 (q, 3): emitted radiance
     transparent: np.ndarray  # float64 (q, 3): share passing straight through
     holdout: np.ndarray  # float64 (q,): share of a camera ray's pixel cut out

@@ -52,7 +52,6 @@ OP_COPY = 17  # out, a: a triple
 OP_AVERAGE = 18  # out, vector: (x + y + z) / 3 (a vector used as a value)
 OP_BUMP = 19  # out, height here, height a step along u, along v, strength, distance; f invert
 OP_NORMAL_MAP = 29  # out, colour, strength, space (NORMAL_MAP_*)
-OP_GEOMETRY_NORMAL = 30  # out: the surface's world normal (an unlinked Normal input)
 # Closures take their Normal input's slot in the last column (f), or -1 for the surface's
 OP_DIFFUSE = 20  # weight, colour
 OP_GLOSSY = 21  # weight, colour, roughness
@@ -293,8 +292,6 @@ def run_program(mats, material, stack, lobes, hit, frame, normal_rows):
             _bump(s, out, s[a], s[b], s[c], s[d], s[e], f != 0, frame)
         elif op == OP_NORMAL_MAP:
             _normal_map(s, out, _triple(s, a), s[b], c, frame, normal_rows)
-        elif op == OP_GEOMETRY_NORMAL:
-            _put(s, out, frame[2])
         elif op == OP_MAPPING:
             v = mapping(f, _triple(s, a), _triple(s, b), _triple(s, c), _triple(s, d))
             _put(s, out, v)

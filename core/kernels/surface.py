@@ -194,7 +194,7 @@ def _mesh_uv_gradient(geo, surf, shape, tri):
 
 
 @kernel
-def hit_frame(geo, surf, shape, part, p, n_world, u, v):
+def hit_frame(geo, surf, shape, part, p, n_world, u, v, with_frame):
     """A hit's texture coordinates, as Blender's Texture Coordinate node gives them, at the
     hit and at two points a small step away across the surface (for Bump's differences):
     ((UV, Generated, Object, Normal) x 3), and in world space the two steps (along
@@ -202,10 +202,15 @@ def hit_frame(geo, surf, shape, part, p, n_world, u, v):
     (core.compile.surfaces) to [0, 1]; Normal is the object-space normal (exact under
     rotations and uniform scales). Tangents: a mesh triangle's UV gradient (Cycles
     interpolates MikkTSpace tangents over the vertices); on analytic shapes the direction
-    of u, round the z axis."""
+    of u, round the z axis. Without `with_frame` (no Bump or Normal Map in the material's
+    program) only the hit's own coordinates are made: the steps are left zero."""
     transforms = geo.shape_object_from_world
     p_object = affine_point(transforms, shape, p)
     n_object = normalize(affine_vector(transforms, shape, n_world))
+    base = _coordinates(surf, shape, p_object, n_object, u, v)
+    if not with_frame:
+        zero = (0.0, 0.0, 0.0)
+        return (base, base, base), (zero, zero, n_world)
     kind = geo.shape_kind[shape]
     if kind == SHAPE_MESH:
         dp_du, dp_dv = _mesh_uv_gradient(geo, surf, shape, part)
@@ -222,7 +227,6 @@ def hit_frame(geo, surf, shape, part, p, n_world, u, v):
     if dot(b_object, dp_dv) < 0.0:
         b_object = scale(b_object, -1.0)
     step = BUMP_STEP * max(1.0, math.sqrt(dot(p_object, p_object)))
-    base = _coordinates(surf, shape, p_object, n_object, u, v)
     # UVs one step along each direction: the UV gradient's inverse, by projection
     uu, vv = dot(dp_du, dp_du), dot(dp_dv, dp_dv)
     du_t = dot(t_object, dp_du) / uu if uu > 0.0 else 0.0

@@ -256,3 +256,25 @@ def _check_settings(owner, label, node) -> None:
         stops = node.setting("stops")
         if len(stops) < 1 or any(len(colour) != 4 for _, colour in stops):
             raise SceneError(owner, f"{label} stops", "give (position, RGBA) pairs, at least one")
+
+
+def emits(surface) -> bool:
+    """Whether a graph can emit light: an Emission shader, or a Principled BSDF whose
+    Emission Strength and Color are both linked or above 0, among its closures."""
+    stack, seen = [surface], set()
+    while stack:
+        node = stack.pop()
+        if node is None or id(node) in seen:
+            continue
+        seen.add(id(node))
+        if node.kind == "emission":
+            return True
+        if node.kind == "principled" and all(
+            isinstance(given, Link) or float(np.max(given)) > 0.0
+            for given in (node.input("Emission Strength"), node.input("Emission Color"))
+        ):
+            return True
+        for given in node.inputs.values():
+            if isinstance(given, Link) and given.node.is_closure:
+                stack.append(given.node)
+    return False

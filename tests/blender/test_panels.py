@@ -104,7 +104,7 @@ def test_ray_visibility_is_drawn_under_whitted_and_each_switch_reaches_the_expor
 
 def test_the_material_panel_offers_emission_lights_only_where_something_emits(bpy_with_whitted):
     bpy = bpy_with_whitted
-    nodes = sys.modules["whitted.export.shader_nodes"]
+    nodes = sys.modules["whitted.core.model.shader"]
     material = sys.modules["whitted.export.material"]
     plain = bpy.data.materials.new("Plain")
     if bpy.app.version < (5, 0, 0):

@@ -11,6 +11,7 @@ white plane of tests/core/test_emitters.py (each pixel shows E / pi):
 import math
 
 import numpy as np
+import pytest
 
 from core import Material, Mesh, ShaderNode, Sphere, TriangleMesh
 from core.compile import compile_scene
@@ -81,3 +82,28 @@ def test_an_emission_that_varies_over_the_surface_says_it_lights_nothing():
     camera = Camera(eye=(0.0, 0.0, 10.0), view=(0.0, 0.0, -1.0), up=(0.0, 1.0, 0.0))
     compiled = compile_scene(Scene(camera, [lamp]), RenderSettings(4, 4))
     assert any("'Lamp'" in w and "varies" in w for w in compiled.warnings), compiled.warnings
+
+
+def test_a_textured_surface_that_emits_nothing_says_nothing_of_glowing():
+    from core import Camera, Link, RenderSettings, Scene
+
+    checker = ShaderNode("checker")
+    surface = ShaderNode("diffuse", {"Color": Link(checker, "Color")})
+    card = _quad(CORNERS, Material(name="Tiles", surface=surface))
+    camera = Camera(eye=(0.0, 0.0, 10.0), view=(0.0, 0.0, -1.0), up=(0.0, 1.0, 0.0))
+    compiled = compile_scene(Scene(camera, [card]), RenderSettings(4, 4))
+    assert compiled.warnings == []
+
+
+def test_past_the_cap_only_the_brightest_emissive_surfaces_light_and_it_is_said():
+    from core import Camera, RenderSettings, Scene
+    from core.compile.glowing import MAX_GLOWING
+
+    dim = [_quad(CORNERS + (0.0, 0.0, k), _glow()) for k in range(MAX_GLOWING)]
+    bright = _quad(CORNERS + (0.0, 0.0, 9.0), Material(diffuse=(0, 0, 0), emission=(50.0,) * 3))
+    camera = Camera(eye=(0.0, 0.0, 20.0), view=(0.0, 0.0, -1.0), up=(0.0, 1.0, 0.0))
+    compiled = compile_scene(Scene(camera, [*dim, bright]), RenderSettings(4, 4))
+    lights = compiled.packed.lights
+    assert len(lights.emitter_kind) == MAX_GLOWING
+    assert lights.emitter_radiance.max() == pytest.approx(50.0 / np.pi)  # the bright one kept
+    assert any(f"{MAX_GLOWING + 1} emissive objects" in w for w in compiled.warnings)
