@@ -25,7 +25,7 @@ import math
 
 from ..jit import inlined_kernel, kernel
 from ..vocabulary import CSG_DIFFERENCE, CSG_INTERSECTION, CSG_UNION
-from .mesh_trace import mesh_line_crossings
+from .mesh_trace import MESH_COINCIDENT_RELATIVE, mesh_line_crossings, sort_crossings
 from .shapes import NO_HIT, SHAPE_MESH, SHAPE_TORUS, convex_interval
 from .slabs import box_entry
 from .torus import torus_roots
@@ -35,12 +35,6 @@ from .vec import affine_point, affine_vector, inverse
 # event (the same relative size as the spawn offset in `trace`)
 COINCIDENT_RELATIVE = 1e-9
 
-# Crossings of one mesh closer than this, relative to the size of the distances involved, are
-# one event: the distances two triangles compute for a point of their shared edge differ by
-# rounding (a few units in the last place: 38.67452487468917 and ...16 for one edge), and
-# counted apart, a ray through that edge entered twice and the solid lost its span. Far
-# finer than any two surfaces a scene could tell apart
-MESH_COINCIDENT_RELATIVE = 1e-12
 
 # Spans of one ray's evaluation (all operands at once), and mesh crossings of one operand;
 # a ray that would need more drops the excess and is counted in span_overflow
@@ -64,24 +58,6 @@ def _copy_end(span_f, span_i, src, src_end, dst, dst_end):
 
 
 @kernel
-def _sort_crossings(cross_f, cross_i, n):
-    """Sort the first n crossings by t, in place: Shell sort with Ciura's gaps, so that a
-    mesh crossed a thousand times costs some 10^4 steps, not the 10^6 of insertion sort."""
-    for gap in (701, 301, 132, 57, 23, 10, 4, 1):
-        for i in range(gap, n):
-            t, b1, b2 = cross_f[i, 0], cross_f[i, 1], cross_f[i, 2]
-            tri, sign = cross_i[i, 0], cross_i[i, 1]
-            j = i
-            while j >= gap and cross_f[j - gap, 0] > t:
-                for a in range(3):
-                    cross_f[j, a] = cross_f[j - gap, a]
-                cross_i[j, 0], cross_i[j, 1] = cross_i[j - gap, 0], cross_i[j - gap, 1]
-                j -= gap
-            cross_f[j, 0], cross_f[j, 1], cross_f[j, 2] = t, b1, b2
-            cross_i[j, 0], cross_i[j, 1] = tri, sign
-
-
-@kernel
 def _mesh_spans(geo, row, o, d, scratch, at):
     """Spans of a closed mesh along the line: every crossing, sorted, with the winding
     number counted from -inf; inside is where it is not zero, so either orientation works.
@@ -97,7 +73,7 @@ def _mesh_spans(geo, row, o, d, scratch, at):
     )  # fmt: skip
     if n == cross_f.shape[0]:
         scratch.overflow[0] += 1
-    _sort_crossings(cross_f, cross_i, n)
+    sort_crossings(cross_f, cross_i, n)
     scale = max(abs(o[0]), abs(o[1]), abs(o[2])) / math.sqrt(
         d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
     )

@@ -15,7 +15,7 @@ float32 corners of float32 vertices, padded one float32 step, and tested in floa
 
 from ..jit import inlined_kernel, kernel
 from .csg import csg_closest, csg_transmittance
-from .mesh_trace import mesh_closest, mesh_crossings
+from .mesh_trace import mesh_closest, mesh_crossings, mesh_surface_crossings
 from .shapes import (
     NO_HIT,
     SHAPE_CSG,
@@ -150,10 +150,19 @@ def shape_transmittance(geo, shape, o, d, t_max, stacks):
         return csg_transmittance(geo, geo.shape_index[shape], o, d, t_max, stacks.csg)
     o_obj = affine_point(geo.shape_object_from_world, shape, o)
     d_obj = affine_vector(geo.shape_object_from_world, shape, d)
-    if kind == SHAPE_MESH:
+    root = geo.mesh_root[geo.shape_index[shape]] if kind == SHAPE_MESH else -1
+    if kind == SHAPE_MESH and tau > 0.0:
+        # light passes: each crossing counts, once where triangles meet (-1: too many)
+        crossings = mesh_surface_crossings(
+            geo.node_boxes, geo.node_links, geo.tri_corners, root, o_obj, d_obj, t_max,
+            stacks.csg.cross_f, stacks.csg.cross_i, stacks.mesh,
+        )  # fmt: skip
+        if crossings < 0:
+            return 0.0
+    elif kind == SHAPE_MESH:
         crossings = mesh_crossings(
-            geo.node_boxes, geo.node_links, geo.tri_corners, geo.mesh_root[geo.shape_index[shape]],
-            o_obj, d_obj, 0.0, t_max, tau == 0.0, None, None, stacks.mesh,
+            geo.node_boxes, geo.node_links, geo.tri_corners, root,
+            o_obj, d_obj, 0.0, t_max, True, None, None, stacks.mesh,
         )  # fmt: skip
     else:
         major, minor = geo.shape_param[shape, 0], geo.shape_param[shape, 1]

@@ -12,10 +12,12 @@ from core import (
     Camera,
     DirectionalLight,
     Material,
+    Mesh,
     PointLight,
     RenderSettings,
     Scene,
     Sphere,
+    TriangleMesh,
     render,
 )
 from core.kernels.integrator import fresnel_dielectric, refract
@@ -224,6 +226,34 @@ def test_shadow_rays_through_glass_follow_the_documented_rule():
     assert light_through(packed, (0, 0, -3), (0, 0, 1), 3.5) == pytest.approx(0.5)  # ends inside
     assert light_through(packed, (0, 0, -3), (0, 0, 1), 10.0) == 0.0
     assert light_through(packed, (3, 0, -3), (0, 0, 1), 10.0) == 1.0
+
+
+def test_a_shadow_ray_through_a_transparent_meshs_shared_edge_crosses_it_once():
+    """A card of two triangles with transparency 0.5: a ray through their shared diagonal,
+    or the corner they share, crosses the surface once and passes 0.5, as anywhere else
+    on the card (each triangle reported the crossing: it passed 0.25). A closed mesh
+    (a box) crossed through edges and corners passes 0.5 twice."""
+    vertices = np.array([[-1, -1, 1], [1, -1, 1], [1, 1, 1], [-1, 1, 1]], float)
+    card = Mesh("Card", Material(transparency=0.5),
+                mesh=TriangleMesh(vertices, np.array([[0, 1, 2], [0, 2, 3]])))  # fmt: skip
+    packed = packed_shapes(card)
+    up = (0.0, 0.0, 1.0)
+    for x, y in ((0.3, 0.3), (-0.6, -0.6), (1.0, 1.0), (0.3, -0.2)):
+        assert light_through(packed, (x, y, 0.0), up, 5.0) == 0.5, (x, y)
+    cube = Mesh("Cube", Material(transparency=0.5), mesh=_cube_mesh())
+    packed = packed_shapes(cube)
+    # through the middle of faces, along a face diagonal's edge, through two corners
+    assert light_through(packed, (0.2, 0.1, -3.0), up, 6.0) == 0.25
+    assert light_through(packed, (0.3, 0.3, -3.0), up, 6.0) == 0.25
+    assert light_through(packed, (-1.0, -1.0, -3.0), up, 6.0) == 0.25
+
+
+def _cube_mesh():
+    """A closed cube [-1, 1]^3 of 12 triangles, each face split along a diagonal."""
+    corners = np.array([[x, y, z] for z in (-1, 1) for y in (-1, 1) for x in (-1, 1)], float)
+    quads = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+    faces = [t for a, b, c, d in quads for t in ((a, b, c), (a, c, d))]
+    return TriangleMesh(corners, np.array(faces))
 
 
 def test_a_surface_touching_a_pure_inverse_square_light_stays_finite():
