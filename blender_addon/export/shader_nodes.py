@@ -64,6 +64,7 @@ OUTPUTS = {
     "RGBTOBW": ("to_bw", {"Val": "Val"}),
     "TEX_CHECKER": ("checker", {"Color": "Color", "Fac": "Fac"}),
     "TEX_GRADIENT": ("gradient", {"Color": "Color", "Fac": "Fac"}),
+    "TEX_BRICK": ("brick", {"Color": "Color", "Fac": "Fac"}),
     "BUMP": ("bump", {"Normal": "Normal"}),
     "NORMAL_MAP": ("normal_map", {"Normal": "Normal"}),
 }
@@ -289,6 +290,13 @@ class GraphReader:
                     made.inputs[name] = v(node, groups, name)
             else:
                 made.settings["type"] = node.gradient_type
+        elif t == "TEX_BRICK":
+            made.inputs["Vector"] = self._vector(node, groups, "Vector")
+            for name in ("Color1", "Color2", "Mortar", "Scale", "Mortar Size", "Mortar Smooth",
+                         "Bias", "Brick Width", "Row Height"):  # fmt: skip
+                made.inputs[name] = v(node, groups, name)
+            for name in ("offset", "offset_frequency", "squash", "squash_frequency"):
+                made.settings[name] = getattr(node, name)
         elif t == "TEX_COORD":
             if getattr(node, "object", None) is not None:
                 self.note(f"{node_label(node)}'s Object (used: the surface's own object)")

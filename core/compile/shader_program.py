@@ -234,6 +234,17 @@ class ProgramBuilder:
                    v(node.input("Vector"), "triple", sp.COORD_GENERATED),
                    v(node.input("Color1"), "triple"), v(node.input("Color2"), "triple"),
                    v(node.input("Scale"), "value"))  # fmt: skip
+        elif kind == "brick":
+            p.step(sp.OP_BRICK, slots["Color"], slots["Fac"],
+                   v(node.input("Vector"), "triple", sp.COORD_GENERATED),
+                   v(node.input("Color1"), "triple"), v(node.input("Color2"), "triple"),
+                   v(node.input("Mortar"), "triple"), v(node.input("Scale"), "value"))  # fmt: skip
+            shape = (float(node.setting("offset")), float(node.setting("squash")), 0.0)
+            frequencies = node.setting("offset_frequency") * 256 + node.setting("squash_frequency")
+            p.step(sp.OP_MORE, v(node.input("Mortar Size"), "value"),
+                   v(node.input("Mortar Smooth"), "value"), v(node.input("Bias"), "value"),
+                   v(node.input("Brick Width"), "value"), v(node.input("Row Height"), "value"),
+                   p.constant(shape), frequencies)  # fmt: skip
         elif kind == "gradient":
             p.step(sp.OP_GRADIENT, slots["Color"], slots["Fac"],
                    v(node.input("Vector"), "triple", sp.COORD_GENERATED),

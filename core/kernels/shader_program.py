@@ -15,6 +15,7 @@ import math
 
 from ..jit import kernel
 from .shader_values import (
+    brick,
     bright_contrast,
     checker,
     clamp01,
@@ -52,6 +53,10 @@ OP_COPY = 17  # out, a: a triple
 OP_AVERAGE = 18  # out, vector: (x + y + z) / 3 (a vector used as a value)
 OP_BUMP = 19  # out, height here, height a step along u, along v, strength, distance; f invert
 OP_NORMAL_MAP = 29  # out, colour, strength, space (NORMAL_MAP_*)
+# out colour, out fac, vector, colour 1, colour 2, mortar colour, scale; its next row
+# (OP_MORE): mortar size, mortar smooth, bias, brick width, row height, (offset, squash, 0),
+# offset frequency * 256 + squash frequency
+OP_BRICK = 30
 # Closures take their Normal input's slot in the last column (f), or -1 for the surface's
 OP_DIFFUSE = 20  # weight, colour
 OP_GLOSSY = 21  # weight, colour, roughness
@@ -303,6 +308,19 @@ def run_program(mats, material, stack, lobes, hit, frame, normal_rows):
             fac = checker(_triple(s, b), s[e])
             _put(s, out, _triple(s, c) if fac == 1.0 else _triple(s, d))
             s[a] = fac
+        elif op == OP_BRICK:
+            m = ops[row]
+            row += 1
+            shape = _triple(s, m[6])
+            tint, mortar = brick(
+                scale(_triple(s, b), s[f]), s[m[1]], s[m[2]], s[m[3]], s[m[4]], s[m[5]],
+                shape[0], m[7] // 256, shape[1], m[7] % 256,
+            )  # fmt: skip
+            bricks = _triple(s, c)
+            if mortar != 1.0:
+                bricks = add(scale(bricks, 1.0 - tint), scale(_triple(s, d), tint))
+            _put(s, out, add(scale(bricks, 1.0 - mortar), scale(_triple(s, e), mortar)))
+            s[a] = mortar
         elif op == OP_GRADIENT:
             fac = gradient(c, _triple(s, b))
             _put(s, out, (fac, fac, fac))

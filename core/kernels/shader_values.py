@@ -378,6 +378,54 @@ def checker(p, scale_):
 
 
 @kernel
+def _brick_noise(n):
+    """Cycles' brick_noise: integer hashing in 32-bit unsigned arithmetic (each product
+    reduced mod 2^32, which int64 holds: the factors stay below 2^32 and 2^31), the result
+    a float32 in [0, 1)."""
+    low32, low31 = 0xFFFFFFFF, 0x7FFFFFFF
+    n = (n + 1013) & low31
+    n = (n >> 13) ^ n
+    inner = (((n * n) & low32) * 60493 + 19990303) & low32
+    nn = ((n * inner) & low32) + 1376312589
+    nn &= low31
+    return 0.5 * float(np.float32(nn)) / 1073741824.0
+
+
+@kernel
+def brick(p, mortar_size, mortar_smooth, bias, brick_width, row_height, offset_amount,
+          offset_frequency, squash_amount, squash_frequency):  # fmt: skip
+    """The Brick texture at p (already scaled): (tint, mortar) as Cycles' svm_brick. The
+    row and brick numbers hash (row << 16) + (brick & 0xFFFF) as 32 bits, as Cycles' int
+    arithmetic wraps."""
+    rownum = int(math.floor(p[1] / row_height))
+    offset = 0.0
+    if offset_frequency != 0 and squash_frequency != 0:
+        if rownum % squash_frequency == 0:
+            brick_width *= squash_amount
+        if rownum % offset_frequency == 0:
+            offset = brick_width * offset_amount
+    bricknum = int(math.floor((p[0] + offset) / brick_width))
+    x = (p[0] + offset) - brick_width * bricknum
+    y = p[1] - row_height * rownum
+    hashed = ((rownum << 16) + (bricknum & 0xFFFF)) & 0xFFFFFFFF
+    tint = min(max(_brick_noise(hashed) + bias, 0.0), 1.0)
+    min_dist = min(min(x, y), min(brick_width - x, row_height - y))
+    if min_dist >= mortar_size:
+        mortar = 0.0
+    elif mortar_smooth == 0.0:
+        mortar = 1.0
+    else:
+        f = (1.0 - min_dist / mortar_size) / mortar_smooth
+        if f <= 0.0:
+            mortar = 0.0
+        elif f >= 1.0:
+            mortar = 1.0
+        else:
+            mortar = 3.0 * f * f - 2.0 * f * f * f
+    return tint, mortar
+
+
+@kernel
 def gradient(kind, p):
     """The Gradient texture's factor at p, clamped to [0, 1], as Cycles' svm_gradient."""
     x, y, z = p

@@ -80,6 +80,24 @@ SHADER_NODES = {
         inputs={"Vector": None, "Color1": (0.8, 0.8, 0.8), "Color2": (0.2, 0.2, 0.2), "Scale": 5.0},
         outputs={"Color": "triple", "Fac": "value"},
     ),  # fmt: skip
+    "brick": dict(
+        inputs={
+            "Vector": None,
+            "Color1": (0.8, 0.8, 0.8),
+            "Color2": (0.2, 0.2, 0.2),
+            "Mortar": (0.0, 0.0, 0.0),
+            "Scale": 5.0,
+            "Mortar Size": 0.02,
+            "Mortar Smooth": 0.1,
+            "Bias": 0.0,
+            "Brick Width": 0.5,
+            "Row Height": 0.25,
+        },
+        outputs={"Color": "triple", "Fac": "value"},
+        # Blender's Offset (0..1) every Offset Frequency-th row, and Squash: the brick width's
+        # factor every Squash Frequency-th row (frequencies 1..99)
+        settings={"offset": 0.5, "offset_frequency": 2, "squash": 1.0, "squash_frequency": 2},
+    ),  # fmt: skip
     "gradient": dict(
         inputs={"Vector": None},
         outputs={"Color": "triple", "Fac": "value"},
@@ -245,6 +263,8 @@ def _check_settings(owner, label, node) -> None:
             given = node.setting(name)
             raise SceneError(owner, f"{label} {name}",
                              f"got {given!r}; use one of {', '.join(allowed)}")  # fmt: skip
+    if node.kind == "brick":
+        _check_brick(owner, label, node)
     if node.kind == "image":
         from .materials import Texture
 
@@ -256,6 +276,27 @@ def _check_settings(owner, label, node) -> None:
         stops = node.setting("stops")
         if len(stops) < 1 or any(len(colour) != 4 for _, colour in stops):
             raise SceneError(owner, f"{label} stops", "give (position, RGBA) pairs, at least one")
+
+
+def _check_brick(owner, label, node) -> None:
+    """Brick's settings within Blender's own ranges."""
+    ranges = {"offset": (0.0, 1.0), "squash": (0.0, 99.0)}
+    for name, (low, high) in ranges.items():
+        value = node.setting(name)
+        if (
+            isinstance(value, bool)
+            or not isinstance(value, (int, float))
+            or not low <= value <= high
+        ):
+            raise SceneError(
+                owner, f"{label} {name}", f"got {value!r}; use a number from {low} to {high}"
+            )
+    for name in ("offset_frequency", "squash_frequency"):
+        value = node.setting(name)
+        if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= 99:
+            raise SceneError(
+                owner, f"{label} {name}", f"got {value!r}; use a whole number from 1 to 99"
+            )
 
 
 def emits(surface) -> bool:

@@ -231,6 +231,26 @@ def test_a_graph_too_deep_to_walk_is_refused_by_name():
         _image(material=material)
 
 
+@pytest.mark.parametrize(
+    "setting, value, message",
+    [
+        ("offset", 1.5, r"offset: got 1.5; use a number from 0.0 to 1.0"),
+        ("squash", -1.0, r"squash: got -1.0; use a number from 0.0 to 99.0"),
+        ("offset_frequency", 0, r"offset_frequency: got 0; use a whole number from 1 to 99"),
+        ("squash_frequency", 2.5, r"squash_frequency: got 2.5; use a whole number from 1 to 99"),
+    ],
+)
+def test_a_brick_texture_outside_blenders_ranges_is_refused_by_name(setting, value, message):
+    """Brick's Offset, Squash and their frequencies: Blender's own ranges; a frequency of 0
+    would divide by zero in the kernel."""
+    from core import SceneError
+
+    brick = ShaderNode("brick", settings={setting: value})
+    material = Material(name="Wall", surface=_node("emission", Color=Link(brick, "Color")))
+    with pytest.raises(SceneError, match=rf"material 'Wall'.*{message}"):
+        _image(material=material)
+
+
 def _lit_plane(surface, light_direction=(0.0, 0.0, -1.0)):
     """A mesh plane z = 0 with UVs along x and y, seen from above, lit by a sun of
     irradiance pi: a white Lambertian pixel shows n.l for its shading normal n."""
