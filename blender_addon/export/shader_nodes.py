@@ -65,6 +65,7 @@ OUTPUTS = {
     "TEX_CHECKER": ("checker", {"Color": "Color", "Fac": "Fac"}),
     "TEX_GRADIENT": ("gradient", {"Color": "Color", "Fac": "Fac"}),
     "TEX_BRICK": ("brick", {"Color": "Color", "Fac": "Fac"}),
+    "TEX_NOISE": ("noise", {"Fac": "Fac", "Color": "Color"}),
     "BUMP": ("bump", {"Normal": "Normal"}),
     "NORMAL_MAP": ("normal_map", {"Normal": "Normal"}),
 }
@@ -297,6 +298,8 @@ class GraphReader:
                 made.inputs[name] = v(node, groups, name)
             for name in ("offset", "offset_frequency", "squash", "squash_frequency"):
                 made.settings[name] = getattr(node, name)
+        elif t == "TEX_NOISE":
+            self._noise(node, groups, made)
         elif t == "TEX_COORD":
             if getattr(node, "object", None) is not None:
                 self.note(f"{node_label(node)}'s Object (used: the surface's own object)")
@@ -370,6 +373,20 @@ class GraphReader:
             for name in ("Strength", "Color"):
                 made.inputs[name] = v(node, groups, name)
         return made
+
+    def _noise(self, node, groups, made) -> None:
+        """The Noise texture: 3D fractal Brownian motion, as Blender's default (Lacunarity
+        and Normalize came with 4.0, Noise Type with 4.1); other kinds are noted."""
+        made.inputs["Vector"] = self._vector(node, groups, "Vector")
+        for name in ("Scale", "Detail", "Roughness", "Lacunarity", "Distortion"):
+            if node.inputs.get(name) is not None:
+                made.inputs[name] = self.value(node, groups, name)
+        made.settings["normalize"] = bool(getattr(node, "normalize", True))
+        if node.noise_dimensions != "3D":
+            self.note(f"{node_label(node)}'s {node.noise_dimensions} dimensions (used: 3D)")
+        kind = getattr(node, "noise_type", "FBM")
+        if kind != "FBM":
+            self.note(f"{node_label(node)}'s {kind.replace('_', ' ').title()} type (used: fBM)")
 
     def _vector(self, node, groups, name):
         """A texture's Vector: what feeds it, or None (its own default coordinates)."""

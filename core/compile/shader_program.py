@@ -245,6 +245,13 @@ class ProgramBuilder:
                    v(node.input("Mortar Smooth"), "value"), v(node.input("Bias"), "value"),
                    v(node.input("Brick Width"), "value"), v(node.input("Row Height"), "value"),
                    p.constant(shape), frequencies)  # fmt: skip
+        elif kind == "noise":
+            p.step(sp.OP_NOISE, slots["Color"], slots["Fac"],
+                   v(node.input("Vector"), "triple", sp.COORD_GENERATED),
+                   *(v(node.input(name), "value")
+                     for name in ("Scale", "Detail", "Roughness", "Lacunarity")))  # fmt: skip
+            p.step(sp.OP_MORE, v(node.input("Distortion"), "value"),
+                   int(bool(node.setting("normalize"))))  # fmt: skip
         elif kind == "gradient":
             p.step(sp.OP_GRADIENT, slots["Color"], slots["Fac"],
                    v(node.input("Vector"), "triple", sp.COORD_GENERATED),

@@ -14,6 +14,7 @@ blender_addon/export/shader_lobes.py documents it.
 import math
 
 from ..jit import kernel
+from .noise import noise_texture
 from .shader_values import (
     brick,
     bright_contrast,
@@ -57,6 +58,9 @@ OP_NORMAL_MAP = 29  # out, colour, strength, space (NORMAL_MAP_*)
 # (OP_MORE): mortar size, mortar smooth, bias, brick width, row height, (offset, squash, 0),
 # offset frequency * 256 + squash frequency
 OP_BRICK = 30
+# out colour, out fac, vector, scale, detail, roughness, lacunarity; its next row (OP_MORE):
+# distortion, 1 to normalize
+OP_NOISE = 31
 # Closures take their Normal input's slot in the last column (f), or -1 for the surface's
 OP_DIFFUSE = 20  # weight, colour
 OP_GLOSSY = 21  # weight, colour, roughness
@@ -321,6 +325,13 @@ def run_program(mats, material, stack, lobes, hit, frame, normal_rows):
                 bricks = add(scale(bricks, 1.0 - tint), scale(_triple(s, d), tint))
             _put(s, out, add(scale(bricks, 1.0 - mortar), scale(_triple(s, e), mortar)))
             s[a] = mortar
+        elif op == OP_NOISE:
+            m_distortion, m_normalize = ops[row, 1], ops[row, 2]
+            row += 1
+            fac, colour = noise_texture(scale(_triple(s, b), s[c]), s[d], s[e], s[f],
+                                        s[m_distortion], m_normalize != 0)  # fmt: skip
+            _put(s, out, colour)
+            s[a] = fac
         elif op == OP_GRADIENT:
             fac = gradient(c, _triple(s, b))
             _put(s, out, (fac, fac, fac))

@@ -98,6 +98,18 @@ SHADER_NODES = {
         # factor every Squash Frequency-th row (frequencies 1..99)
         settings={"offset": 0.5, "offset_frequency": 2, "squash": 1.0, "squash_frequency": 2},
     ),  # fmt: skip
+    "noise": dict(
+        inputs={
+            "Vector": None,
+            "Scale": 5.0,
+            "Detail": 2.0,
+            "Roughness": 0.5,
+            "Lacunarity": 2.0,
+            "Distortion": 0.0,
+        },
+        outputs={"Fac": "value", "Color": "triple"},
+        settings={"normalize": True},  # 3D, fractal Brownian motion (Blender's default)
+    ),  # fmt: skip
     "gradient": dict(
         inputs={"Vector": None},
         outputs={"Color": "triple", "Fac": "value"},

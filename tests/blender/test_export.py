@@ -262,8 +262,8 @@ def test_nodes_whitted_cannot_evaluate_are_named_in_one_warning_per_material(
     bpy = sys.modules["bpy"]
     _, material = sphere_with_material(bpy, "Marble")
     tree = material.node_tree
-    noise = tree.nodes.new("ShaderNodeTexNoise")
-    tree.links.new(noise.outputs["Color"], principled(material).inputs["Base Color"])
+    wave = tree.nodes.new("ShaderNodeTexWave")
+    tree.links.new(wave.outputs["Color"], principled(material).inputs["Base Color"])
     voronoi = tree.nodes.new("ShaderNodeTexVoronoi")
     tree.links.new(voronoi.outputs["Color"], principled(material).inputs["Normal"])
     volume = tree.nodes.new("ShaderNodeVolumePrincipled")
@@ -272,11 +272,34 @@ def test_nodes_whitted_cannot_evaluate_are_named_in_one_warning_per_material(
     scene, _, warnings = exported(bpy, monkeypatch)
     mine = [w for w in warnings if w.startswith("material 'Marble'")]
     assert len(mine) == 1, warnings
-    for named in ("'Noise Texture'", "Base Color", "Normal", "Volume", "used:"):
+    for named in ("'Wave Texture'", "Base Color", "Normal", "Volume", "used:"):
         assert named in mine[0], mine[0]
     # What was used instead: the Base Color's own value
     base = tuple(principled(material).inputs["Base Color"].default_value[:3])
     assert scene.shapes[0].material.surface.inputs["Base Color"] == pytest.approx(base, abs=1e-6)
+
+
+def test_a_noise_texture_is_read_and_its_other_kinds_are_named(empty_scene, monkeypatch):
+    """A 3D fBM Noise is evaluated (no warning); 4D, or a Noise Type other than fBM (4.1
+    on), is named in the material's warning with what was used instead."""
+    bpy = sys.modules["bpy"]
+    _, material = sphere_with_material(bpy, "Clouds")
+    noise = material.node_tree.nodes.new("ShaderNodeTexNoise")
+    noise.inputs["Detail"].default_value = 4.5
+    tree = material.node_tree
+    tree.links.new(noise.outputs["Color"], principled(material).inputs["Base Color"])
+    scene, _, warnings = exported(bpy, monkeypatch)
+    assert not [w for w in warnings if w.startswith("material 'Clouds'")], warnings
+    made = scene.shapes[0].material.surface.inputs["Base Color"].node
+    assert made.kind == "noise" and made.inputs["Detail"] == pytest.approx(4.5)
+    noise.noise_dimensions = "4D"
+    if hasattr(noise, "noise_type"):
+        noise.noise_type = "RIDGED_MULTIFRACTAL"
+    _, _, warnings = exported(bpy, monkeypatch)
+    mine = [w for w in warnings if w.startswith("material 'Clouds'")]
+    assert len(mine) == 1 and "4D dimensions (used: 3D)" in mine[0], warnings
+    if hasattr(noise, "noise_type"):
+        assert "Ridged Multifractal type (used: fBM)" in mine[0]
 
 
 def test_an_image_texture_on_the_base_colour_is_read_with_its_pixels(empty_scene, monkeypatch):
