@@ -1,5 +1,5 @@
 """What a node graph costs per hit: a textured plane filling a 256 x 256 picture (one camera
-ray per pixel, lit by a sun), rendered with five materials of the same look, interleaved
+ray per pixel, lit by a sun), rendered with seven materials, interleaved
 (the machine is shared and noisy), each time the median of several runs:
 
     table          the report's texture path (an image replacing the diffuse colour)
@@ -8,6 +8,9 @@ ray per pixel, lit by a sun), rendered with five materials of the same look, int
     mapped_chain   Texture Coordinate -> Mapping -> Image -> Hue/Saturation -> Mix Color ->
                    Color Ramp on its brightness, screened in: 7 value steps
     mixed_shaders  a Checker's factor mixing a Principled and a Glossy BSDF per hit
+    noise          a Noise texture's Color (Detail 2: three octaves, for each of its three
+                   channels) into a Diffuse BSDF
+    brick          a Brick texture's Color into a Diffuse BSDF
 
 Prints shader_<name>_ns_per_hit (render time over camera rays, which all hit) and
 shader_<name>_ratio against the table path; writes results/shader_graph.png (bars) and .csv.
@@ -56,6 +59,8 @@ def _materials():
     screen = ShaderNode("mix_color", {"Fac": 0.5, "A": Link(multiply, "Color"),
                                       "B": Link(ramp, "Color")}, {"blend": "SCREEN"})  # fmt: skip
     checker = ShaderNode("checker", {"Scale": 8.0})
+    noise = ShaderNode("noise", {"Scale": 3.0})
+    brick = ShaderNode("brick", {"Scale": 3.0})
     principled = ShaderNode("principled", {"Base Color": Link(image, "Color")})
     glossy = ShaderNode("glossy", {"Color": (0.9, 0.8, 0.5), "Roughness": 0.0})
     mixed = ShaderNode("mix_shader", {"Fac": Link(checker, "Fac"), "Shader A": Link(principled),
@@ -66,6 +71,8 @@ def _materials():
         "image": Material(surface=ShaderNode("diffuse", {"Color": Link(image, "Color")})),
         "mapped_chain": Material(surface=ShaderNode("diffuse", {"Color": Link(screen, "Color")})),
         "mixed_shaders": Material(surface=mixed),
+        "noise": Material(surface=ShaderNode("diffuse", {"Color": Link(noise, "Color")})),
+        "brick": Material(surface=ShaderNode("diffuse", {"Color": Link(brick, "Color")})),
     }
 
 
