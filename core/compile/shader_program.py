@@ -77,6 +77,21 @@ def _slot(operand, base):
     return int(operand)
 
 
+def _outputs_read(surface) -> set:
+    """(id(node), output) of every output a link of the graph reads."""
+    read, seen, stack = set(), set(), [surface]
+    while stack:
+        node = stack.pop()
+        if id(node) in seen:
+            continue
+        seen.add(id(node))
+        for given in node.inputs.values():
+            if isinstance(given, Link):
+                read.add((id(given.node), given.output))
+                stack.append(given.node)
+    return read
+
+
 class ProgramBuilder:
     """Builds one material's program; `texture_row(texture)` gives the row of a core
     Texture in the material table's textures."""
@@ -87,8 +102,10 @@ class ProgramBuilder:
         self.outputs: dict = {}  # (id(node), output, where) -> (operand, shape)
         # where the values are wanted: 0 the hit, 1 and 2 a step across (a Bump's heights)
         self.where = 0
+        self.used: set = set()  # (id(node), output) of every output something reads
 
     def build(self, surface) -> Program:
+        self.used = _outputs_read(surface)
         weight = self.program.constant(1.0)
         self.shader(surface, weight)
         return self.program
@@ -250,8 +267,10 @@ class ProgramBuilder:
                    v(node.input("Vector"), "triple", sp.COORD_GENERATED),
                    *(v(node.input(name), "value")
                      for name in ("Scale", "Detail", "Roughness", "Lacunarity")))  # fmt: skip
+            # its Color costs two more fractal sums: made only where something reads it
             p.step(sp.OP_MORE, v(node.input("Distortion"), "value"),
-                   int(bool(node.setting("normalize"))))  # fmt: skip
+                   int(bool(node.setting("normalize"))),
+                   int((id(node), "Color") in self.used))  # fmt: skip
         elif kind == "gradient":
             p.step(sp.OP_GRADIENT, slots["Color"], slots["Fac"],
                    v(node.input("Vector"), "triple", sp.COORD_GENERATED),

@@ -159,8 +159,9 @@ def _shifted(p, offset):
 
 
 @kernel
-def noise_texture(p, detail, roughness, lacunarity, distortion, normalize):
-    """Blender's Noise texture at p (already scaled): (Fac, Color)."""
+def noise_texture(p, detail, roughness, lacunarity, distortion, normalize, with_colour):
+    """Blender's Noise texture at p (already scaled): (Fac, Color); without `with_colour`
+    the Color is the Fac repeated (nothing reads it)."""
     detail = min(max(detail, 0.0), 15.0)
     roughness = max(roughness, 0.0)
     if distortion != 0.0:
@@ -170,6 +171,8 @@ def noise_texture(p, detail, roughness, lacunarity, distortion, normalize):
             p[2] + signed_noise(_shifted(p, OFFSETS[2])) * distortion,
         )
     value = fbm(p, detail, roughness, lacunarity, normalize)
+    if not with_colour:
+        return value, (value, value, value)
     green = fbm(_shifted(p, OFFSETS[3]), detail, roughness, lacunarity, normalize)
     blue = fbm(_shifted(p, OFFSETS[4]), detail, roughness, lacunarity, normalize)
     return value, (value, green, blue)

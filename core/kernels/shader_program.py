@@ -59,7 +59,7 @@ OP_NORMAL_MAP = 29  # out, colour, strength, space (NORMAL_MAP_*)
 # offset frequency * 256 + squash frequency
 OP_BRICK = 30
 # out colour, out fac, vector, scale, detail, roughness, lacunarity; its next row (OP_MORE):
-# distortion, 1 to normalize
+# distortion, 1 to normalize, 1 if the colour is read
 OP_NOISE = 31
 # Closures take their Normal input's slot in the last column (f), or -1 for the surface's
 OP_DIFFUSE = 20  # weight, colour
@@ -326,10 +326,12 @@ def run_program(mats, material, stack, lobes, hit, frame, normal_rows):
             _put(s, out, add(scale(bricks, 1.0 - mortar), scale(_triple(s, e), mortar)))
             s[a] = mortar
         elif op == OP_NOISE:
-            m_distortion, m_normalize = ops[row, 1], ops[row, 2]
+            m_distortion, m_normalize, m_colour = ops[row, 1], ops[row, 2], ops[row, 3]
             row += 1
-            fac, colour = noise_texture(scale(_triple(s, b), s[c]), s[d], s[e], s[f],
-                                        s[m_distortion], m_normalize != 0)  # fmt: skip
+            point = scale(_triple(s, b), s[c])
+            fac, colour = noise_texture(
+                point, s[d], s[e], s[f], s[m_distortion], m_normalize != 0, m_colour != 0
+            )
             _put(s, out, colour)
             s[a] = fac
         elif op == OP_GRADIENT:

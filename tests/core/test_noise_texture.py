@@ -41,3 +41,14 @@ def test_the_written_out_offsets_are_the_hashs():
     for seed, written in enumerate(OFFSETS):
         assert random_offset(float(seed)) == written
         assert all(100.0 <= v <= 200.0 for v in written)
+
+
+def test_the_factor_is_the_same_whether_or_not_the_colour_is_made():
+    """A graph that reads only Fac skips the Color's two extra fractal sums."""
+    from core.kernels.noise import noise_texture
+
+    p = (2.3, -0.4, 1.1)
+    with_colour = noise_texture(p, 2.5, 0.5, 2.0, 0.3, True, True)
+    without = noise_texture(p, 2.5, 0.5, 2.0, 0.3, True, False)
+    assert with_colour[0] == without[0] == with_colour[1][0]
+    assert with_colour[1][1] != with_colour[0]  # the colour's own channels
