@@ -84,13 +84,18 @@ def glowing_shapes(scene_shapes: list, materials, material_of: dict) -> Glowing:
     return out
 
 
-def _mesh(out: Glowing, shape, radiance) -> None:
-    mesh = shape.mesh
+def _world_triangles(shape):
+    """A mesh shape's triangles in world space, (t, 3, 3), and their areas."""
     m = np.asarray(shape.world_from_object, float)
-    vertices = np.asarray(mesh.vertices, float) @ m[:3, :3].T + m[:3, 3]
-    corners = vertices[np.asarray(mesh.triangles, np.int64)]  # (t, 3, 3)
+    vertices = np.asarray(shape.mesh.vertices, float) @ m[:3, :3].T + m[:3, 3]
+    corners = vertices[np.asarray(shape.mesh.triangles, np.int64)]
     areas = 0.5 * np.linalg.norm(np.cross(corners[:, 1] - corners[:, 0],
                                           corners[:, 2] - corners[:, 0]), axis=1)  # fmt: skip
+    return corners, areas
+
+
+def _mesh(out: Glowing, shape, radiance) -> None:
+    corners, areas = _world_triangles(shape)
     keep = areas > 0.0
     corners, areas = corners[keep], areas[keep]
     if not len(areas):
@@ -117,19 +122,10 @@ def _sphere(out: Glowing, shape, radiance) -> None:
 
 def _power(shape, radiance) -> float:
     """The surface's emitted power, up to a constant: its area times its mean radiance."""
-    m = np.asarray(shape.world_from_object, float)
     if isinstance(shape, Mesh):
-        corners = (np.asarray(shape.mesh.vertices, float) @ m[:3, :3].T)[
-            np.asarray(shape.mesh.triangles, np.int64)
-        ]
-        area = (
-            0.5
-            * np.linalg.norm(
-                np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]), axis=1
-            ).sum()
-        )
+        area = float(_world_triangles(shape)[1].sum())
     else:
-        area = 4.0 * math.pi * _uniform_scale(m) ** 2
+        area = 4.0 * math.pi * _uniform_scale(shape.world_from_object) ** 2
     return float(area * np.mean(radiance))
 
 

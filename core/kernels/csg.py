@@ -25,7 +25,7 @@ import math
 
 from ..jit import inlined_kernel, kernel
 from ..vocabulary import CSG_DIFFERENCE, CSG_INTERSECTION, CSG_UNION
-from .mesh_trace import MESH_COINCIDENT_RELATIVE, mesh_line_crossings, sort_crossings
+from .mesh_trace import coincident_crossings, line_scale, mesh_line_crossings, sort_crossings
 from .shapes import NO_HIT, SHAPE_MESH, SHAPE_TORUS, convex_interval
 from .slabs import box_entry
 from .torus import torus_roots
@@ -74,22 +74,13 @@ def _mesh_spans(geo, row, o, d, scratch, at):
     if n == cross_f.shape[0]:
         scratch.overflow[0] += 1
     sort_crossings(cross_f, cross_i, n)
-    scale = max(abs(o[0]), abs(o[1]), abs(o[2])) / math.sqrt(
-        d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
-    )
+    scale = line_scale(o, d)
     winding = 0
     k = at
     i = 0
     while i < n:
         t = cross_f[i, 0]
-        same = t + MESH_COINCIDENT_RELATIVE * (abs(t) + scale)
-        entering = leaving = -1
-        while i < n and cross_f[i, 0] <= same:
-            if cross_i[i, 1] > 0:
-                entering = i
-            else:
-                leaving = i
-            i += 1
+        i, entering, leaving = coincident_crossings(cross_f, cross_i, i, n, scale)
         change = (entering >= 0) - (leaving >= 0)
         if change == 0:
             continue
@@ -220,9 +211,7 @@ def csg_spans(geo, csg, o, d, scratch):
     program = geo.csg_program
     first, last = geo.csg_range[csg, 0], geo.csg_range[csg, 1]
     segments = scratch.segments
-    scale = max(abs(o[0]), abs(o[1]), abs(o[2])) / math.sqrt(
-        d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
-    )
+    scale = line_scale(o, d)
     inverse_d = inverse(d)
     pending = 0
     end = 0

@@ -237,19 +237,33 @@ def mesh_surface_crossings(boxes, links, corners, root, o, d, t_max, cross_f, cr
     if count >= cross_f.shape[0]:
         return -1
     sort_crossings(cross_f, cross_i, count)
-    scale = max(abs(o[0]), abs(o[1]), abs(o[2])) / math.sqrt(
-        d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
-    )
+    scale = line_scale(o, d)
     events = 0
     i = 0
     while i < count:
-        same = cross_f[i, 0] + MESH_COINCIDENT_RELATIVE * (abs(cross_f[i, 0]) + scale)
-        entering = leaving = False
-        while i < count and cross_f[i, 0] <= same:
-            if cross_i[i, 1] > 0:
-                entering = True
-            else:
-                leaving = True
-            i += 1
-        events += entering + leaving
+        i, entering, leaving = coincident_crossings(cross_f, cross_i, i, count, scale)
+        events += (entering >= 0) + (leaving >= 0)
     return events
+
+
+@inlined_kernel
+def line_scale(o, d):
+    """The size of the distances along o + t d that rounding is relative to."""
+    return max(abs(o[0]), abs(o[1]), abs(o[2])) / math.sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2])
+
+
+@inlined_kernel
+def coincident_crossings(cross_f, cross_i, i, n, scale):
+    """The sorted crossings from i on at its distance, to rounding (MESH_COINCIDENT_RELATIVE
+    of `scale`): one event, a ray through an edge or vertex that each triangle there
+    reported. Returns (the crossing after them, the last of them entering or -1, the last
+    leaving or -1)."""
+    same = cross_f[i, 0] + MESH_COINCIDENT_RELATIVE * (abs(cross_f[i, 0]) + scale)
+    entering = leaving = -1
+    while i < n and cross_f[i, 0] <= same:
+        if cross_i[i, 1] > 0:
+            entering = i
+        else:
+            leaving = i
+        i += 1
+    return i, entering, leaving

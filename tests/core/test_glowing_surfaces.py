@@ -73,26 +73,24 @@ def test_switched_off_an_emissive_surface_lights_nothing():
     assert np.all(rendered([], 16, shapes=[unlit]) == 0.0)
 
 
-def test_an_emission_that_varies_over_the_surface_says_it_lights_nothing():
+def _checkered_warnings(closure: str, name: str) -> list:
+    """The compile's warnings for a quad whose `closure` (Emission or Diffuse) takes its
+    colour from a Checker."""
     from core import Camera, Link, RenderSettings, Scene
 
-    checker = ShaderNode("checker")
-    surface = ShaderNode("emission", {"Color": Link(checker, "Color")})
-    lamp = _quad(CORNERS, Material(name="Patchy", surface=surface))
+    surface = ShaderNode(closure, {"Color": Link(ShaderNode("checker"), "Color")})
+    quad = _quad(CORNERS, Material(name=name, surface=surface))
     camera = Camera(eye=(0.0, 0.0, 10.0), view=(0.0, 0.0, -1.0), up=(0.0, 1.0, 0.0))
-    compiled = compile_scene(Scene(camera, [lamp]), RenderSettings(4, 4))
-    assert any("'Lamp'" in w and "varies" in w for w in compiled.warnings), compiled.warnings
+    return compile_scene(Scene(camera, [quad]), RenderSettings(4, 4)).warnings
+
+
+def test_an_emission_that_varies_over_the_surface_says_it_lights_nothing():
+    warnings = _checkered_warnings("emission", "Patchy")
+    assert any("'Lamp'" in w and "varies" in w for w in warnings), warnings
 
 
 def test_a_textured_surface_that_emits_nothing_says_nothing_of_glowing():
-    from core import Camera, Link, RenderSettings, Scene
-
-    checker = ShaderNode("checker")
-    surface = ShaderNode("diffuse", {"Color": Link(checker, "Color")})
-    card = _quad(CORNERS, Material(name="Tiles", surface=surface))
-    camera = Camera(eye=(0.0, 0.0, 10.0), view=(0.0, 0.0, -1.0), up=(0.0, 1.0, 0.0))
-    compiled = compile_scene(Scene(camera, [card]), RenderSettings(4, 4))
-    assert compiled.warnings == []
+    assert _checkered_warnings("diffuse", "Tiles") == []
 
 
 def test_past_the_cap_only_the_brightest_emissive_surfaces_light_and_it_is_said():
