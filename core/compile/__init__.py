@@ -69,7 +69,9 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
     check_fits(estimate(shapes, settings))
     materials, material_of = pack_materials(shapes)
     meshes, mesh_of = pack_meshes(shapes)
-    lets_through = shadow_shares(materials)
+    graph_of_row = {material_of[id(s.material)]: s.material.surface for s in shapes}
+    graphs = [graph_of_row.get(k) for k in range(len(materials.transparency))]
+    lets_through = shadow_shares(materials, graphs)
     shadow_share = [lets_through[material_of[id(s.material)]] for s in shapes]
     geometry = pack_geometry(scene.shapes, shapes, world_from_object, csg, tree_of_row,
                              meshes, mesh_of, shadow_share)  # fmt: skip

@@ -12,6 +12,8 @@ from ..errors import SceneError
 from ..kernels.layout import Materials
 from ..kernels.shader_fold import FOLDED_COLUMNS, fold_surfaces
 from ..kernels.shader_program import SHADER_STACK
+from ..kernels.shadow_log import SHADOW_VARIES
+from ..model.shader import passes_light
 from ..passes import crypto_id
 from ..textures import load_texture
 from .arrays import concatenated, rows
@@ -150,12 +152,15 @@ def _fold_constant_programs(table: Materials, programs: list) -> None:
         table.shader_range[k] = (-1, -1)
 
 
-def shadow_shares(table: Materials) -> np.ndarray:
+def shadow_shares(table: Materials, surfaces: list) -> np.ndarray:
     """What one crossing of each material's surface lets a shadow ray through: its
     transparency plus the mean of what passes it straight, at most 1. A material whose
-    terms vary over the surface (a program run per hit) stops shadows for now."""
+    terms vary over the surface (a program run per hit; `surfaces[k]` is row k's graph)
+    is SHADOW_VARIES if its graph can let light through anywhere (its program is run at
+    each crossing, core.kernels.shadow_log), else 0: no light passes it."""
     share = np.minimum(1.0, table.transparency + table.transparent.mean(axis=1))
-    share[table.shader_range[:, 0] >= 0] = 0.0
+    for k in np.flatnonzero(table.shader_range[:, 0] >= 0):
+        share[k] = SHADOW_VARIES if passes_light(surfaces[k]) else 0.0
     return share
 
 

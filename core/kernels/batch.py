@@ -47,7 +47,9 @@ def closest_normals(geo, surf, origins, directions, t_max, out_t, out_shape, out
 
 @kernel
 def shadow_rays(geo, origins, directions, t_max, out_light, stacks):
-    """Transmittance of each segment origin + t direction, 0 < t < t_max[i]."""
+    """Transmittance of each segment origin + t direction, 0 < t < t_max[i], by the
+    constant shares: a surface whose share varies over it (`core.kernels.shadow_log`)
+    counts 1 here; `core.kernels.shadow_crossing.light_along` answers it too."""
     geo, stacks = borrowed(geo), borrowed(stacks)
     for i in range(origins.shape[0]):
         o = (origins[i, 0], origins[i, 1], origins[i, 2])

@@ -26,6 +26,7 @@ import math
 from ..jit import inlined_kernel, kernel
 from ..vocabulary import CSG_DIFFERENCE, CSG_INTERSECTION, CSG_UNION
 from .mesh_trace import coincident_crossings, line_scale, mesh_line_crossings, sort_crossings
+from .shadow_log import SHADOW_VARIES, record_crossing
 from .shapes import NO_HIT, SHAPE_MESH, SHAPE_TORUS, convex_interval
 from .slabs import box_entry
 from .torus import torus_roots
@@ -244,9 +245,11 @@ def csg_closest(geo, csg, o, d, t_max, scratch):
 
 
 @inlined_kernel
-def csg_transmittance(geo, csg, o, d, t_max, scratch):
+def csg_transmittance(geo, csg, o, d, t_max, stacks):
     """The fraction of light passing the CSG solid along 0 < t < t_max, by the shadow rule
-    of `trace.transmittance`: each boundary crossed passes its own surface's transparency."""
+    of `trace.transmittance`: each boundary crossed passes its own surface's transparency,
+    or is listed for the integrator where that varies (`core.kernels.shadow_log`)."""
+    scratch = stacks.csg
     count = csg_spans(geo, csg, o, d, scratch)
     span_f, span_i = scratch.span_f, scratch.span_i
     light = 1.0
@@ -254,7 +257,13 @@ def csg_transmittance(geo, csg, o, d, t_max, scratch):
         for e in range(2):
             t = span_f[k, e, 0]
             if 0.0 < t < t_max:
-                tau = geo.shape_transparency[span_i[k, e, 0]]
+                leaf, part = span_i[k, e, 0], span_i[k, e, 1]
+                tau = geo.shape_transparency[leaf]
+                if tau == SHADOW_VARIES:
+                    b1, b2 = span_f[k, e, 1], span_f[k, e, 2]
+                    if not record_crossing(stacks, leaf, part, t, b1, b2, o, d):
+                        return 0.0
+                    continue
                 if tau == 0.0:
                     return 0.0
                 light *= tau

@@ -55,6 +55,8 @@ from .pass_record import (
 )
 from .shader_program import run_program
 from .shading import Phong, ShadingPoint, local_colour
+from .shadow_crossing import answer_crossings
+from .shadow_log import begin_point
 from .surface import diffuse_colour, hit_frame, normal_rows, surface_at
 from .surface_terms import table_surface, terms_from_lobes
 from .trace import closest_hit, spawn_point
@@ -245,17 +247,25 @@ def trace_ray(ps, o, d, key, ws):
             ks = here.ks
             phong = Phong(kd, ks, here.shininess)
             splitting = first and split
-            local = local_colour(frame, lights, geo, stacks, point, phong, key, event, splitting)
-            if lights.emitter_kind.shape[0] > 0:  # lights in Blender's units
-                emitted = emitted_colour(
+            begin_point(stacks.shadow_state)
+            while True:
+                local = local_colour(
                     frame, lights, geo, stacks, point, phong, key, event, splitting
                 )
-                local = add(local, emitted)
-            if frame.options[OPTION_ENVIRONMENT] != ENVIRONMENT_NONE:  # the World's light
-                sky = environment_light(
-                    frame, lights, geo, stacks, point, kd, key, event, splitting
-                )
-                local = add(local, sky)
+                if lights.emitter_kind.shape[0] > 0:  # lights in Blender's units
+                    emitted = emitted_colour(
+                        frame, lights, geo, stacks, point, phong, key, event, splitting
+                    )
+                    local = add(local, emitted)
+                if frame.options[OPTION_ENVIRONMENT] != ENVIRONMENT_NONE:  # the World's light
+                    sky = environment_light(
+                        frame, lights, geo, stacks, point, kd, key, event, splitting
+                    )
+                    local = add(local, sky)
+                # shadow rays that crossed surfaces whose share varies: their shares, then
+                # the lights once more with the answered visibilities (core.kernels.shadow_log)
+                if not answer_crossings(geo, surf, mats, ws):
+                    break
             seen = mul(w, scale(local, 1.0 - tau))
             colour = add(colour, seen)
             if first:

@@ -41,7 +41,8 @@ class Geometry(NamedTuple):
     shape_param: np.ndarray  # float64 (n, 2): torus major and minor radius
     shape_index: np.ndarray  # int32 (n,): row in mesh_root (meshes), csg_range (CSG), or -1
     # float64 (n,): what one crossing of its surface lets a shadow ray through: its material's
-    # transparency, or 1 (the row is skipped) when it casts no shadow; a CSG row's is 0
+    # transparency, or 1 (the row is skipped) when it casts no shadow; a CSG row's is 0;
+    # SHADOW_VARIES where its program answers each crossing (core.kernels.shadow_log)
     shape_transparency: np.ndarray
     shape_bounds: np.ndarray  # float64 (n, 6): world box (lo xyz, hi xyz), for CSG operands
     # meshes

@@ -16,6 +16,7 @@ float32 corners of float32 vertices, padded one float32 step, and tested in floa
 from ..jit import inlined_kernel, kernel
 from .csg import csg_closest, csg_transmittance
 from .mesh_trace import mesh_closest, mesh_crossings, mesh_surface_crossings
+from .shadow_log import SHADOW_VARIES, analytic_varying, mesh_varying
 from .shapes import (
     NO_HIT,
     SHAPE_CSG,
@@ -141,13 +142,19 @@ def descend_in_order(bounds, child, o, inverse_d, t_max, stack, top):
 def shape_transmittance(geo, shape, o, d, t_max, stacks):
     """The fraction of light that passes shape `shape` along o + t d, 0 < t < t_max: 1 when
     the segment misses it, 0 when it crosses an opaque surface of it, else the product of
-    the crossed surfaces' transparencies (the rule of `transmittance`)."""
+    the crossed surfaces' transparencies (the rule of `transmittance`). A surface whose
+    share varies over it (SHADOW_VARIES) counts 1 here, its crossings listed for the
+    integrator to answer (`core.kernels.shadow_log`)."""
     tau = geo.shape_transparency[shape]
     if tau == 1.0:
         return 1.0
     kind = geo.shape_kind[shape]
     if kind == SHAPE_CSG:
-        return csg_transmittance(geo, geo.shape_index[shape], o, d, t_max, stacks.csg)
+        return csg_transmittance(geo, geo.shape_index[shape], o, d, t_max, stacks)
+    if tau == SHADOW_VARIES:
+        if kind == SHAPE_MESH:
+            return mesh_varying(geo, shape, o, d, t_max, stacks)
+        return analytic_varying(geo, shape, o, d, t_max, stacks)
     o_obj = affine_point(geo.shape_object_from_world, shape, o)
     d_obj = affine_vector(geo.shape_object_from_world, shape, d)
     root = geo.mesh_root[geo.shape_index[shape]] if kind == SHAPE_MESH else -1

@@ -11,6 +11,7 @@ from .csg import CROSSING_CAPACITY, SPAN_CAPACITY
 from .light_pyramid import MAX_CANDIDATES, PYRAMID_ROWS
 from .pass_record import ACC_COUNT, REC_COUNT, TERM_ROWS
 from .shader_program import LOBE_COUNT, SHADER_STACK
+from .shadow_log import SHADOW_LOG_SIZE, SHADOW_STATE_SLOTS, VARYING_CAPACITY
 
 # Surfaces one ray may pass straight through (transparent shares, shapes its kind does not
 # see): Cycles' Max Bounces > Transparent is 8 by default; leaves on cards need more
@@ -62,6 +63,11 @@ class Stacks(NamedTuple):
     visibility: np.ndarray  # float64 (shadow samples,): what reaches the point from each
     # a shading point's lighting split into the passes' terms (core.kernels.pass_record)
     terms: np.ndarray  # float64 (TERM_ROWS, 3)
+    # a shading point's shadow rays through surfaces whose share varies (core.kernels.shadow_log)
+    shadow_state: np.ndarray  # int64 (SHADOW_STATE_SLOTS,)
+    shadow_log: np.ndarray  # float64 (SHADOW_LOG_SIZE,): each ray's visibility
+    varying_f: np.ndarray  # float64 (VARYING_CAPACITY, 9): t, b1, b2, the ray's o and d
+    varying_i: np.ndarray  # int64 (VARYING_CAPACITY, 3): shape row, part, the ray's number
 
 
 class RayStack(NamedTuple):
@@ -128,6 +134,10 @@ def new_workspace(
             np.zeros((max(shadow_samples, 1), 5)),
             np.zeros(max(shadow_samples, 1)),
             np.zeros((TERM_ROWS, 3)),
+            np.zeros(SHADOW_STATE_SLOTS, np.int64),
+            np.zeros(SHADOW_LOG_SIZE),
+            np.zeros((VARYING_CAPACITY, 9)),
+            np.zeros((VARYING_CAPACITY, 3), np.int64),
         ),
         RayStack(
             np.empty((rays, 3)),

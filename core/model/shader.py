@@ -311,23 +311,49 @@ def _check_brick(owner, label, node) -> None:
             )
 
 
-def emits(surface) -> bool:
-    """Whether a graph can emit light: an Emission shader, or a Principled BSDF whose
-    Emission Strength and Color are both linked or above 0, among its closures."""
+def _closures(surface):
+    """The closure nodes a graph's surface reaches, each once."""
     stack, seen = [surface], set()
     while stack:
         node = stack.pop()
         if node is None or id(node) in seen:
             continue
         seen.add(id(node))
-        if node.kind == "emission":
-            return True
-        if node.kind == "principled" and all(
-            isinstance(given, Link) or float(np.max(given)) > 0.0
-            for given in (node.input("Emission Strength"), node.input("Emission Color"))
-        ):
-            return True
+        yield node
         for given in node.inputs.values():
             if isinstance(given, Link) and given.node.is_closure:
                 stack.append(given.node)
+
+
+def _given(node, name, above) -> bool:
+    """Whether input `name` is linked (it may take any value) or set above `above`."""
+    value = node.input(name)
+    return isinstance(value, Link) or float(np.max(value)) > above
+
+
+def emits(surface) -> bool:
+    """Whether a graph can emit light: an Emission shader, or a Principled BSDF whose
+    Emission Strength and Color are both linked or above 0, among its closures."""
+    return any(
+        node.kind == "emission"
+        or (
+            node.kind == "principled"
+            and _given(node, "Emission Strength", 0.0)
+            and _given(node, "Emission Color", 0.0)
+        )
+        for node in _closures(surface)
+    )
+
+
+def passes_light(surface) -> bool:
+    """Whether a graph can let light through its surface anywhere: a Transparent, Glass or
+    Refraction BSDF, or a Principled BSDF whose Alpha is linked or below 1 or whose
+    Transmission is linked or above 0, among its closures. A shadow ray may then pass it."""
+    for node in _closures(surface):
+        if node.kind in ("transparent", "glass", "refraction"):
+            return True
+        if node.kind == "principled":
+            alpha = node.input("Alpha")
+            if isinstance(alpha, Link) or float(alpha) < 1.0 or _given(node, "Transmission", 0.0):
+                return True
     return False

@@ -365,3 +365,52 @@ def test_bump_displacement_and_normal_maps_shade_as_in_cycles(bpy_with_whitted, 
           f"{np.abs(whitted - cycles).max():.4f}, the relief's range {flat:.3f}")  # fmt: skip
     assert flat > 0.1  # the relief shows
     assert off.mean() <= EDGE_SHARE, off.mean()
+
+
+def test_a_leaf_cards_image_alpha_shadows_the_floor_as_in_cycles(bpy_with_whitted, tmp_path):
+    """A card over the white plane, hidden from the camera (Ray Visibility > Camera off), its
+    Principled Alpha an image's alpha (4 x 4 texels of 0, 0.4 or 1, Closest), under a sun
+    straight down: the plane shows the card's alpha texel by texel, each square lit by 1 -
+    alpha of its texel, as in Cycles and as the closed form says. Before, the card's
+    shadow was a solid square."""
+    from tests.support.cycles import add_light
+
+    bpy = bpy_with_whitted
+    scene = new_scene(bpy)
+    rng = np.random.default_rng(8)
+    alpha = rng.choice([0.0, 0.4, 1.0], size=(4, 4))
+    image = bpy.data.images.new("Leaves", 4, 4, alpha=True, float_buffer=True)
+    rgba = np.ones((4, 4, 4), np.float32)
+    rgba[..., 1] = 0.6
+    rgba[..., 3] = alpha
+    image.pixels.foreach_set(rgba.ravel())
+    image.pack()
+    card_mesh = bpy.data.meshes.new("Card")
+    card_mesh.from_pydata([(-2, -2, 3), (2, -2, 3), (2, 2, 3), (-2, 2, 3)], [], [(0, 1, 2, 3)])
+    layer = card_mesh.uv_layers.new(name="UVMap")
+    for corner, uv in zip(layer.data, ((0, 0), (1, 0), (1, 1), (0, 1)), strict=True):
+        corner.uv = uv
+    material = bpy.data.materials.new("Leaf")
+    material.use_nodes = True
+    tree = material.node_tree
+    principled = tree.nodes["Principled BSDF"]
+    texture = tree.nodes.new("ShaderNodeTexImage")
+    texture.image = image
+    texture.interpolation = "Closest"
+    tree.links.new(texture.outputs["Color"], principled.inputs["Base Color"])
+    tree.links.new(texture.outputs["Alpha"], principled.inputs["Alpha"])
+    card_mesh.materials.append(material)
+    card = bpy.data.objects.new("Card", card_mesh)
+    card.visible_camera = False
+    scene.collection.objects.link(card)
+    add_light(bpy, scene, "SUN", (0.0, 0.0, 8.0), energy=3.0, angle=0.0)
+    cycles, whitted = side_by_side(bpy, scene, tmp_path, samples=16)
+    off = np.abs(whitted - cycles).max(axis=-1) > CLOSE
+    print(
+        f"leaf card: {off.mean():.4f} of pixels off, largest {np.abs(whitted - cycles).max():.4f}"
+    )
+    assert off.mean() <= EDGE_SHARE, off.mean()
+    # the card covers pixels 8 to 24 each way, 4 pixels a texel; image row 0 is its -y edge
+    lit = whitted[0, 0, 0]  # the open plane
+    under = whitted[8:24, 8:24, 0].reshape(4, 4, 4, 4).mean(axis=(1, 3))
+    np.testing.assert_allclose(under, lit * (1.0 - alpha[::-1]), rtol=1e-4)

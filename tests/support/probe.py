@@ -7,6 +7,7 @@ import numpy as np
 from core.compile import pack_scene
 from core.kernels.batch import closest_hits
 from core.kernels.light_pyramid import TRAVERSE_ALL
+from core.kernels.shadow_crossing import light_along
 from core.kernels.surface import surface_at
 from core.kernels.trace import closest_hit, transmittance
 from core.kernels.workspace import new_workspace
@@ -42,6 +43,12 @@ def surface(packed, origin, direction):
 def light_through(packed, origin, direction, t_max):
     o, d = tuple(map(float, origin)), tuple(map(float, direction))
     return transmittance(packed.geometry, o, d, t_max, WORKSPACE.stacks, TRAVERSE_ALL)
+
+
+def light_by_full_rule(packed, origin, direction, t_max):
+    """`light_through` with the crossings of surfaces whose share varies answered."""
+    o, d = tuple(map(float, origin)), tuple(map(float, direction))
+    return light_along(packed, WORKSPACE, o, d, t_max)
 
 
 def hits(packed, origins, directions, t_max=math.inf):

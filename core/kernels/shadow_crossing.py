@@ -1,0 +1,71 @@
+"""The answers to a shading point's listed crossings of surfaces whose share varies
+(`core.kernels.shadow_log`): the crossed surface's material program run at each, by the
+integrator, the one place that program is compiled in."""
+
+from ..jit import kernel
+from .borrow import borrowed
+from .light_pyramid import TRAVERSE_ALL
+from .shader_program import run_program
+from .shadow_log import STATE_CROSSINGS, STATE_RAY, STATE_REPLAY, begin_point
+from .surface import hit_frame, normal_rows, surface_at
+from .surface_terms import terms_from_lobes
+from .trace import transmittance
+
+
+@kernel
+def crossing_share(geo, surf, mats, ws, shape, part, b1, b2, o, d, t):
+    """What shape row `shape`'s surface lets a shadow ray o + t d through where it crosses
+    it (part, b1, b2 as a nearest hit gives them): the rule of a constant material's
+    share (`core.compile.materials.shadow_shares`), its transparency plus the mean of what
+    passes it straight, at most 1, with the terms its program gives there."""
+    material = surf.shape_material[shape]
+    p, _, n_shading, u, v = surface_at(geo, surf, shape, part, b1, b2, o, d, t, True)
+    with_frame = mats.shader_frame[material] != 0
+    hit, across = hit_frame(geo, surf, shape, part, p, n_shading, u, v, with_frame)
+    rows = normal_rows(geo.shape_object_from_world, shape)
+    run_program(mats, material, ws.shader_stack, ws.lobes, hit, across, rows)
+    here = terms_from_lobes(ws.lobes)
+    straight = (here.transparent[0] + here.transparent[1] + here.transparent[2]) / 3.0
+    return min(1.0, max(0.0, here.transparency + straight))
+
+
+@kernel
+def answer_crossings(geo, surf, mats, ws):
+    """Multiply each listed crossing's share into its shadow ray's logged visibility, and
+    set the log to be replayed. False when nothing was listed: the point is lit already."""
+    geo, surf, mats, ws = borrowed(geo), borrowed(surf), borrowed(mats), borrowed(ws)
+    stacks = ws.stacks
+    state, log = stacks.shadow_state, stacks.shadow_log
+    f, i = stacks.varying_f, stacks.varying_i
+    count = state[STATE_CROSSINGS]
+    if count == 0:
+        return False
+    for c in range(count):
+        g = i[c, 2]
+        if log[g] == 0.0:
+            continue  # an earlier crossing of the same ray blocked it
+        o, d = (f[c, 3], f[c, 4], f[c, 5]), (f[c, 6], f[c, 7], f[c, 8])
+        share = crossing_share(
+            geo, surf, mats, ws, i[c, 0], i[c, 1], f[c, 1], f[c, 2], o, d, f[c, 0]
+        )
+        log[g] *= share
+    state[STATE_RAY] = 0
+    state[STATE_CROSSINGS] = 0
+    state[STATE_REPLAY] = 1
+    return True
+
+
+@kernel
+def light_along(ps, ws, o, d, t_max):
+    """What one shadow ray o + t d, 0 < t < t_max, lets through by the full rule: its
+    transmittance with the crossings of varying surfaces answered (for tests and tools;
+    `core.kernels.batch.shadow_rays` answers the constant shares alone)."""
+    ps, ws = borrowed(ps), borrowed(ws)
+    geo, surf, mats = ps.geometry, ps.surfaces, ps.materials
+    stacks = ws.stacks
+    begin_point(stacks.shadow_state)
+    light = transmittance(geo, o, d, t_max, stacks, TRAVERSE_ALL)
+    stacks.shadow_log[0] = light
+    if light > 0.0:
+        answer_crossings(geo, surf, mats, ws)
+    return stacks.shadow_log[0]
