@@ -26,6 +26,7 @@ from .kernel_cache import load_or_rebuild, note_use
 from .kernels.csg import CROSSING_CAPACITY, SPAN_CAPACITY
 from .kernels.layout import PackedScene
 from .kernels.render_tile import render_tile
+from .kernels.shadow_log import SHADOW_LOG_SIZE, STATE_OVERFLOWED, VARYING_CAPACITY
 from .kernels.workspace import (
     RAY_COUNT_SLOTS,
     RAYS_TRACED,
@@ -209,6 +210,13 @@ def render_compiled(
             f"({SPAN_CAPACITY} spans, {CROSSING_CAPACITY} crossings of one mesh operand): "
             "the excess were dropped, and those pixels may be wrong"
         )
+    if tally.shadow_overflows:
+        warnings.append(
+            f"{tally.shadow_overflows} shadow rays crossed more surfaces whose transparency "
+            f"varies than a shading point can hold ({VARYING_CAPACITY} crossings, "
+            f"{SHADOW_LOG_SIZE} shadow rays): they were taken as blocked, and those pixels "
+            "may be too dark"
+        )
     # Copies, not views: a caller that keeps only the image does not keep every pass with it
     image = pixels_all[..., :4].copy() if pass_channels else pixels_all
     passes = {
@@ -219,23 +227,27 @@ def render_compiled(
 
 
 class _Tally:
-    """What the finished tiles add up to: how many, their rays, their CSG overflows."""
+    """What the finished tiles add up to: how many, their rays, their CSG overflows and
+    shadow rays taken as blocked for lack of room (core.kernels.shadow_log)."""
 
     def __init__(self):
         self.tiles_done = 0
         self.csg_overflows = 0
+        self.shadow_overflows = 0
         self.ray_counts = np.zeros(RAY_COUNT_SLOTS, np.int64)
 
     def add(self, result: tuple) -> np.ndarray:
-        pixels, overflows, counts = result
+        pixels, overflows, shadow_overflows, counts = result
         self.tiles_done += 1
         self.csg_overflows += overflows
+        self.shadow_overflows += shadow_overflows
         self.ray_counts += counts
         return pixels
 
 
 def _render_one(packed: PackedScene, settings: RenderSettings, tile: Tile, stop: np.ndarray):
-    """One tile on a worker thread: (pixels, rays whose CSG spans overflowed, ray counts)."""
+    """One tile on a worker thread: (pixels, rays whose CSG spans overflowed, shadow rays
+    whose varying crossings did not fit, ray counts)."""
     _, pass_channels = layout(settings.passes, settings.crypto_levels)
     pixels = np.empty((tile.height, tile.width, 4 + pass_channels), np.float32)
     # Cryptomatte keeps each camera ray's ids until its pixel is done
@@ -247,7 +259,8 @@ def _render_one(packed: PackedScene, settings: RenderSettings, tile: Tile, stop:
     render_tile(packed, settings.width, settings.height, tile.x, tile.y, tile.width,
                 tile.height, pixels, workspace)  # fmt: skip
     stacks = workspace.stacks
-    return pixels, int(stacks.csg.overflow[0]), stacks.ray_counts
+    shadow_overflows = int(stacks.shadow_state[STATE_OVERFLOWED])
+    return pixels, int(stacks.csg.overflow[0]), shadow_overflows, stacks.ray_counts
 
 
 def _run_tiles(packed, settings, tiles, threads, finished, should_cancel) -> bool:

@@ -205,3 +205,28 @@ def test_soft_shadows_and_their_passes_through_a_varying_card_match_a_constant_o
         np.testing.assert_allclose(
             through_image.passes[name], through_constant.passes[name], rtol=1e-6, atol=1e-7
         )
+
+
+def test_a_shading_point_whose_varying_crossings_overflow_says_so():
+    """Forty stacked half-transparent cards between a floor and an area light of 32
+    shadow rays: 1280 crossings at each floor point, more than a point can hold. The render
+    warns, naming what overflowed; nothing passes silently."""
+    layers = 40
+    corners = np.array([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], float)
+    vertices = np.concatenate([corners + (0.0, 0.0, 1.0 + 0.02 * k) for k in range(layers)])
+    faces = np.concatenate([np.array([[0, 1, 2], [0, 2, 3]]) + 4 * k for k in range(layers)])
+    uvs = (vertices[:, :2] + 1.0) / 2.0
+    mesh = TriangleMesh(vertices, faces, vertex_uvs=uvs)
+    half = _card_material(np.full((TEXELS, TEXELS), 0.5))
+    stack = Mesh("Stack", half, mesh=mesh, seen_by_camera=False)
+    floor_vertices = np.array([[-2, -2, 0], [2, -2, 0], [2, 2, 0], [-2, 2, 0]], float)
+    floor = Mesh("Floor", Material(diffuse=(1.0, 1.0, 1.0)),
+                 mesh=TriangleMesh(floor_vertices, np.array([[0, 1, 2], [0, 2, 3]])))  # fmt: skip
+    camera = Camera(eye=(0.0, 0.0, 5.0), view=(0.0, 0.0, -1.0), up=(0.0, 1.0, 0.0),
+                    projection="orthographic", ortho_height=0.5)  # fmt: skip
+    light = AreaLight(centre=(0.0, 0.0, 3.0), edge_u=(0.2, 0.0, 0.0), edge_v=(0.0, 0.2, 0.0))
+    settings = RenderSettings(1, 1, pixel_samples=1, shadow_samples=32)
+    result = render(Scene(camera, [floor, stack], [light]), settings)
+    # 25 rays' 40 crossings fit the 1024 listed; the other 7 are blocked and counted
+    said = [w for w in result.warnings if "varies than a shading point can hold" in w]
+    assert said and said[0].startswith("7 shadow rays"), result.warnings
