@@ -44,6 +44,11 @@ def auto_smooth(mesh) -> tuple:
     return (mesh.use_auto_smooth, mesh.auto_smooth_angle)
 
 
+# Cycles' Voronoi texture hashes its cells' integer corners with PCG from Blender 5.0, the
+# bits of their float corners with lookup3 before (core.kernels.voronoi)
+VORONOI_CELL_HASH = "PCG" if bpy.app.version >= (5, 0, 0) else "LOOKUP3"
+
+
 # Cycles' lights before Blender 4.0 (measured against Cycles in 3.4 and 4.2): a point or spot
 # light's radius was always a disk facing the lit point, a spot's cone also fell off with the
 # cosine from its axis, a sun's angle spread its light over a disk one unit away, and a disk

@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import core
-from ..compat import PRINCIPLED_LAYERED
+from ..compat import PRINCIPLED_LAYERED, VORONOI_CELL_HASH
 from .shader_graph import Feed, feed_of, node_label, output_node
 
 # Principled BSDF inputs that change the look but are not modelled, with the value that
@@ -66,6 +66,7 @@ OUTPUTS = {
     "TEX_GRADIENT": ("gradient", {"Color": "Color", "Fac": "Fac"}),
     "TEX_BRICK": ("brick", {"Color": "Color", "Fac": "Fac"}),
     "TEX_NOISE": ("noise", {"Fac": "Fac", "Color": "Color"}),
+    "TEX_VORONOI": ("voronoi", {"Distance": "Distance", "Color": "Color", "Position": "Position"}),
     "BUMP": ("bump", {"Normal": "Normal"}),
     "NORMAL_MAP": ("normal_map", {"Normal": "Normal"}),
 }
@@ -300,6 +301,8 @@ class GraphReader:
                 made.settings[name] = getattr(node, name)
         elif t == "TEX_NOISE":
             self._noise(node, groups, made)
+        elif t == "TEX_VORONOI":
+            self._voronoi(node, groups, made)
         elif t == "TEX_COORD":
             if getattr(node, "object", None) is not None:
                 self.note(f"{node_label(node)}'s Object (used: the surface's own object)")
@@ -387,6 +390,25 @@ class GraphReader:
         kind = getattr(node, "noise_type", "FBM")
         if kind != "FBM":
             self.note(f"{node_label(node)}'s {kind.replace('_', ' ').title()} type (used: fBM)")
+
+    def _voronoi(self, node, groups, made) -> None:
+        """The Voronoi texture: 3D, features F1 and F2, every distance metric, fractal
+        octaves (Detail, Roughness, Lacunarity and Normalize came with 4.0), with the cell
+        hash of this Blender's Cycles; other dimensions and features are noted."""
+        made.inputs["Vector"] = self._vector(node, groups, "Vector")
+        for name in ("Scale", "Detail", "Roughness", "Lacunarity", "Exponent", "Randomness"):
+            if node.inputs.get(name) is not None:
+                made.inputs[name] = self.value(node, groups, name)
+        made.settings["normalize"] = bool(getattr(node, "normalize", False))
+        made.settings["cell_hash"] = VORONOI_CELL_HASH
+        made.settings["distance"] = node.distance
+        if node.feature in core.model.shader.VORONOI_FEATURES:
+            made.settings["feature"] = node.feature
+        else:
+            shown = node.feature.replace("_", " ").title()
+            self.note(f"{node_label(node)}'s {shown} feature (used: F1)")
+        if node.voronoi_dimensions != "3D":
+            self.note(f"{node_label(node)}'s {node.voronoi_dimensions} dimensions (used: 3D)")
 
     def _vector(self, node, groups, name):
         """A texture's Vector: what feeds it, or None (its own default coordinates)."""

@@ -27,6 +27,9 @@ from ..model.shader import (
     NORMAL_MAP_SPACES,
     RAMP_INTERPOLATIONS,
     SHADER_NODES,
+    VORONOI_FEATURES,
+    VORONOI_HASHES,
+    VORONOI_METRICS,
     Link,
 )
 
@@ -271,6 +274,16 @@ class ProgramBuilder:
             p.step(sp.OP_MORE, v(node.input("Distortion"), "value"),
                    int(bool(node.setting("normalize"))),
                    int((id(node), "Color") in self.used))  # fmt: skip
+        elif kind == "voronoi":
+            names = ("Scale", "Detail", "Roughness", "Lacunarity", "Randomness", "Exponent")
+            values = [v(node.input(name), "value") for name in names]
+            p.step(sp.OP_VORONOI, slots["Color"], slots["Distance"], slots["Position"],
+                   v(node.input("Vector"), "triple", sp.COORD_GENERATED), *values[:3])  # fmt: skip
+            modes = (VORONOI_FEATURES.index(node.setting("feature"))
+                     + 2 * VORONOI_METRICS.index(node.setting("distance"))
+                     + 8 * int(bool(node.setting("normalize")))
+                     + 16 * VORONOI_HASHES.index(node.setting("cell_hash")))  # fmt: skip
+            p.step(sp.OP_MORE, *values[3:], modes)
         elif kind == "gradient":
             p.step(sp.OP_GRADIENT, slots["Color"], slots["Fac"],
                    v(node.input("Vector"), "triple", sp.COORD_GENERATED),

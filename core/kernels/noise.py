@@ -48,6 +48,36 @@ def hash_uint3(kx, ky, kz):
 
 
 @kernel
+def _mix(a, b, c):
+    """lookup3's mixing of three 32-bit values."""
+    a = ((a - c) & _LOW32) ^ _rot(c, 4)
+    c = (c + b) & _LOW32
+    b = ((b - a) & _LOW32) ^ _rot(a, 6)
+    a = (a + c) & _LOW32
+    c = ((c - b) & _LOW32) ^ _rot(b, 8)
+    b = (b + a) & _LOW32
+    a = ((a - c) & _LOW32) ^ _rot(c, 16)
+    c = (c + b) & _LOW32
+    b = ((b - a) & _LOW32) ^ _rot(a, 19)
+    a = (a + c) & _LOW32
+    c = ((c - b) & _LOW32) ^ _rot(b, 4)
+    b = (b + a) & _LOW32
+    return a, b, c
+
+
+@kernel
+def hash_uint4(kx, ky, kz, kw):
+    """Cycles' hash_uint4 of four integers taken as 32-bit unsigned."""
+    start = (0xDEADBEEF + (4 << 2) + 13) & _LOW32
+    a = (start + (kx & _LOW32)) & _LOW32
+    b = (start + (ky & _LOW32)) & _LOW32
+    c = (start + (kz & _LOW32)) & _LOW32
+    a, b, c = _mix(a, b, c)
+    a = (a + (kw & _LOW32)) & _LOW32
+    return _final(a, b, c)
+
+
+@kernel
 def hash_uint2(kx, ky):
     """Cycles' hash_uint2 of two integers taken as 32-bit unsigned."""
     start = (0xDEADBEEF + (2 << 2) + 13) & _LOW32

@@ -32,6 +32,7 @@ from .shader_values import (
 )
 from .texture_lookup import image_lookup
 from .vec import add, cross, dot, normalize, scale, sub
+from .voronoi import voronoi_texture
 
 # Steps (Materials.shader_ops[:, 0])
 OP_COORD = 1  # out, which (COORD_*), where (0 the hit, 1 and 2 a step across: for Bump)
@@ -61,6 +62,9 @@ OP_BRICK = 30
 # out colour, out fac, vector, scale, detail, roughness, lacunarity; its next row (OP_MORE):
 # distortion, 1 to normalize, 1 if the colour is read
 OP_NOISE = 31
+# out colour, out distance, out position, vector, scale, detail, roughness; its next row
+# (OP_MORE): lacunarity, randomness, exponent, feature + 2 metric + 8 normalize + 16 hash
+OP_VORONOI = 32
 # Closures take their Normal input's slot in the last column (f), or -1 for the surface's
 OP_DIFFUSE = 20  # weight, colour
 OP_GLOSSY = 21  # weight, colour, roughness
@@ -334,6 +338,17 @@ def run_program(mats, material, stack, lobes, hit, frame, normal_rows):
             )
             _put(s, out, colour)
             s[a] = fac
+        elif op == OP_VORONOI:
+            m = ops[row]
+            row += 1
+            modes = m[4]
+            distance, colour, position = voronoi_texture(
+                _triple(s, c), s[d], s[e], s[f], s[m[1]], s[m[2]], s[m[3]],
+                modes % 2, (modes // 2) % 4, (modes // 8) % 2 != 0, modes // 16,
+            )  # fmt: skip
+            _put(s, out, colour)
+            s[a] = distance
+            _put(s, b, position)
         elif op == OP_GRADIENT:
             fac = gradient(c, _triple(s, b))
             _put(s, out, (fac, fac, fac))

@@ -110,6 +110,21 @@ SHADER_NODES = {
         outputs={"Fac": "value", "Color": "triple"},
         settings={"normalize": True},  # 3D, fractal Brownian motion (Blender's default)
     ),  # fmt: skip
+    "voronoi": dict(
+        inputs={
+            "Vector": None,
+            "Scale": 5.0,
+            "Detail": 0.0,
+            "Roughness": 0.5,
+            "Lacunarity": 2.0,
+            "Exponent": 0.5,
+            "Randomness": 1.0,
+        },
+        outputs={"Distance": "value", "Color": "triple", "Position": "triple"},
+        # 3D; Blender's Feature and Distance; the cell hash of the Blender that made it
+        # (core.kernels.voronoi: "LOOKUP3" before 5.0, "PCG" from 5.0)
+        settings={"feature": "F1", "distance": "EUCLIDEAN", "normalize": False, "cell_hash": "PCG"},
+    ),  # fmt: skip
     "gradient": dict(
         inputs={"Vector": None},
         outputs={"Color": "triple", "Fac": "value"},
@@ -161,6 +176,11 @@ SHADER_NODES = {
     ),  # fmt: skip
 }
 NORMAL_MAP_SPACES = ("TANGENT", "OBJECT", "WORLD")
+# The Voronoi texture's Feature and Distance Whitted evaluates, and its two cell hashes
+# (core.kernels.voronoi), in the order of the kernel's numbers
+VORONOI_FEATURES = ("F1", "F2")
+VORONOI_METRICS = ("EUCLIDEAN", "MANHATTAN", "CHEBYCHEV", "MINKOWSKI")
+VORONOI_HASHES = ("LOOKUP3", "PCG")
 
 MATH_OPERATIONS = ("ADD", "SUBTRACT", "MULTIPLY", "DIVIDE", "MULTIPLY_ADD", "POWER",
                    "MINIMUM", "MAXIMUM", "LESS_THAN", "GREATER_THAN", "ABSOLUTE", "SQRT",
@@ -269,6 +289,9 @@ def _check_settings(owner, label, node) -> None:
         ("image", "extension"): EXTENSIONS,
         ("color_ramp", "interpolation"): RAMP_INTERPOLATIONS,
         ("normal_map", "space"): NORMAL_MAP_SPACES,
+        ("voronoi", "feature"): VORONOI_FEATURES,
+        ("voronoi", "distance"): VORONOI_METRICS,
+        ("voronoi", "cell_hash"): VORONOI_HASHES,
     }
     for (kind, name), allowed in choices.items():
         if node.kind == kind and node.setting(name) not in allowed:

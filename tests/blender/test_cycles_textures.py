@@ -27,6 +27,12 @@ EDGE_SHARE = 0.01
 # misplaced mortar line changes a whole brick or line, by far more than this
 STEEP_EDGE_SHARE, STEEP_EDGE_LARGEST = 0.025, 0.04
 STEEP = ("brick_object",)
+# Voronoi cells: the Color jumps at each cell's border and F2's distance kinks wherever the
+# second nearest point changes, some 12 borders across the picture. Where a border or kink
+# passes within Cycles' sample spread of a pixel's centre, its mean is a blend (measured in
+# 5.2: 1.3% of pixels for the Color, 2% for F2, off by a border's jump or up to 0.011).
+# A wrong cell hash or metric changes nearly every pixel, by far more than CLOSE
+CELLS, CELLS_EDGE_SHARE = ("voronoi_colour_object", "voronoi_f2_distance_generated"), 0.03
 
 
 def _uv_plane(bpy, scene):
@@ -241,6 +247,43 @@ def _noise_strength(bpy, tree):
     return ("strength", tree.nodes.new("ShaderNodeTexNoise").outputs[0])
 
 
+def _voronoi(tree, coords_output, feature, distance, values):
+    """A Voronoi texture on the given coordinates, its inputs set where the version has
+    them (Detail, Roughness and Lacunarity came with 4.0)."""
+    coords = tree.nodes.new("ShaderNodeTexCoord")
+    voronoi = tree.nodes.new("ShaderNodeTexVoronoi")
+    voronoi.feature, voronoi.distance = feature, distance
+    for name, value in values.items():
+        if voronoi.inputs.get(name) is not None:
+            voronoi.inputs[name].default_value = value
+    tree.links.new(coords.outputs[coords_output], voronoi.inputs["Vector"])
+    return voronoi
+
+
+def _voronoi_colour(bpy, tree):
+    """F1's cell Color on Object coordinates, 12 cells across: each cell's hash, Cycles'
+    lookup3 of its float corner before 5.0, PCG of its integer corner from 5.0."""
+    voronoi = _voronoi(tree, "Object", "F1", "EUCLIDEAN", {"Scale": 1.5, "Randomness": 0.9})
+    return voronoi.outputs["Color"]
+
+
+def _voronoi_f2_distance(bpy, tree):
+    """F2's Manhattan distance, as Emission Strength, on Generated coordinates."""
+    voronoi = _voronoi(tree, "Generated", "F2", "MANHATTAN", {"Scale": 20.0, "Randomness": 0.7})
+    return ("strength", voronoi.outputs["Distance"])
+
+
+def _voronoi_fractal_position(bpy, tree):
+    """Minkowski F1 with fractal octaves (Detail 1.5, Roughness 0.6, Lacunarity 2.2, from
+    4.0) and Normalize, its Position (Generated: 0.3 to 0.7 in view) as the colour."""
+    voronoi = _voronoi(tree, "Generated", "F1", "MINKOWSKI",
+                       {"Scale": 12.0, "Exponent": 1.5, "Detail": 1.5, "Roughness": 0.6,
+                        "Lacunarity": 2.2})  # fmt: skip
+    if hasattr(voronoi, "normalize"):
+        voronoi.normalize = True
+    return voronoi.outputs["Position"]
+
+
 GRAPHS = {
     "image_through_mapping": _image_through_mapping,
     "image_closest_extend": _image_closest,
@@ -254,6 +297,9 @@ GRAPHS = {
     "brick_factor_generated": _brick_factor,
     "noise_colour_object": _noise_colour,
     "noise_strength_generated": _noise_strength,
+    "voronoi_colour_object": _voronoi_colour,
+    "voronoi_f2_distance_generated": _voronoi_f2_distance,
+    "voronoi_fractal_position": _voronoi_fractal_position,
 }
 
 
@@ -269,6 +315,8 @@ def test_a_texture_graph_gives_cycles_pixels(bpy_with_whitted, tmp_path, kind):
     if kind in STEEP:
         assert off.mean() <= STEEP_EDGE_SHARE, off.mean()
         assert np.abs(whitted - cycles).max() <= STEEP_EDGE_LARGEST
+    elif kind in CELLS:
+        assert off.mean() <= CELLS_EDGE_SHARE, off.mean()
     else:
         assert off.mean() <= EDGE_SHARE, off.mean()
 

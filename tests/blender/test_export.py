@@ -302,6 +302,34 @@ def test_a_noise_texture_is_read_and_its_other_kinds_are_named(empty_scene, monk
         assert "Ridged Multifractal type (used: fBM)" in mine[0]
 
 
+def test_a_voronoi_texture_is_read_with_its_cell_hash_and_its_other_kinds_named(
+    empty_scene, monkeypatch
+):
+    """A 3D F2 Voronoi (Chebychev) is evaluated with the cell hash of this Blender's
+    Cycles (lookup3 before 5.0, PCG from 5.0) and no warning; a 2D one, or Distance to
+    Edge, is named in the material's warning with what was used instead."""
+    bpy = sys.modules["bpy"]
+    _, material = sphere_with_material(bpy, "Cells")
+    voronoi = material.node_tree.nodes.new("ShaderNodeTexVoronoi")
+    voronoi.feature, voronoi.distance = "F2", "CHEBYCHEV"
+    voronoi.inputs["Randomness"].default_value = 0.25
+    tree = material.node_tree
+    tree.links.new(voronoi.outputs["Color"], principled(material).inputs["Base Color"])
+    scene, _, warnings = exported(bpy, monkeypatch)
+    assert not [w for w in warnings if w.startswith("material 'Cells'")], warnings
+    made = scene.shapes[0].material.surface.inputs["Base Color"].node
+    assert made.kind == "voronoi" and made.inputs["Randomness"] == pytest.approx(0.25)
+    assert (made.settings["feature"], made.settings["distance"]) == ("F2", "CHEBYCHEV")
+    expected = "PCG" if bpy.app.version >= (5, 0, 0) else "LOOKUP3"
+    assert made.settings["cell_hash"] == expected
+    voronoi.voronoi_dimensions = "2D"
+    voronoi.feature = "DISTANCE_TO_EDGE"
+    _, _, warnings = exported(bpy, monkeypatch)
+    mine = [w for w in warnings if w.startswith("material 'Cells'")]
+    assert len(mine) == 1 and "2D dimensions (used: 3D)" in mine[0], warnings
+    assert "Distance To Edge feature (used: F1)" in mine[0]
+
+
 def test_an_image_texture_on_the_base_colour_is_read_with_its_pixels(empty_scene, monkeypatch):
     bpy = sys.modules["bpy"]
     _, material = sphere_with_material(bpy, "Checker")
