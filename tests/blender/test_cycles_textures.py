@@ -27,12 +27,13 @@ EDGE_SHARE = 0.01
 # misplaced mortar line changes a whole brick or line, by far more than this
 STEEP_EDGE_SHARE, STEEP_EDGE_LARGEST = 0.025, 0.04
 STEEP = ("brick_object",)
-# Voronoi cells: the Color jumps at each cell's border and F2's distance kinks wherever the
-# second nearest point changes, some 12 borders across the picture. Where a border or kink
+# Voronoi cells: the Color and Position jump at each cell's border and F2's distance kinks
+# wherever the second nearest point changes, some 12 borders across the picture. Where one
 # passes within Cycles' sample spread of a pixel's centre, its mean is a blend (measured in
-# 5.2: 1.3% of pixels for the Color, 2% for F2, off by a border's jump or up to 0.011).
-# A wrong cell hash or metric changes nearly every pixel, by far more than CLOSE
-CELLS, CELLS_EDGE_SHARE = ("voronoi_colour_object", "voronoi_f2_distance_generated"), 0.03
+# 3.4, 4.2 and 5.2: 1.2-1.3% of pixels for the Color, 1.7-2.3% for F2, 0.7-1.0% for the
+# Position). A wrong cell hash or metric changes nearly every pixel, by far more than CLOSE
+CELLS = ("voronoi_colour_object", "voronoi_f2_distance_generated", "voronoi_fractal_position")
+CELLS_EDGE_SHARE = 0.03
 
 
 def _uv_plane(bpy, scene):
