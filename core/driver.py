@@ -254,7 +254,7 @@ def _render_one(packed: PackedScene, settings: RenderSettings, tile: Tile, stop:
     crypto = any(name in CRYPTO_PASSES for name in settings.passes)
     workspace = new_workspace(
         settings.max_depth, max(settings.shadow_samples, settings.environment_samples), stop,
-        settings.pixel_samples**2 if crypto else 1,
+        settings.pixel_samples**2 if crypto else 1, settings.glossy_samples,
     )  # fmt: skip
     render_tile(packed, settings.width, settings.height, tile.x, tile.y, tile.width,
                 tile.height, pixels, workspace)  # fmt: skip

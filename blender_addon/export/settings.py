@@ -34,6 +34,7 @@ def convert(scene) -> core.RenderSettings:
         shadow_samples=settings.shadow_samples,
         shadow_sampling=settings.shadow_sampling.lower(),
         environment_samples=settings.environment_samples,
+        glossy_samples=settings.glossy_samples,
         seed=settings.seed,
         transparent=render.film_transparent,
     )

@@ -83,6 +83,18 @@ class WhittedSceneSettings(bpy.types.PropertyGroup):
         max=65536,
         default=DEFAULT_ENVIRONMENT_SAMPLES,
     )
+    glossy_samples: IntProperty(
+        name="Glossy Samples",
+        description=(
+            "Rays spread over a rough mirror's or glass's lobe where a camera ray meets it "
+            "(one at later bounces), blurring reflections and refractions as Cycles does. "
+            "0 keeps rough surfaces sharp: as bright as their lobe on average, at no cost"
+        ),
+        min=0,
+        soft_max=256,
+        max=4096,
+        default=0,
+    )
     tile_size: IntProperty(
         name="Tile Size",
         description="Edge of the square tiles rendered in parallel and streamed to the image",

@@ -15,7 +15,8 @@ class WHITTED_PT_render(WhittedPanel, bpy.types.Panel):
         settings = context.scene.whitted
         for name in ("max_depth", "pixel_samples", "pixel_sampling", "shadow_samples"):
             self.layout.prop(settings, name)
-        for name in ("shadow_sampling", "environment_samples", "seed", "tile_size"):
+        for name in ("shadow_sampling", "environment_samples", "glossy_samples", "seed",
+                     "tile_size"):  # fmt: skip
             self.layout.prop(settings, name)
         warmup = kernel_status.status_text()
         if warmup:

@@ -18,6 +18,7 @@ from ..kernels.options import (
     OPTION_ENVIRONMENT_CLOSEST,
     OPTION_ENVIRONMENT_HIDDEN,
     OPTION_ENVIRONMENT_SAMPLES,
+    OPTION_GLOSSY_SAMPLES,
     OPTION_MAX_DEPTH,
     OPTION_PASSES,
     OPTION_PIXEL_PATTERN,
@@ -79,6 +80,7 @@ def _options(scene: Scene, settings: RenderSettings) -> np.ndarray:
     environment = scene.environment
     options[OPTION_ENVIRONMENT] = environment_kind(environment)
     options[OPTION_ENVIRONMENT_SAMPLES] = settings.environment_samples
+    options[OPTION_GLOSSY_SAMPLES] = settings.glossy_samples
     options[OPTION_ENVIRONMENT_CLOSEST] = (
         environment is not None and environment.interpolation == "closest"
     )

@@ -79,6 +79,7 @@ def pack_materials(shapes: list) -> tuple[Materials, dict[int, int]]:
         emission=rows([m.emission for m, _ in materials]),
         transparent=rows([m.transparent for m, _ in materials]),
         holdout=np.array([m.holdout for m, _ in materials], float),
+        roughness=np.array([m.roughness for m, _ in materials], float),
         texture_alpha=concatenated([a.ravel() for _, a in textures.loaded], (0,), np.float32),
         **_program_tables(programs),
     )
@@ -149,6 +150,7 @@ def _fold_constant_programs(table: Materials, programs: list) -> None:
         table.emission[k] = row[28:31]
         table.transparent[k] = row[31:34]
         table.holdout[k] = row[34]
+        table.roughness[k] = row[35]
         table.shader_range[k] = (-1, -1)
 
 
@@ -175,7 +177,7 @@ def folded_row(table: Materials, k: int) -> dict:
         glass_reflect=table.glass_tint[k, 0], glass_transmit=table.glass_tint[k, 1],
         refraction_fresnel=table.refraction_fresnel[k], emission=table.emission[k],
         transparent=table.transparent[k], holdout=table.holdout[k],
-        programmed=table.shader_range[k, 0] >= 0,
+        roughness=table.roughness[k], programmed=table.shader_range[k, 0] >= 0,
     )  # fmt: skip
 
 

@@ -145,8 +145,8 @@ class ProgramBuilder:
                    0, 0, self._normal(node))  # fmt: skip
         elif kind in ("glass", "refraction"):
             p.step(sp.OP_GLASS, weight, v(node.input("Color"), "triple"),
-                   v(node.input("IOR"), "value"), int(kind == "glass"), 0, 0,
-                   self._normal(node))  # fmt: skip
+                   v(node.input("IOR"), "value"), int(kind == "glass"),
+                   v(node.input("Roughness"), "value"), 0, self._normal(node))  # fmt: skip
         elif kind == "transparent":
             p.step(sp.OP_TRANSPARENT, weight, self.value(node.input("Color"), "triple"))
         elif kind == "emission":

@@ -29,14 +29,17 @@ from ..jit import inlined_kernel, kernel
 from .emitters import emitted_colour
 from .emitters_seen import emitters_seen
 from .environment import environment_light, environment_seen
+from .glossy import visible_normal
 from .layout import (
     ENVIRONMENT_NONE,
     VISIBLE_CAMERA,
     VISIBLE_GLOSSY,
     VISIBLE_TRANSMISSION,
 )
+from .light_samples import stratified_cell
 from .options import (
     OPTION_ENVIRONMENT,
+    OPTION_GLOSSY_SAMPLES,
     OPTION_MAX_DEPTH,
     OPTION_PASSES,
     OPTION_TRANSPARENT,
@@ -53,6 +56,7 @@ from .pass_record import (
     record_hit,
     record_lighting,
 )
+from .rng import PURPOSE_GLOSSY, uniform2
 from .shader_program import run_program
 from .shading import Phong, ShadingPoint, local_colour
 from .shadow_crossing import answer_crossings
@@ -286,28 +290,47 @@ def trace_ray(ps, o, d, key, ws):
             )
         if depth >= max_depth:
             continue
-        reflect = (0.0, 0.0, 0.0)
-        if rho > 0.0:
-            reflect = scale(_mirror_tint(here, cos_i), (1.0 - tau) * rho)
-        if coat_reflects > 0.0:
-            reflect = add(reflect, scale((1.0, 1.0, 1.0), (1.0 - tau) * coat_reflects))
-        if tau > 0.0:
-            outer, inner = here.outer_ior, here.inner_ior
-            n1, n2 = (outer, inner) if entering else (inner, outer)
-            f, cos_t = fresnel_dielectric(cos_i, n1, n2)
-            reflect = add(reflect, scale(here.glass_reflect, tau * f))
-            # the share Fresnel takes from the refracted ray: all of F for glass
-            f_lost = f * here.refraction_fresnel
-            if f < 1.0:
-                refracted = refract(d, n_shading, n1 / n2, cos_i, cos_t)
-                inside = spawn_point(p, scale(n_geometric, -1.0), o)
-                through = REC_REFRACTION if depth == 0 else branch
-                weight = mul(w, scale(here.glass_transmit, tau * (1.0 - f_lost)))
-                top = _push(rays, top, inside, refracted, weight, depth + 1, through, RAY_REFRACTED)
-        if reflect[0] > 0.0 or reflect[1] > 0.0 or reflect[2] > 0.0:
-            reflected = sub(d, scale(n_shading, 2.0 * dot(d, n_shading)))
-            mirrored = REC_REFLECTION if depth == 0 else branch
-            weight = mul(w, reflect)
-            kind = RAY_ROUGH_REFLECTED if here.mirror_hides_lights else RAY_REFLECTED
-            top = _push(rays, top, outside, reflected, weight, depth + 1, mirrored, kind)
+        # A rough surface's rays: by the shading normal (sharp), or spread over its lobe
+        # by sampled microfacet normals (core.kernels.glossy)
+        glossy = frame.options[OPTION_GLOSSY_SAMPLES]
+        spread = glossy > 0 and here.roughness > 0.0 and (rho > 0.0 or coat_reflects > 0.0
+                                                          or tau > 0.0)  # fmt: skip
+        samples = (glossy if depth == 0 else 1) if spread else 1
+        share = 1.0 / samples
+        for sample in range(samples):
+            m, cos_m = n_shading, cos_i
+            if spread:
+                a, b = uniform2(key, PURPOSE_GLOSSY, event, sample)
+                x0, y0, cell_w, cell_h = stratified_cell(sample, samples)
+                alpha_m = max(here.roughness * here.roughness, 1e-6)
+                m = visible_normal(scale(d, -1.0), n_shading, alpha_m, x0 + a * cell_w,
+                                   y0 + b * cell_h)  # fmt: skip
+                cos_m = min(1.0, max(0.0, -dot(d, m)))
+            reflect = (0.0, 0.0, 0.0)
+            if rho > 0.0:
+                reflect = scale(_mirror_tint(here, cos_m), (1.0 - tau) * rho)
+            if coat_reflects > 0.0:
+                reflect = add(reflect, scale((1.0, 1.0, 1.0), (1.0 - tau) * coat_reflects))
+            if tau > 0.0:
+                outer, inner = here.outer_ior, here.inner_ior
+                n1, n2 = (outer, inner) if entering else (inner, outer)
+                f, cos_t = fresnel_dielectric(cos_m, n1, n2)
+                reflect = add(reflect, scale(here.glass_reflect, tau * f))
+                # the share Fresnel takes from the refracted ray: all of F for glass
+                f_lost = f * here.refraction_fresnel
+                if f < 1.0:
+                    refracted = refract(d, m, n1 / n2, cos_m, cos_t)
+                    if not spread or dot(refracted, n_geometric) < 0.0:
+                        inside = spawn_point(p, scale(n_geometric, -1.0), o)
+                        through = REC_REFRACTION if depth == 0 else branch
+                        weight = mul(w, scale(here.glass_transmit, tau * (1.0 - f_lost) * share))
+                        top = _push(rays, top, inside, refracted, weight, depth + 1, through,
+                                    RAY_REFRACTED)  # fmt: skip
+            if reflect[0] > 0.0 or reflect[1] > 0.0 or reflect[2] > 0.0:
+                reflected = sub(d, scale(m, 2.0 * dot(d, m)))
+                if not spread or dot(reflected, n_geometric) > 0.0:
+                    mirrored = REC_REFLECTION if depth == 0 else branch
+                    weight = mul(w, scale(reflect, share))
+                    kind = RAY_ROUGH_REFLECTED if here.mirror_hides_lights else RAY_REFLECTED
+                    top = _push(rays, top, outside, reflected, weight, depth + 1, mirrored, kind)
     return colour, alpha

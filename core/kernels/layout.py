@@ -114,6 +114,7 @@ class Materials(NamedTuple):
     emission: np.ndarray  # float64 (q, 3): emitted radiance
     transparent: np.ndarray  # float64 (q, 3): share passing straight through
     holdout: np.ndarray  # float64 (q,): share of a camera ray's pixel cut out
+    roughness: np.ndarray  # float64 (q,): the mirror's and glass's (core.model.Material)
 
 
 class Lights(NamedTuple):

@@ -19,7 +19,10 @@ OPTION_ENVIRONMENT = 11  # one of ENVIRONMENT_* (core.kernels.layout)
 OPTION_ENVIRONMENT_SAMPLES = 12  # shadow rays towards the environment per shading point
 OPTION_ENVIRONMENT_CLOSEST = 13  # 1: the image's nearest pixel, not bilinear
 OPTION_ENVIRONMENT_HIDDEN = 14  # HIDDEN_FROM_* bits: rays the environment is black to
-OPTION_COUNT = 15
+# rays spread over a rough mirror's or glass's lobe at a camera ray's hit (one at later
+# hits); 0 keeps rough surfaces sharp (core.kernels.glossy)
+OPTION_GLOSSY_SAMPLES = 15
+OPTION_COUNT = 16
 
 # OPTION_ENVIRONMENT_HIDDEN's bits (Blender's World > Settings > Ray Visibility, off)
 HIDDEN_FROM_CAMERA = 1

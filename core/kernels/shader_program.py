@@ -69,7 +69,7 @@ OP_VORONOI = 32
 OP_DIFFUSE = 20  # weight, colour
 OP_GLOSSY = 21  # weight, colour, roughness
 OP_METALLIC = 22  # weight, base, edge tint, roughness
-OP_GLASS = 23  # weight, colour, IOR, 1 glass / 0 refraction
+OP_GLASS = 23  # weight, colour, IOR, 1 glass / 0 refraction, roughness
 OP_TRANSPARENT = 24  # weight, colour
 OP_EMISSION = 25  # weight, colour, strength
 OP_HOLDOUT = 26  # weight
@@ -101,7 +101,11 @@ L_HOLDOUT = 31
 L_ROUGH = 32  # 1 if a rough lobe's highlight stands for the lights in its mirror
 L_NORMAL = 33  # world normal times weight, from closures given a Normal
 L_NORMAL_WEIGHT = 36
-LOBE_COUNT = 37
+# roughness times weight of the mirror, coat and glass lobes, and their weight (the mean
+# roughness their reflected and refracted rays are spread by, when glossy rays are sampled)
+L_ROUGHNESS = 37
+L_ROUGHNESS_WEIGHT = 38
+LOBE_COUNT = 39
 
 # Slots of a program's stack: constants first, then every node output (a triple each)
 SHADER_STACK = 4096
@@ -158,7 +162,14 @@ def _highlight(lobes, f0, roughness):
 
 
 @kernel
+def _roughness(lobes, weight, roughness):
+    lobes[L_ROUGHNESS] += weight * roughness
+    lobes[L_ROUGHNESS_WEIGHT] += weight
+
+
+@kernel
 def add_mirror(lobes, weight, normal, edge, roughness):
+    _roughness(lobes, weight, roughness)
     _add3(lobes, L_MIRROR, weight, normal)
     _add3(lobes, L_EDGE, weight, edge)
     _highlight(lobes, (weight * normal[0], weight * normal[1], weight * normal[2]), roughness)
@@ -166,6 +177,7 @@ def add_mirror(lobes, weight, normal, edge, roughness):
 
 @kernel
 def add_coat(lobes, weight, ior, roughness, hides):
+    _roughness(lobes, weight, roughness)
     lobes[L_COAT] += weight
     lobes[L_COAT_IOR] += weight * ior
     if hides:
@@ -175,7 +187,8 @@ def add_coat(lobes, weight, ior, roughness, hides):
 
 
 @kernel
-def add_glass(lobes, weight, ior, reflect, transmit, fresnel):
+def add_glass(lobes, weight, ior, reflect, transmit, fresnel, roughness):
+    _roughness(lobes, weight, roughness)
     lobes[L_GLASS] += weight
     lobes[L_GLASS_IOR] += weight * ior
     _add3(lobes, L_GLASS_REFLECT, weight, reflect)
@@ -209,7 +222,7 @@ def _principled(lobes, w, base, metallic, roughness, ior, alpha, more):
             w *= 1.0 - metallic
         if transmission > WEIGHT_CUTOFF:
             root = (math.sqrt(clamped[0]), math.sqrt(clamped[1]), math.sqrt(clamped[2]))
-            add_glass(lobes, w * transmission, ior, tint, root, 1.0)
+            add_glass(lobes, w * transmission, ior, tint, root, 1.0, roughness)
             w *= 1.0 - transmission
         f0 = f0_of_ior(ior) * 2.0 * max(level, 0.0)
         if f0 > 0.0 and w > WEIGHT_CUTOFF:
@@ -233,7 +246,7 @@ def _principled(lobes, w, base, metallic, roughness, ior, alpha, more):
             (1.0 - tint_share) + clamped[1] * tint_share,
             (1.0 - tint_share) + clamped[2] * tint_share,
         )
-        add_glass(lobes, w * glass, ior, reflect, clamped, 1.0)
+        add_glass(lobes, w * glass, ior, reflect, clamped, 1.0, roughness)
 
 
 @kernel
@@ -402,7 +415,8 @@ def run_program(mats, material, stack, lobes, hit, frame, normal_rows):
         elif op == OP_GLASS:
             tint = _nonnegative(_triple(s, a))
             reflect = tint if c else (0.0, 0.0, 0.0)
-            add_glass(lobes, s[out], max(s[b], 1e-5), reflect, tint, float(c))
+            rough = min(max(s[d], 0.0), 1.0)
+            add_glass(lobes, s[out], max(s[b], 1e-5), reflect, tint, float(c), rough)
             _add_normal(lobes, s, s[out], f)
         elif op == OP_TRANSPARENT:
             _add3(lobes, L_TRANSPARENT, s[out], clamp01(_triple(s, a)))

@@ -24,6 +24,8 @@ from .shader_program import (
     L_NORMAL,
     L_NORMAL_WEIGHT,
     L_ROUGH,
+    L_ROUGHNESS,
+    L_ROUGHNESS_WEIGHT,
     L_SHININESS,
     L_TRANSPARENT,
 )
@@ -56,6 +58,7 @@ class Surface(NamedTuple):
     transparent: tuple
     holdout: float
     normal: tuple  # the shading normal its graph gives (world), or zero: the surface's own
+    roughness: float  # its mirror's and glass's, 0 sharp (blurred when glossy rays are sampled)
 
 
 @kernel
@@ -92,6 +95,7 @@ def table_surface(mats, material, kd):
         row(mats.transparent, material),
         mats.holdout[material],
         (0.0, 0.0, 0.0),
+        mats.roughness[material],
     )
 
 
@@ -145,7 +149,15 @@ def terms_from_lobes(lobes):
         ),
         min(lobes[L_HOLDOUT], 1.0),
         _normal(lobes),
+        _mean_roughness(lobes),
     )
+
+
+@kernel
+def _mean_roughness(lobes):
+    """The mirror, coat and glass lobes' roughness, weighted by the lobes' weights."""
+    weight = lobes[L_ROUGHNESS_WEIGHT]
+    return min(max(lobes[L_ROUGHNESS] / weight, 0.0), 1.0) if weight > 0.0 else 0.0
 
 
 @kernel

@@ -104,14 +104,17 @@ class Workspace(NamedTuple):
 
 
 def new_workspace(
-    max_depth: int, shadow_samples: int = 1, cancel=None, crypto_rays: int = 1
-) -> Workspace:
+    max_depth: int, shadow_samples: int = 1, cancel=None, crypto_rays: int = 1,
+    glossy_samples: int = 0,
+) -> Workspace:  # fmt: skip
     """Scratch for one tile; `crypto_rays`: the camera rays per pixel when Cryptomatte is
-    made (each keeps its ids until the pixel is done), else 1."""
+    made (each keeps its ids until the pixel is done), else 1; `glossy_samples` as
+    RenderSettings'."""
     # Depth-first, each shading point pops one ray and pushes at most two that bounce, so no
     # more than max_depth + 2 of those ever wait; each surface passed straight through
-    # (MAX_CROSSINGS) may leave two more waiting
-    rays = max_depth + 2 + 2 * MAX_CROSSINGS
+    # (MAX_CROSSINGS) may leave two more waiting, and a camera ray's rough hit two per
+    # glossy sample (a reflected and a refracted ray)
+    rays = max_depth + 2 + 2 * MAX_CROSSINGS + 2 * glossy_samples
     return Workspace(
         Stacks(
             np.empty(MAX_TREE_DEPTH, np.int32),

@@ -79,6 +79,9 @@ class Material:
                       BSDF, alpha below 1); shadow rays pass its mean
     holdout        -- 0..1: share of a camera ray's pixel cut out (Holdout shader): alpha
                       lowered by it, nothing seen there
+    roughness      -- 0..1: the mirror's, coat's and glass's GGX roughness (Cycles' alpha is
+                      its square). Kept sharp unless RenderSettings.glossy_samples asks for
+                      their rays to be spread over the lobe
     emission_lights -- whether its emission lights other surfaces (core.compile.glowing) or
                       is only seen
     surface        -- a closure `ShaderNode` (core.model.shader): Blender's node graph, which
@@ -107,6 +110,7 @@ class Material:
     emission: Vec3 = (0.0, 0.0, 0.0)
     transparent: Vec3 = (0.0, 0.0, 0.0)
     holdout: float = 0.0
+    roughness: float = 0.0
     emission_lights: bool = True
     surface: ShaderNode | None = None
 
@@ -134,6 +138,7 @@ class Material:
         if transparent.max() > 1.0:
             raise SceneError(owner, "transparent", f"got {self.transparent!r}; use 0..1 each")
         check_number(owner, "holdout", self.holdout, low=0.0, high=1.0)
+        check_number(owner, "roughness", self.roughness, low=0.0, high=1.0)
         if self.surface is not None:
             if not isinstance(self.surface, ShaderNode) or not self.surface.is_closure:
                 raise SceneError(owner, "surface", f"got {self.surface!r}; need a closure "

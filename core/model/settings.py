@@ -26,6 +26,7 @@ DEFAULT_ENVIRONMENT_SAMPLES = 16
 # per light), and below where the sample numbers overflow
 MAX_PIXEL_SAMPLES = 1024
 MAX_SHADOW_SAMPLES = 65536
+MAX_GLOSSY_SAMPLES = 4096
 MAX_BOUNCES = 10_000
 
 
@@ -51,6 +52,11 @@ class RenderSettings:
     environment_samples -- shadow rays towards the environment (the World's light) per
                         shading point, 0 to 65536; 0 lights nothing by it (it is still seen
                         behind the scene and in mirrors and glass)
+    glossy_samples   -- 0: rough mirrors and glass stay sharp, reflecting and refracting
+                        as much light as their rough lobe does on average (the documented
+                        rule of core.kernels.glossy); n > 0: each camera ray's hit on one
+                        spreads n rays over its GGX lobe (later hits one each), blurring
+                        them as Cycles does; 0 to 4096
     seed             -- selects the random numbers; the same seed gives the same picture
     transparent      -- camera rays that meet nothing are transparent: alpha 0 there and
                         fractional at edges, colour premultiplied (Blender's Film ›
@@ -80,6 +86,7 @@ class RenderSettings:
     shadow_samples: int = DEFAULT_SHADOW_SAMPLES
     shadow_sampling: str = "stratified"
     environment_samples: int = DEFAULT_ENVIRONMENT_SAMPLES
+    glossy_samples: int = 0
     seed: int = 0
     shadow_culling: bool = True
     transparent: bool = False
@@ -98,6 +105,8 @@ class RenderSettings:
         check_count(owner, "pixel_samples", self.pixel_samples, low=1, high=MAX_PIXEL_SAMPLES)
         check_count(owner, "shadow_samples", self.shadow_samples, low=1, high=MAX_SHADOW_SAMPLES)
         check_count(owner, "environment_samples", self.environment_samples, high=MAX_SHADOW_SAMPLES)
+        # each waits on the ray stack (core.kernels.workspace): 4096 is a 64 x 64 lobe
+        check_count(owner, "glossy_samples", self.glossy_samples, high=MAX_GLOSSY_SAMPLES)
         # Each bounce's ray waits on a stack of max_depth + 2 (core.kernels.workspace): past
         # this many, any light left is below what a pixel shows, and 1e12 asked for 21.8 TiB
         check_count(owner, "max_depth", self.max_depth, low=0, high=MAX_BOUNCES)

@@ -47,9 +47,13 @@ SHADER_NODES = {
         inputs={"Base Color": RGB, "Edge Tint": (1.0, 1.0, 1.0), "Roughness": 0.5, "Normal": None},
         closure=True,
     ),  # fmt: skip
-    "glass": dict(inputs={"Color": (1.0, 1.0, 1.0), "IOR": 1.5, "Normal": None}, closure=True),
+    "glass": dict(
+        inputs={"Color": (1.0, 1.0, 1.0), "Roughness": 0.0, "IOR": 1.5, "Normal": None},
+        closure=True,
+    ),  # fmt: skip
     "refraction": dict(
-        inputs={"Color": (1.0, 1.0, 1.0), "IOR": 1.5, "Normal": None}, closure=True
+        inputs={"Color": (1.0, 1.0, 1.0), "Roughness": 0.0, "IOR": 1.5, "Normal": None},
+        closure=True,
     ),  # fmt: skip
     "transparent": dict(inputs={"Color": (1.0, 1.0, 1.0)}, closure=True),
     "emission": dict(inputs={"Color": (1.0, 1.0, 1.0), "Strength": 1.0}, closure=True),

@@ -1,0 +1,62 @@
+"""Rough mirrors and glass: what their reflected and refracted rays are.
+
+With RenderSettings.glossy_samples 0 (the default) a rough surface stays sharp: its one
+reflected ray leaves by the mirror direction of the shading normal, its refracted ray by
+Snell's law, each carrying what the rough lobe reflects or transmits on average (the
+lobe's terms, core.kernels.shader_program), and its highlight stands for the lights it
+would blur (Surface.mirror_hides_lights). A scene that needs no blur pays nothing for it.
+
+With n > 0 samples, a camera ray's hit on a surface of roughness r spreads n rays over the
+lobe, each by its own microfacet normal m drawn from GGX's distribution of normals visible
+from the incoming direction (Heitz 2018, "Sampling the GGX Distribution of Visible
+Normals"; Cycles' alpha is r^2): the mirror direction and Fresnel of m, Snell's law about
+m, each ray carrying 1/n of the weight. Later hits spread one ray each, so a path's cost
+grows with n once, not n^depth; more camera rays per pixel average the rest. A ray that m
+sends below the surface it leaves is dropped: the light a microfacet's neighbours shadow.
+"""
+
+import math
+
+from ..jit import kernel
+from .vec import add, cross, dot, normalize, scale
+
+
+@kernel
+def tangent_frame(n):
+    """Two unit vectors completing unit n to an orthonormal frame (Duff et al. 2017)."""
+    sign = 1.0 if n[2] >= 0.0 else -1.0
+    a = -1.0 / (sign + n[2])
+    b = n[0] * n[1] * a
+    t = (1.0 + sign * n[0] * n[0] * a, sign * b, -sign * n[0])
+    s = (b, sign + n[1] * n[1] * a, -n[1])
+    return t, s
+
+
+@kernel
+def visible_normal(to_viewer, n, alpha, u1, u2):
+    """A microfacet normal drawn from GGX's distribution of normals visible from unit
+    `to_viewer` (above the surface of unit normal n), roughness alpha, by the uniform
+    numbers u1, u2 in [0, 1)."""
+    t, s = tangent_frame(n)
+    v = (dot(to_viewer, t), dot(to_viewer, s), max(dot(to_viewer, n), 1e-9))
+    # the view stretched to the unit-roughness configuration
+    vh = normalize((alpha * v[0], alpha * v[1], v[2]))
+    length2 = vh[0] * vh[0] + vh[1] * vh[1]
+    if length2 > 0.0:
+        inverse = 1.0 / math.sqrt(length2)
+        t1 = (-vh[1] * inverse, vh[0] * inverse, 0.0)
+    else:
+        t1 = (1.0, 0.0, 0.0)
+    t2 = cross(vh, t1)
+    # a point on the disc, its half below the view's horizon squeezed away
+    r = math.sqrt(u1)
+    phi = 2.0 * math.pi * u2
+    p1 = r * math.cos(phi)
+    p2 = r * math.sin(phi)
+    squeeze = 0.5 * (1.0 + vh[2])
+    p2 = (1.0 - squeeze) * math.sqrt(max(0.0, 1.0 - p1 * p1)) + squeeze * p2
+    up = math.sqrt(max(0.0, 1.0 - p1 * p1 - p2 * p2))
+    nh = add(add(scale(t1, p1), scale(t2, p2)), scale(vh, up))
+    # back to the surface's roughness, then to world space
+    m = normalize((alpha * nh[0], alpha * nh[1], max(nh[2], 0.0)))
+    return add(add(scale(t, m[0]), scale(s, m[1])), scale(n, m[2]))
