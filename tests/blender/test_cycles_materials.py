@@ -226,7 +226,9 @@ ROUGH = {
     "rough_gold": _rough_gold,
 }
 ROUGH_TOLERANCE = 0.08  # measured: 1-2% in 4.2 to 5.2, 5.7% in 3.4 (its multiscatter GGX)
-SPREAD_TOLERANCE = 0.2
+# Glossy rays against Cycles, block by block (measured in 5.2: rough gold 0.037 where the
+# sharp rule is 0.198, rough glass 0.079 where it is 0.264)
+SPREAD_TOLERANCE = 0.12
 
 
 def material_scene(bpy):
@@ -285,10 +287,14 @@ SPREAD = {"rough_gold": _rough_gold, "rough_glass": _rough_glass}
 @pytest.mark.parametrize("kind", list(SPREAD))
 def test_glossy_samples_blur_a_rough_surface_as_cycles_does(bpy_with_whitted, tmp_path, kind):
     """Render > Whitted > Glossy Samples: the rough ball's reflection (and refraction) of
-    the floor's coloured quadrants spread over its GGX lobe, block by block as in Cycles,
-    where keeping it sharp (the default, 0) shows the quadrants' edges Cycles blurs."""
+    the floor's coloured quadrants and the grey World spread over its GGX lobe, block by
+    block as in Cycles, where keeping it sharp (the default, 0) shows the quadrants' edges
+    Cycles blurs."""
     bpy = bpy_with_whitted
     scene, _ = ball_on_floor(bpy, SPREAD[kind])
+    # no sun: its highlight (Phong's lobe for GGX's, the same with or without glossy rays)
+    # is not what is compared here, the blur of what the ball reflects and refracts is
+    bpy.data.objects.remove(bpy.data.objects["Sun"])
     cycles = render_with(bpy, scene, "CYCLES", tmp_path / "cycles.exr", samples=1024)
     scene.whitted.glossy_samples = 0
     sharp = render_with(bpy, scene, "WHITTED", tmp_path / "sharp.exr")
