@@ -264,8 +264,8 @@ def test_nodes_whitted_cannot_evaluate_are_named_in_one_warning_per_material(
     tree = material.node_tree
     wave = tree.nodes.new("ShaderNodeTexWave")
     tree.links.new(wave.outputs["Color"], principled(material).inputs["Base Color"])
-    voronoi = tree.nodes.new("ShaderNodeTexVoronoi")
-    tree.links.new(voronoi.outputs["Color"], principled(material).inputs["Normal"])
+    magic = tree.nodes.new("ShaderNodeTexMagic")
+    tree.links.new(magic.outputs["Color"], principled(material).inputs["Normal"])
     volume = tree.nodes.new("ShaderNodeVolumePrincipled")
     output = next(n for n in tree.nodes if n.type == "OUTPUT_MATERIAL")
     tree.links.new(volume.outputs[0], output.inputs["Volume"])
