@@ -184,6 +184,7 @@ class GraphReader:
         made = core.ShaderNode(core_kind, name=node.name)
         for name in names:
             made.inputs[name] = v(node, groups, name)
+        self._distribution(node, made)
         if kind == "BSDF_DIFFUSE" and self._number(node, "Roughness") > 0.0:
             self.note(f"{node_label(node)}'s Roughness is not modelled (used: Lambert, 0)")
         if kind == "BSDF_METALLIC" and getattr(node, "fresnel_type", "F82") != "F82":
@@ -196,6 +197,18 @@ class GraphReader:
                           "for shadows)")  # fmt: skip
         self._normal(made, node, groups)
         return made
+
+    def _distribution(self, node, made) -> None:
+        """A rough lobe is GGX's (core.kernels.glossy): a Sharp distribution (before 4.0)
+        has no roughness, and Beckmann or Ashikhmin-Shirley are noted when rough."""
+        distribution = getattr(node, "distribution", "GGX")
+        if "Roughness" not in made.inputs or distribution in ("GGX", "MULTI_GGX"):
+            return
+        if distribution == "SHARP":
+            made.inputs["Roughness"] = 0.0
+        elif isinstance(made.inputs["Roughness"], core.Link) or made.inputs["Roughness"] > 0.0:
+            shown = distribution.replace("_", "-").title()
+            self.note(f"{node_label(node)}'s {shown} distribution (used: GGX)")
 
     def _normal(self, made, node, groups) -> None:
         """A closure's Normal input: what feeds it, else the displacement's bump normal."""

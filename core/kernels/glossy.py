@@ -18,18 +18,8 @@ sends below the surface it leaves is dropped: the light a microfacet's neighbour
 import math
 
 from ..jit import kernel
+from .light_samples import basis, in_frame
 from .vec import add, cross, dot, normalize, scale
-
-
-@kernel
-def tangent_frame(n):
-    """Two unit vectors completing unit n to an orthonormal frame (Duff et al. 2017)."""
-    sign = 1.0 if n[2] >= 0.0 else -1.0
-    a = -1.0 / (sign + n[2])
-    b = n[0] * n[1] * a
-    t = (1.0 + sign * n[0] * n[0] * a, sign * b, -sign * n[0])
-    s = (b, sign + n[1] * n[1] * a, -n[1])
-    return t, s
 
 
 @kernel
@@ -37,7 +27,7 @@ def visible_normal(to_viewer, n, alpha, u1, u2):
     """A microfacet normal drawn from GGX's distribution of normals visible from unit
     `to_viewer` (above the surface of unit normal n), roughness alpha, by the uniform
     numbers u1, u2 in [0, 1)."""
-    t, s = tangent_frame(n)
+    t, s = basis(n)
     v = (dot(to_viewer, t), dot(to_viewer, s), max(dot(to_viewer, n), 1e-9))
     # the view stretched to the unit-roughness configuration
     vh = normalize((alpha * v[0], alpha * v[1], v[2]))
@@ -59,4 +49,4 @@ def visible_normal(to_viewer, n, alpha, u1, u2):
     nh = add(add(scale(t1, p1), scale(t2, p2)), scale(vh, up))
     # back to the surface's roughness, then to world space
     m = normalize((alpha * nh[0], alpha * nh[1], max(nh[2], 0.0)))
-    return add(add(scale(t, m[0]), scale(s, m[1])), scale(n, m[2]))
+    return in_frame(n, m[0], m[1], m[2])

@@ -135,7 +135,12 @@ def _rough_gold(bpy):
 
 
 def _rough_glass(bpy):
-    return node_material(bpy, "Frosted", "ShaderNodeBsdfGlass", Roughness=0.3, IOR=1.45)[0]
+    """Rough glass of GGX's distribution (Blender's default before 4.0 was Beckmann, which
+    Whitted names in its warning and renders as GGX)."""
+    material, node = node_material(bpy, "Frosted", "ShaderNodeBsdfGlass", Roughness=0.3,
+                                   IOR=1.45)  # fmt: skip
+    node.distribution = "GGX"
+    return material
 
 
 def _unconnected_principled(bpy):

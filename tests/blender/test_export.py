@@ -330,6 +330,29 @@ def test_a_voronoi_texture_is_read_with_its_cell_hash_and_its_other_kinds_named(
     assert "Distance To Edge feature (used: F1)" in mine[0]
 
 
+def test_a_rough_glass_reads_its_roughness_and_names_a_beckmann_distribution(
+    empty_scene, monkeypatch
+):
+    """A Glass BSDF's Roughness is read (glossy samples spread its rays by GGX); Beckmann,
+    Blender's default before 4.0, is named in the warning with GGX used instead."""
+    bpy = sys.modules["bpy"]
+    _, material = sphere_with_material(bpy, "Frosted")
+    tree = material.node_tree
+    glass = tree.nodes.new("ShaderNodeBsdfGlass")
+    glass.inputs["Roughness"].default_value = 0.3
+    glass.distribution = "GGX"
+    output = next(n for n in tree.nodes if n.type == "OUTPUT_MATERIAL")
+    tree.links.new(glass.outputs[0], output.inputs["Surface"])
+    scene, _, warnings = exported(bpy, monkeypatch)
+    assert not [w for w in warnings if w.startswith(f"material '{material.name}'")], warnings
+    made = scene.shapes[0].material.surface
+    assert made.kind == "glass" and made.inputs["Roughness"] == pytest.approx(0.3)
+    glass.distribution = "BECKMANN"
+    _, _, warnings = exported(bpy, monkeypatch)
+    mine = [w for w in warnings if w.startswith(f"material '{material.name}'")]
+    assert len(mine) == 1 and "Beckmann distribution (used: GGX)" in mine[0], warnings
+
+
 def test_an_image_texture_on_the_base_colour_is_read_with_its_pixels(empty_scene, monkeypatch):
     bpy = sys.modules["bpy"]
     _, material = sphere_with_material(bpy, "Checker")

@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from core.kernels.glossy import tangent_frame, visible_normal
+from core.kernels.glossy import visible_normal
 
 N = (0.0, 0.0, 1.0)
 
@@ -62,15 +62,6 @@ def test_seen_obliquely_the_normals_are_ggxs_visible_ones(alpha, degrees):
     counts, _, _ = np.histogram2d(s_theta, s_phi, bins=6,
                                   range=[[0, math.pi / 2], [0, 2 * math.pi]])  # fmt: skip
     assert np.abs(counts / samples.shape[0] - expected).max() < 0.008
-
-
-def test_the_frame_is_orthonormal_for_any_normal():
-    rng = np.random.default_rng(3)
-    for n in list(rng.normal(size=(20, 3))) + [(0.0, 0.0, -1.0), (0.0, 0.0, 1.0)]:
-        n = tuple(np.asarray(n, float) / np.linalg.norm(n))
-        t, s = tangent_frame(n)
-        frame = np.array([t, s, n])
-        np.testing.assert_allclose(frame @ frame.T, np.eye(3), atol=1e-12)
 
 
 def test_a_frame_around_another_normal_turns_the_samples_with_it():
