@@ -2,7 +2,7 @@
 (`core.kernels.shadow_log`): the crossed surface's material program run at each, by the
 integrator, the one place that program is compiled in."""
 
-from ..jit import kernel
+from ..jit import inlined_kernel, kernel
 from .borrow import borrowed
 from .light_pyramid import TRAVERSE_ALL
 from .shader_program import run_program
@@ -12,7 +12,7 @@ from .surface_terms import terms_from_lobes
 from .trace import transmittance
 
 
-@kernel
+@inlined_kernel
 def crossing_share(geo, surf, mats, ws, shape, part, b1, b2, o, d, t):
     """What shape row `shape`'s surface lets a shadow ray o + t d through where it crosses
     it (part, b1, b2 as a nearest hit gives them): the rule of a constant material's
@@ -29,7 +29,7 @@ def crossing_share(geo, surf, mats, ws, shape, part, b1, b2, o, d, t):
     return min(1.0, max(0.0, here.transparency + straight))
 
 
-@kernel
+@inlined_kernel
 def answer_crossings(geo, surf, mats, ws):
     """Multiply each listed crossing's share into its shadow ray's logged visibility, and
     set the log to be replayed. False when nothing was listed: the point is lit already."""
