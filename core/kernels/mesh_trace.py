@@ -231,7 +231,8 @@ def mesh_surface_crossings(boxes, links, corners, root, o, d, t_max, cross_f, cr
     through a surface that lets light through: crossings listed, sorted and merged as the
     CSG kernels merge them, so that a ray through an edge or vertex shared by triangles
     facing the same way crosses once, not once per triangle (a transparent card passed
-    tau^2 along its diagonal). -1 when they do not all fit in the lists."""
+    tau^2 along its diagonal). The merged crossings are left at the start of the lists, in
+    order (core.kernels.shadow_log reads them); -1 when they do not all fit."""
     count = mesh_crossings(boxes, links, corners, root, o, d, 0.0, t_max, False, cross_f,
                            cross_i, stack)  # fmt: skip
     if count >= cross_f.shape[0]:
@@ -242,8 +243,21 @@ def mesh_surface_crossings(boxes, links, corners, root, o, d, t_max, cross_f, cr
     i = 0
     while i < count:
         i, entering, leaving = coincident_crossings(cross_f, cross_i, i, count, scale)
-        events += (entering >= 0) + (leaving >= 0)
+        # in index order, each kept row moves to or before where it was (events <= i)
+        if entering > leaving:
+            entering, leaving = leaving, entering
+        for c in (entering, leaving):
+            if c >= 0:
+                _copy_crossing(cross_f, cross_i, c, events)
+                events += 1
     return events
+
+
+@inlined_kernel
+def _copy_crossing(cross_f, cross_i, src, dst):
+    for a in range(3):
+        cross_f[dst, a] = cross_f[src, a]
+    cross_i[dst, 0], cross_i[dst, 1] = cross_i[src, 0], cross_i[src, 1]
 
 
 @inlined_kernel

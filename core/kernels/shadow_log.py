@@ -25,7 +25,7 @@ and counted (RenderStats' warning), never lit wrongly without a word.
 """
 
 from ..jit import inlined_kernel
-from .mesh_trace import coincident_crossings, line_scale, mesh_crossings, sort_crossings
+from .mesh_trace import mesh_surface_crossings
 from .shapes import NO_HIT, intersect_analytic
 from .vec import affine_point, affine_vector
 
@@ -74,28 +74,21 @@ def record_crossing(stacks, shape, part, t, b1, b2, o, d):
 @inlined_kernel
 def mesh_varying(geo, shape, o, d, t_max, stacks):
     """List the crossings of mesh row `shape` (marked SHADOW_VARIES) along o + t d,
-    0 < t < t_max: sorted and merged as the CSG kernels merge them, so that a ray through
-    an edge shared by triangles facing the same way crosses once. 1.0, or 0.0 (blocked)
-    when they do not fit."""
+    0 < t < t_max, merged where triangles meet (`mesh_trace.mesh_surface_crossings`, as a
+    constant share counts them). 1.0, or 0.0 (blocked) when they do not fit."""
     o_obj = affine_point(geo.shape_object_from_world, shape, o)
     d_obj = affine_vector(geo.shape_object_from_world, shape, d)
     cross_f, cross_i = stacks.csg.cross_f, stacks.csg.cross_i
-    count = mesh_crossings(
+    events = mesh_surface_crossings(
         geo.node_boxes, geo.node_links, geo.tri_corners, geo.mesh_root[geo.shape_index[shape]],
-        o_obj, d_obj, 0.0, t_max, False, cross_f, cross_i, stacks.mesh,
+        o_obj, d_obj, t_max, cross_f, cross_i, stacks.mesh,
     )  # fmt: skip
-    if count >= cross_f.shape[0]:
+    if events < 0:
         return 0.0
-    sort_crossings(cross_f, cross_i, count)
-    scale = line_scale(o_obj, d_obj)
-    i = 0
-    while i < count:
-        i, entering, leaving = coincident_crossings(cross_f, cross_i, i, count, scale)
-        for c in (entering, leaving):
-            if c >= 0:
-                t, b1, b2 = cross_f[c, 0], cross_f[c, 1], cross_f[c, 2]
-                if not record_crossing(stacks, shape, cross_i[c, 0], t, b1, b2, o, d):
-                    return 0.0
+    for c in range(events):
+        t, b1, b2 = cross_f[c, 0], cross_f[c, 1], cross_f[c, 2]
+        if not record_crossing(stacks, shape, cross_i[c, 0], t, b1, b2, o, d):
+            return 0.0
     return 1.0
 
 
