@@ -15,10 +15,7 @@ PICTURE.PASS.exr beside the PNG (core.pass_files), renamed into place with it. E
 from __future__ import annotations
 
 import argparse
-import os
-import shutil
 import sys
-import tempfile
 import time
 from pathlib import Path
 
@@ -26,8 +23,7 @@ from .cs488 import ScriptError, ScriptLimits, load_script
 from .cs488.sandbox import DEFAULT_LIMITS
 from .errors import SceneError
 from .farm import command as farm_command
-from .image_io import save_png
-from .pass_files import write_pass_files
+from .output_file import OutputError, check_writable, write_whole
 from .passes import PASS_NAMES, check_passes, crypto_names
 
 BAR_WIDTH = 30
@@ -79,7 +75,7 @@ def main(argv: list[str] | None = None) -> int:
             args.script, args.output, args.threads, args.allow_outside_files, limits, args.passes,
             args.region,
         )  # fmt: skip
-    except (ScriptError, SceneError) as error:
+    except (ScriptError, SceneError, OutputError) as error:
         print(f"error: {error}", file=sys.stderr)
         return 1
     except KeyboardInterrupt:
@@ -129,10 +125,8 @@ def _render_script(script: Path, output: Path | None, threads: int, anywhere: bo
         )
     if output is not None and output.suffix.lower() != ".png":
         raise ScriptError(f"-o {output}: Whitted writes PNG images; name a file ending in .png")
-    for call in calls:  # before any rendering: a folder cannot take the picture
-        target = output if output is not None else call.output
-        if target.is_dir():
-            raise ScriptError(f"{target} is a folder; name a .png file to write the image to")
+    for call in calls:  # before any rendering: a path that cannot take the picture
+        check_writable(*_target(script, output, call))
         call.settings.threads = threads
         call.settings.passes = passes
         call.settings.region = region
@@ -155,7 +149,7 @@ def _render_script(script: Path, output: Path | None, threads: int, anywhere: bo
     for call in calls:
         for warning in call.warnings:
             print(f"warning: {warning}", file=sys.stderr)
-        target = output if output is not None else call.output
+        target, label = _target(script, output, call)
         result = render(call.scene, call.settings, on_tile=_progress_bar())
         print(result.stats.summary())
         for warning in result.warnings:
@@ -165,9 +159,16 @@ def _render_script(script: Path, output: Path | None, threads: int, anywhere: bo
             x, y, w, h = region
             image = image[y : y + h, x : x + w]
             pass_images = {name: p[y : y + h, x : x + w] for name, p in pass_images.items()}
-        _write_whole(image, target, pass_images, crypto_names(call.scene))
+        write_whole(image, target, label, pass_images, crypto_names(call.scene))
         print(f"wrote {target}")
     return 0
+
+
+def _target(script: Path, output: Path | None, call) -> tuple[Path, str]:
+    """Where a call's picture goes, and how the user named it, for messages."""
+    if output is not None:
+        return output, f"-o {output}"
+    return call.output, f"{script.name}: gr.render's file {call.output}"
 
 
 def _progress_bar():
@@ -186,22 +187,3 @@ def _progress_bar():
               file=sys.stderr)  # fmt: skip
 
     return on_tile
-
-
-def _write_whole(image, target: Path, passes=None, names=None) -> None:
-    """Write the PNG and its pass files beside their targets, then rename them all: readers
-    never see half a file, and a failure leaves none of them."""
-    target.parent.mkdir(parents=True, exist_ok=True)
-    staging = Path(tempfile.mkdtemp(prefix=".whitted-", dir=target.parent))
-    try:
-        written = [save_png(image, staging / target.name)]
-        written += write_pass_files(staging / target.name, passes or {}, names or {})
-        # As files made by open() would be (0644 under the usual umask), not mkstemp's 0600
-        umask = os.umask(0)
-        os.umask(umask)
-        for path in written:
-            os.chmod(path, 0o666 & ~umask)
-        for path in written:
-            os.replace(path, target.parent / path.name)
-    finally:
-        shutil.rmtree(staging, ignore_errors=True)

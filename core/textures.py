@@ -104,24 +104,99 @@ def _remember(key, pixels: np.ndarray) -> None:
 
 
 def _decode(texture: Texture, owner: str) -> np.ndarray:
-    """The image file's RGB in 0..1, float64."""
+    """The image file's RGB, float64, at its true values."""
     try:
-        with open_image(texture.path) as image:
+        return read_rgb(texture.path)
+    except ImageFileError as problem:
+        raise SceneError(owner, "texture", f"'{texture.path}' {problem}") from None
+
+
+class ImageFileError(Exception):
+    """Why an image file cannot be a texture, as the end of a sentence naming the file."""
+
+
+def read_rgb(path) -> np.ndarray:
+    """(h, w, 3) float64 RGB of the image file at its true values: 0..1 for 8 and 16-bit
+    integers, as stored for floating point. Raises ImageFileError."""
+    if str(path).lower().endswith(".exr"):
+        raise ImageFileError(
+            "is an OpenEXR image, which the command line does not read (Blender does); save "
+            "it as a float TIFF or a 16-bit PNG"
+        )
+    try:
+        with open_image(path) as image:
             if problem := too_large(image.size):
-                raise SceneError(owner, "texture", f"'{texture.path}' {problem}")
-            rgb = np.asarray(image.convert("RGB"), np.float64) / 255.0
+                raise ImageFileError(problem)
+            image.verify()  # checksums (a PNG's CRCs), which decoding alone does not read
+        with open_image(path) as image:
+            rgb = true_rgb(image)
     except Image.DecompressionBombError:  # past Pillow's own limit, which is larger
-        raise SceneError(
-            owner, "texture", f"'{texture.path}' has more pixels than any texture needs"
-        ) from None
-    except (UnidentifiedImageError, OSError, ValueError) as error:
-        raise SceneError(
-            owner,
-            "texture",
-            f"Pillow cannot read '{texture.path}' ({error}); use a PNG, JPEG or other "
-            "image Pillow reads",
-        ) from None
+        raise ImageFileError("has more pixels than any texture needs") from None
+    except ImageFileError:
+        raise
+    except MemoryError:
+        raise ImageFileError("needs more memory to decode than is free") from None
+    except Exception as error:  # noqa: BLE001 - a broken file can fail anywhere in a decoder
+        raise ImageFileError(_decoder_problem(error)) from None
+    if not np.all(np.isfinite(rgb)):
+        raise ImageFileError("holds NaN or infinite values; a texture's values are finite")
     return rgb
+
+
+def true_rgb(image: Image.Image) -> np.ndarray:
+    """An opened image's colour channels as float64 RGB at their true values. Pillow's own
+    convert("RGB") clips 16-bit and float images to 8 bits (a 16-bit grey PNG came out all
+    white, a float TIFF of 0.5 all black). Alpha is not colour, and is dropped."""
+    mode = image.mode
+    if mode in ("RGBa", "P", "PA"):  # premultiplied or indexed: as straight RGB(A)
+        image, mode = image.convert("RGBA"), "RGBA"
+    if mode in _GREY_SCALES:
+        grey = np.asarray(image).astype(np.float64) / _GREY_SCALES[mode]
+        if mode == "I" and grey.size and (grey.max() > 1.0 or grey.min() < 0.0):
+            raise ImageFileError(
+                "holds 32-bit integer samples beyond 16 bits; save it as 16-bit or float"
+            )
+        return np.repeat(grey[:, :, None], 3, axis=2)
+    if mode in ("LA", "La"):
+        grey_alpha = np.asarray(image).astype(np.float64)
+        grey = grey_alpha[:, :, 0] / 255.0
+        if mode == "La":  # premultiplied by alpha, which Pillow does not convert: undone here
+            alpha = grey_alpha[:, :, 1] / 255.0
+            grey = np.divide(grey, alpha, out=np.zeros_like(grey), where=alpha > 0)
+        return np.repeat(grey[:, :, None], 3, axis=2)
+    if mode not in ("RGB", "RGBA", "RGBX"):  # CMYK, YCbCr, LAB, HSV: Pillow's conversions
+        image, mode = image.convert("RGB"), "RGB"
+    return np.asarray(image)[:, :, :3].astype(np.float64) / 255.0
+
+
+# Grey modes and the value that is white in each. Pillow reads 16-bit greys as I;16 (or as I,
+# 32-bit, from some formats): both hold the file's 16-bit values
+_GREY_SCALES = {
+    "1": 1.0,
+    "L": 255.0,
+    "I;16": 65535.0,
+    "I;16L": 65535.0,
+    "I;16B": 65535.0,
+    "I;16N": 65535.0,
+    "I": 65535.0,
+    "F": 1.0,
+}
+
+
+def _decoder_problem(error: Exception) -> str:
+    """A decoder's exception as the rest of a sentence, with what to do where it is plain."""
+    said = str(error) or type(error).__name__
+    if "decompressed data too large" in said.lower() or "text chunks" in said:
+        return (
+            f"holds a text chunk (metadata) larger than Pillow decompresses ({said}); save "
+            "the image again without its metadata"
+        )
+    if isinstance(error, UnidentifiedImageError):
+        return "is not an image Pillow reads; use a PNG, JPEG, TIFF or other common image"
+    return (
+        f"cannot be decoded ({type(error).__name__}: {said[:200]}); the file is damaged or "
+        "of a kind Pillow does not read: save it again as a PNG"
+    )
 
 
 def _linear(rgb: np.ndarray, srgb: bool) -> np.ndarray:

@@ -8,14 +8,14 @@ names (meshes, textures, the output PNG) are resolved against the script's own f
 
 from __future__ import annotations
 
+import errno
 from pathlib import Path
 
 import numpy as np
-from PIL import Image, UnidentifiedImageError
 
 from ..model import AreaLight, Material, PointLight, Texture, TriangleMesh
 from ..obj_file import ObjError, read_obj, summed_face_normals
-from ..textures import open_image, too_large
+from ..textures import ImageFileError, read_rgb
 from ..vocabulary import MAX_OPERANDS
 from .graph import (
     A4_OPERATIONS,
@@ -127,14 +127,31 @@ class Commands:
         if "\0" in name:
             raise ArgumentError(f"{what} {name!r} holds a NUL byte, which no file name can")
         path = self.inside(name, f"{what} '{name}'", "reads")
-        if not path.is_file():
-            raise ArgumentError(f"{what} '{name}' not found (looked for {path})")
+        try:
+            found = path.is_file()
+            if found:  # a file the script's user may not read is named now, not at render
+                with open(path, "rb"):
+                    pass
+        except OSError as error:
+            raise ArgumentError(f"{what} '{name}': {_reason(error)}") from None
+        if not found:
+            if path.is_dir():
+                problem = "is a folder, not a file"
+            elif path.exists():  # read, a pipe or a device would wait or never end
+                problem = "is not a regular file (a pipe, socket or device)"
+            else:
+                problem = "not found"
+            raise ArgumentError(f"{what} '{name}' {problem} (looked for {path})")
         return path
 
     def inside(self, name: str, what: str, does: str) -> Path:
         """`name` relative to the script's folder, refused outside its tree."""
-        path = (self.folder / name).resolve()
-        if not self.anywhere and not path.is_relative_to(self.folder.resolve()):
+        try:
+            path = (self.folder / name).resolve()
+            folder = self.folder.resolve()
+        except (OSError, RuntimeError) as error:  # RuntimeError: Python 3.11's symlink loop
+            raise ArgumentError(f"{what}: {_reason(error)}") from None
+        if not self.anywhere and not path.is_relative_to(folder):
             raise ArgumentError(
                 f"{what} is outside the script's folder ({path}); a script {does} files in its "
                 f"own folder and below only ({self.outside_setting} lifts this)"
@@ -256,16 +273,10 @@ class Commands:
     def texture(self, *args):
         expect(args, (3, 4, 5, 6), TEXTURE_USAGE)
         path = self.file(args[0], "texture file")
-        try:
-            with open_image(path) as image:
-                problem = too_large(image.size)
-                image.verify()
-        except Image.DecompressionBombError:
-            problem = too_large((2**31, 2**31))  # Pillow refuses to say: larger than ours
-        except (UnidentifiedImageError, OSError) as error:
-            raise ArgumentError(f"texture file '{args[0]}' is not an image ({error})") from None
-        if problem:
-            raise ArgumentError(f"texture file '{args[0]}' {problem}")
+        try:  # decoded here as at the render, so a file that cannot be read is named here
+            read_rgb(path)
+        except ImageFileError as problem:
+            raise ArgumentError(f"texture file '{args[0]}' {problem}") from None
         # The report used the file's values as they are, with no sRGB decoding
         return self._material(args, (1.0, 1.0, 1.0), Texture(path=path, srgb=False))
 
@@ -358,6 +369,20 @@ class Commands:
         call.build()  # checks the whole scene now, so its errors name this line
         self.renders.append(call)
         self.print_line(call.summary())
+
+
+def _reason(error: Exception) -> str:
+    """Why the system would not give a file, in its words, with what to do where plain."""
+    if isinstance(error, RuntimeError) or getattr(error, "errno", None) == errno.ELOOP:
+        return "its path is a loop of symbolic links; point the link at a real file"
+    hints = {
+        errno.ENAMETOOLONG: "its path is too long for the file system; use a shorter one",
+        errno.EACCES: "permission denied; make the file readable",
+        errno.ENOTDIR: "a part of its path is a file, not a folder",
+        errno.EIO: "the disk could not read it",
+    }
+    number = getattr(error, "errno", None)
+    return hints.get(number) or f"cannot read it: {error.strerror or error}"
 
 
 def _quoted(value) -> str:

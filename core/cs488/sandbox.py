@@ -77,6 +77,43 @@ end
 """
 
 
+# print, in Lua: the line a script prints must be text Python can take
+_PRINT = """
+local print_line, max_bytes = ...
+local select, tostring, error, valid_utf8, concat = select, tostring, error, utf8.len, table.concat
+return function(...)
+    local parts = {}
+    for i = 1, select("#", ...) do
+        local text = tostring((select(i, ...)))
+        if type(text) ~= "string" then
+            error("print: argument " .. i .. "'s __tostring did not give a string", 2)
+        end
+        if not valid_utf8(text) then
+            error("print: argument " .. i .. " is not UTF-8 text", 2)
+        end
+        parts[i] = text
+    end
+    local line = concat(parts, "\\t")
+    if #line > max_bytes then
+        error("print: a line of " .. #line .. " bytes; lines of up to " .. max_bytes ..
+              " bytes are printed", 2)
+    end
+    print_line(line)
+end
+"""
+# The longest line a script may print (each crosses into Python and out through a pipe)
+MAX_PRINT_BYTES = 1 * 2**20
+
+
+def shown(text: str) -> str:
+    """Text fit to print and to hand to Lua: a file name's bytes that are not UTF-8 (kept by
+    Python as surrogates) written as \\xNN escapes."""
+    try:
+        return text.encode("utf-8", "surrogateescape").decode("utf-8", "backslashreplace")
+    except UnicodeEncodeError:  # a surrogate no file name's byte makes
+        return text.encode("utf-8", "backslashreplace").decode("utf-8")
+
+
 # The key under which a wrapping table holds its Python object
 _HANDLE = "__object"
 # How deeply nested a table argument may be ({{1, 2}, {3, 4}} is 2 deep)
@@ -150,11 +187,13 @@ def run_script(
     except OSError as error:
         raise ScriptError(f"{path}: cannot read the scene script: {error.strerror}") from None
     try:
-        source = data.decode("utf-8")
+        # A byte-order mark, which some Windows editors put first, is not part of the text
+        source = data.removeprefix(b"\xef\xbb\xbf").decode("utf-8")
     except UnicodeDecodeError as error:
-        line = data.count(b"\n", 0, error.start) + 1
+        start = error.start + (3 if data.startswith(b"\xef\xbb\xbf") else 0)
+        line = data.count(b"\n", 0, start) + 1
         raise ScriptError(
-            f"{path.name}:{line}: byte 0x{data[error.start]:02x} is not UTF-8 text; save the "
+            f"{path.name}:{line}: byte 0x{data[start]:02x} is not UTF-8 text; save the "
             "script as UTF-8 (Latin-1 or another encoding will not do)"
         ) from None
     runtime = lua54.LuaRuntime(
@@ -168,7 +207,9 @@ def run_script(
     env = runtime.table()
     for name in SAFE_GLOBALS:
         env[name] = lua_globals[name]
-    env["print"] = lambda *values: print_line("\t".join(_lua_str(v) for v in values))
+    # print as Lua's own (tostring of each value, tabs between): a value that is not UTF-8
+    # text is refused in Lua, at the calling line
+    env["print"] = runtime.execute(_PRINT, print_line, MAX_PRINT_BYTES)
     env["unpack"] = lua_globals.table.unpack  # Lua 5.1's name, which older scripts use
     env["_G"] = env
     bridge = _Bridge(runtime)
@@ -199,7 +240,9 @@ class _Bridge:
             try:
                 result = function(*(self.to_python(a) for a in args))
             except ArgumentError as error:
-                return False, str(error)
+                return False, shown(str(error))
+            except UnicodeDecodeError:  # in a table argument: the shim checks only strings
+                return False, "a string in a table given to it is not UTF-8 text"
             return True, self.to_lua(result)
 
         return self.make_shim(call, name, MAX_STRING_BYTES)
@@ -358,11 +401,3 @@ def _error_message(text: str, script: str) -> str:
 
 def _no_attributes(obj, name, is_setting):
     raise AttributeError(f"scene scripts cannot reach Python attributes ('{name}')")
-
-
-def _lua_str(value) -> str:
-    if value is None:
-        return "nil"
-    if value is True or value is False:
-        return "true" if value else "false"
-    return str(value)

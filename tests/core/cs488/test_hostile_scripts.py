@@ -53,7 +53,7 @@ CASES = [
     ("invalid UTF-8 argument", b"r = gr.node('\\255')\n", {},
      "error: scene.lua:1: gr.node: argument 1 is not UTF-8 text"),
     ("invalid UTF-8 inside a table", b"gr.nh_sphere('s', {0, 0, '\\255'}, 1)\n", {},
-     "error: scene.lua: a string given to gr is not UTF-8 text"),
+     "error: scene.lua:1: gr.nh_sphere: a string in a table given to it is not UTF-8 text"),
     ("NUL byte in a path", b"gr.mesh('m', 'a\\0b.obj')\n", {},
      "error: scene.lua:1: gr.mesh: mesh file 'a\\x00b.obj' holds a NUL byte"),
     ("OBJ index beyond 64 bits", b"gr.mesh('m', 'big.obj')\n",
@@ -98,7 +98,7 @@ def test_a_hostile_script_is_a_clear_error_and_writes_nothing(tmp_path, case, so
     assert result.stderr.strip().splitlines()[-1].startswith(message), result.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == before  # nothing written
     if case == "output path a folder":
-        assert "taken.png is a folder; name a .png file" in result.stderr
+        assert "taken.png: is a folder; name a .png file" in result.stderr
 
 
 def test_a_deep_hierarchy_renders_and_a_normal_script_renders_after_the_hostile_ones(tmp_path):
