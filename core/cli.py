@@ -20,13 +20,20 @@ import time
 from pathlib import Path
 
 from .cs488 import ScriptError, ScriptLimits, load_script
-from .cs488.sandbox import DEFAULT_LIMITS
+from .cs488.sandbox import (
+    DEFAULT_LIMITS,
+    MAX_SCRIPT_MEMORY_MIB,
+    MAX_SCRIPT_SECONDS,
+    MIN_SCRIPT_MEMORY_MIB,
+    MIN_SCRIPT_SECONDS,
+)
 from .errors import SceneError
 from .farm import command as farm_command
 from .output_file import OutputError, check_writable, write_whole
 from .passes import PASS_NAMES, check_passes, crypto_names
 
 BAR_WIDTH = 30
+MAX_THREADS = 1024  # past any machine's cores
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -38,7 +45,10 @@ def main(argv: list[str] | None = None) -> int:
         "-o", "--output", type=Path, help="write the image here instead of gr.render's file"
     )
     render_command.add_argument(
-        "--threads", type=int, default=0, help="worker threads (default: one per core)"
+        "--threads",
+        type=_bounded(int, 0, MAX_THREADS, "threads"),
+        default=0,
+        help="worker threads (default: one per core)",
     )
     render_command.add_argument(
         "--allow-outside-files", action="store_true",
@@ -56,11 +66,13 @@ def main(argv: list[str] | None = None) -> int:
     )  # fmt: skip
     default = DEFAULT_LIMITS
     render_command.add_argument(
-        "--script-seconds", type=_positive(float), default=default.seconds, metavar="S",
+        "--script-seconds", default=default.seconds, metavar="S",
+        type=_bounded(float, MIN_SCRIPT_SECONDS, MAX_SCRIPT_SECONDS, "seconds"),
         help=f"stop the scene script after S seconds (default {default.seconds:g})",
     )  # fmt: skip
     render_command.add_argument(
-        "--script-memory", type=_positive(int), default=default.memory_mib, metavar="MIB",
+        "--script-memory", default=default.memory_mib, metavar="MIB",
+        type=_bounded(int, MIN_SCRIPT_MEMORY_MIB, MAX_SCRIPT_MEMORY_MIB, "MiB"),
         help=f"memory the scene script may take, in MiB (default {default.memory_mib})",
     )  # fmt: skip
     farm_command.add_arguments(
@@ -83,14 +95,20 @@ def main(argv: list[str] | None = None) -> int:
         return 130
 
 
-def _positive(kind):
+def _bounded(kind, low, high, unit: str):
+    """An argparse type: a number of `kind` from low to high, refused in the option's terms
+    (a number past any sensible one overflowed the operating system's limits)."""
+
     def parse(text: str):
         try:
-            value = kind(text)
-        except ValueError:
+            value = kind(text.strip())
+        except (ValueError, OverflowError):
             value = None
-        if value is None or not 0 < value < float("inf"):
-            raise argparse.ArgumentTypeError(f"got {text!r}; use a number above 0")
+        if value is None or not low <= value <= high:
+            whole = " whole" if kind is int else ""
+            raise argparse.ArgumentTypeError(
+                f"got {text[:40]!r}; give a{whole} number of {unit} from {low:,g} to {high:,g}"
+            )
         return value
 
     parse.__name__ = kind.__name__  # argparse names the type in its messages
@@ -116,7 +134,8 @@ def _region(text: str) -> tuple[int, int, int, int]:
 def _render_script(script: Path, output: Path | None, threads: int, anywhere: bool,
                    limits: ScriptLimits, passes: tuple[str, ...] = (),
                    region: tuple[int, int, int, int] | None = None) -> int:  # fmt: skip
-    calls = load_script(script, print_line=print, anywhere=anywhere, limits=limits)
+    calls = load_script(script, print_line=print, anywhere=anywhere, limits=limits,
+                        notice=lambda text: print(text, file=sys.stderr, flush=True))  # fmt: skip
     if not calls:
         raise ScriptError(f"{script.name}: the script never calls gr.render: nothing to render")
     if output is not None and len(calls) > 1:

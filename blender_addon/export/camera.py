@@ -28,6 +28,7 @@ def convert(scene, depsgraph, settings: core.RenderSettings) -> core.Camera:
             f"is {camera.data.type}; Whitted renders perspective and orthographic cameras: "
             "set Camera Properties > Lens > Type to Perspective or Orthographic",
         )
+    _check_lens(camera.data, owner)
     projection = camera.calc_matrix_camera(
         depsgraph,
         x=settings.width,
@@ -35,6 +36,14 @@ def convert(scene, depsgraph, settings: core.RenderSettings) -> core.Camera:
         scale_x=scene.render.pixel_aspect_x,
         scale_y=scene.render.pixel_aspect_y,
     )
+    terms = [value for row in projection for value in row]
+    if not all(math.isfinite(value) for value in terms) or projection[1][1] == 0.0:
+        raise core.SceneError(
+            owner,
+            "Camera Properties > Lens",
+            "gives Blender no usable projection (a term is infinite or zero); set the lens, "
+            "sensor and shift to values a real camera has",
+        )
     rotation = camera.matrix_world.to_3x3().normalized()
     eye, view = camera.matrix_world.translation, -rotation.col[2]
     aperture, focus = depth_of_field(scene, camera, eye, view)
@@ -42,6 +51,30 @@ def convert(scene, depsgraph, settings: core.RenderSettings) -> core.Camera:
         projection, eye, view, rotation.col[1], camera.name, aperture, focus,
         orthographic=camera.data.type == "ORTHO",
     )  # fmt: skip
+
+
+# The largest lens shift read, in sensor widths (Blender's panel offers -2 to 2): past it a
+# picture is of a sliver of the view a million widths away
+MAX_SHIFT = 100.0
+
+
+def _check_lens(data, owner: str) -> None:
+    """The lens settings Blender's properties allow but no projection can use (a zero
+    orthographic scale divides by zero), refused in the panel's terms."""
+    if data.type == "ORTHO" and not data.ortho_scale > 0.0:
+        raise core.SceneError(
+            owner,
+            "Camera Properties > Lens > Orthographic Scale",
+            f"is {data.ortho_scale:g}; give the view's size, above 0",
+        )
+    for axis in ("x", "y"):
+        shift = getattr(data, f"shift_{axis}")
+        if not abs(shift) <= MAX_SHIFT:
+            raise core.SceneError(
+                owner,
+                f"Camera Properties > Lens > Shift {axis.upper()}",
+                f"is {shift:g}; give a shift from -{MAX_SHIFT:g} to {MAX_SHIFT:g} sensor widths",
+            )
 
 
 def from_projection(

@@ -29,7 +29,13 @@ from mathutils import Matrix
 from ..blender_data import place
 from ..compat import give_nodes
 from ..core.cs488 import ScriptError, ScriptLimits, ScriptRun, load_script
-from ..core.cs488.sandbox import DEFAULT_LIMITS
+from ..core.cs488.sandbox import (
+    DEFAULT_LIMITS,
+    MAX_SCRIPT_MEMORY_MIB,
+    MAX_SCRIPT_SECONDS,
+    MIN_SCRIPT_MEMORY_MIB,
+    MIN_SCRIPT_SECONDS,
+)
 from ..export.light import WATTS_TO_INTENSITY
 from ..reporting import report_internal_failure
 from .build import Y_UP_TO_Z_UP, Builder
@@ -40,7 +46,8 @@ POLL_S = 0.1
 def import_script(context, path: str | Path, limits=DEFAULT_LIMITS, anywhere=False) -> list:
     """Run the script, then build every gr.render call of it; returns the scenes. Raises
     ScriptError."""
-    calls = load_script(path, print_line=print, anywhere=anywhere, limits=limits)
+    calls = load_script(path, print_line=print, anywhere=anywhere, limits=limits,
+                        notice=lambda text: print(f"Whitted: {text}", flush=True))  # fmt: skip
     return build_scenes(context, Path(path), calls)
 
 
@@ -169,12 +176,14 @@ class WHITTED_OT_import_lua(bpy.types.Operator, ImportHelper):
     time_limit: bpy.props.FloatProperty(
         name="Time Limit (s)",
         description="Stop the script after this many seconds (Esc stops it sooner)",
-        default=DEFAULT_LIMITS.seconds, min=0.1, soft_max=3600.0,
+        default=DEFAULT_LIMITS.seconds, min=MIN_SCRIPT_SECONDS, max=MAX_SCRIPT_SECONDS,
+        soft_max=3600.0,
     )  # fmt: skip
     memory_limit: bpy.props.IntProperty(
         name="Memory Limit (MiB)",
         description="The memory the script may take while it builds the scene",
-        default=DEFAULT_LIMITS.memory_mib, min=16, soft_max=65536,
+        default=DEFAULT_LIMITS.memory_mib, min=MIN_SCRIPT_MEMORY_MIB, max=MAX_SCRIPT_MEMORY_MIB,
+        soft_max=65536,
     )  # fmt: skip
     allow_outside_files: bpy.props.BoolProperty(
         name="Files Outside Its Folder",
@@ -182,8 +191,9 @@ class WHITTED_OT_import_lua(bpy.types.Operator, ImportHelper):
         default=False,
     )
 
-    def limits(self) -> ScriptLimits:
+    def limits(self, stop_key: str = "Esc") -> ScriptLimits:
         return ScriptLimits(
+            stop_key=stop_key,
             seconds=self.time_limit,
             memory_mib=self.memory_limit,
             seconds_setting="the import's Time Limit",
@@ -195,7 +205,7 @@ class WHITTED_OT_import_lua(bpy.types.Operator, ImportHelper):
         if bpy.app.background or context.window is None:
             try:  # nothing to keep responsive: run the script to its end here
                 scenes = import_script(
-                    context, self.filepath, self.limits(), self.allow_outside_files
+                    context, self.filepath, self.limits("Ctrl-C"), self.allow_outside_files
                 )
             except ScriptError as error:
                 self.report({"ERROR"}, f"Whitted: {error}")
@@ -251,7 +261,10 @@ class WHITTED_OT_import_lua(bpy.types.Operator, ImportHelper):
 
     def _show(self, context) -> None:
         seconds = time.monotonic() - self._started
-        text = f"Whitted: running {Path(self.filepath).name}, {seconds:.0f} s (Esc stops it)"
+        text = (
+            f"Whitted: running {Path(self.filepath).name}, {seconds:.0f} s (Esc stops it; "
+            f"stopped at {self.time_limit:g} s, the import's Time Limit)"
+        )
         # Set only when it changes (once a second), not at every poll: each set redraws the
         # status bar
         if text == getattr(self, "_shown", None):

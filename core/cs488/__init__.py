@@ -26,12 +26,14 @@ def load_script(
     anywhere: bool = False,
     limits: ScriptLimits = DEFAULT_LIMITS,
     should_cancel: Callable[[], bool] | None = None,
+    notice: Callable[[str], None] | None = None,
 ) -> list[RenderCall]:
     """Run the script at `path` in a child process; return its gr.render calls. Raises
     ScriptError, whose message starts `scene.lua:LINE:` (or the file alone where no line
     applies, as for a limit the process passed). Unless `anywhere`, the script reads and
-    writes files in its own folder tree only. should_cancel() is polled while it runs."""
-    run = ScriptRun(Path(path), anywhere, limits, print_line)
+    writes files in its own folder tree only. should_cancel() is polled while it runs;
+    notice(text) is told once if it runs long, how to stop it and what its limit is."""
+    run = ScriptRun(Path(path), anywhere, limits, print_line, notice)
     return run.wait(should_cancel)
 
 

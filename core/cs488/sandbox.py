@@ -130,6 +130,7 @@ class ScriptLimits:
     memory_mib: int = 4096
     seconds_setting: str = "--script-seconds"
     memory_setting: str = "--script-memory"
+    stop_key: str = "Ctrl-C"  # what stops a running script where it runs
     # What lets a script reach files outside its folder tree (not a limit, but named so too)
     outside_setting: str = "the command line's --allow-outside-files"
 
@@ -137,6 +138,13 @@ class ScriptLimits:
         return (
             f"the script ran past its time limit of {self.seconds:g} s (is there an endless "
             f"loop?); raise the limit with {self.seconds_setting}"
+        )
+
+    def still_running_message(self, script: str, after: float) -> str:
+        """Said once a script has run `after` seconds: how to stop it, and the limit."""
+        return (
+            f"{script} is still running after {after:g} s: {self.stop_key} stops it; it is "
+            f"stopped at {self.seconds:g} s ({self.seconds_setting} raises or lowers that)"
         )
 
     def memory_message(self) -> str:
@@ -147,6 +155,12 @@ class ScriptLimits:
 
 
 DEFAULT_LIMITS = ScriptLimits()
+# The bounds of the limits a user may set: a day of script (no scene needs minutes), and 16
+# TiB (past any machine; the operating system's limits overflow beyond such numbers)
+MAX_SCRIPT_SECONDS = 86_400.0
+MIN_SCRIPT_SECONDS = 0.1
+MAX_SCRIPT_MEMORY_MIB = 2**24
+MIN_SCRIPT_MEMORY_MIB = 16
 
 
 class ScriptObject:

@@ -32,7 +32,7 @@ def _limit_this_process(limits: ScriptLimits) -> None:
         return
     cpu = math.ceil(limits.seconds) + CPU_SPARE_S
     for name, soft, hard in (("RLIMIT_CPU", cpu, cpu + CPU_SPARE_S), ("RLIMIT_CORE", 0, 0)):
-        with contextlib.suppress(ValueError, OSError, AttributeError):
+        with contextlib.suppress(ValueError, OSError, AttributeError, OverflowError):
             resource.setrlimit(getattr(resource, name), (soft, hard))
     try:
         with open("/proc/self/statm") as statm:  # Linux: the address space, in pages
@@ -40,7 +40,7 @@ def _limit_this_process(limits: ScriptLimits) -> None:
     except OSError:
         return  # macOS does not enforce RLIMIT_AS; the Lua state's cap remains
     allowed = held + limits.memory_mib * 2**20
-    with contextlib.suppress(ValueError, OSError):
+    with contextlib.suppress(ValueError, OSError, OverflowError):
         resource.setrlimit(resource.RLIMIT_AS, (allowed, allowed))
 
 

@@ -44,6 +44,9 @@ PRINT_MARK = "Whitted-print: "
 # the script's line) before it kills the child
 GRACE_S = 2.0
 POLL_S = 0.05
+# A script still running after this long is told about, once: how to stop it, and its limit
+# (a hung script would otherwise hold the caller silently for the whole limit)
+NOTICE_AFTER_S = 3.0
 
 
 class ScriptRun:
@@ -56,10 +59,13 @@ class ScriptRun:
         anywhere: bool = False,
         limits: ScriptLimits = DEFAULT_LIMITS,
         print_line: Callable[[str], None] = print,
+        notice: Callable[[str], None] | None = None,
     ):
         self.path = Path(path)
         self.limits = limits
         self.print_line = print_line
+        self.notice = notice
+        self._noticed = False
         self._folder = Path(tempfile.mkdtemp(prefix="whitted-script-"))
         self._outcome_file = self._folder / "outcome.pickle"
         options = json.dumps({"anywhere": anywhere, "limits": asdict(limits)})
@@ -106,8 +112,12 @@ class ScriptRun:
             return True
         self._pass_lines()
         if self._process.poll() is None:
-            if time.monotonic() - self._started > self.limits.seconds + GRACE_S:
+            running = time.monotonic() - self._started
+            if running > self.limits.seconds + GRACE_S:
                 self._stop(f"{self.path.name}: {self.limits.time_message()}")
+            elif running > NOTICE_AFTER_S and self.notice and not self._noticed:
+                self._noticed = True
+                self.notice(self.limits.still_running_message(self.path.name, NOTICE_AFTER_S))
             return False
         self._reader.join()
         self._pass_lines()

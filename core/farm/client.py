@@ -5,18 +5,23 @@ it is back, and on Ctrl-C or a failed task cancel everything still running."""
 from __future__ import annotations
 
 import os
+import shutil
+import tempfile
 import time
 import uuid
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .jobs import TASK_KEY_PREFIX, FarmError, frame_path, plan
+from .jobs import TASK_KEY_PREFIX, FarmError, FrameSet, Plan, frame_path
 from .stitch import png_bytes, stitch, write_whole
 from .worker import TaskError, probe_scene, run_task
 
 CONNECT_TIMEOUT_S = 10
 CANCEL_WAIT_S = 5  # for running tasks to stop their renders
+# Tasks submitted ahead of those running, per worker: enough to keep every worker busy, few
+# enough that a job of a million frames holds a few hundred tasks, not a million
+TASKS_AHEAD_PER_WORKER = 4
 SCENE_RANGE = "scene"
 
 
@@ -49,12 +54,25 @@ class JobReport:
 
 def connect(scheduler: str, workers: int):
     """(client, cluster or None). A scheduler that cannot be reached is a FarmError."""
+    import dask
     from distributed import Client, LocalCluster
 
     if scheduler == "local":
         count = workers or len(os.sched_getaffinity(0))
-        cluster = LocalCluster(n_workers=count, threads_per_worker=1, processes=True,
-                               dashboard_address=None)  # fmt: skip
+        # The workers' scratch space (dask-scratch-space) and temporary files (their tasks',
+        # their Blenders') all in one folder of the job's, removed when the cluster closes
+        # (the scheduler's, in this process, by Dask's temporary-directory setting)
+        folder = tempfile.mkdtemp(prefix="whitted-farm-")
+        setting = dask.config.set({"temporary-directory": folder})
+        try:
+            cluster = LocalCluster(n_workers=count, threads_per_worker=1, processes=True,
+                                   dashboard_address=None, local_directory=folder,
+                                   env={"TMPDIR": folder})  # fmt: skip
+        except BaseException:
+            setting.__exit__(None, None, None)
+            shutil.rmtree(folder, ignore_errors=True)
+            raise
+        cluster.whitted_cleanup = (setting, folder)
         client = Client(cluster)
         from .quiet_workers import QuietTaskFailures
 
@@ -69,25 +87,29 @@ def connect(scheduler: str, workers: int):
         ) from None
 
 
-def _size_and_frames(client, job: Job) -> tuple[tuple[int, int] | None, tuple[int, ...]]:
-    """The frame's size when known here (a CS488 script's; a .blend's borders are cut by the
-    workers) and the frames to render: reading a .blend's current frame or frame range
-    costs a Blender start on a worker, done only when --frames does not say."""
-    if job.scene.suffix == ".lua":
-        from ..cs488 import load_script
+def _script_size_and_frames(job: Job) -> tuple[tuple[int, int], tuple[int, ...]]:
+    """A CS488 script's frame size, and its one frame: the script runs here, before any
+    cluster starts, so that its mistakes are named at once."""
+    from ..cs488 import load_script
 
-        calls = load_script(job.scene, print_line=lambda line: None)
-        if len(calls) != 1:
-            raise FarmError(f"{job.scene.name}: the farm renders scripts that call gr.render once")
-        if job.frames not in (None, (1,), SCENE_RANGE):
-            raise FarmError(
-                f"--frames: {job.scene.name} is a CS488 script, one image (frame 1); "
-                "leave --frames out for it"
-            )
-        settings = calls[0].settings
-        return (settings.width, settings.height), (1,)
-    if isinstance(job.frames, tuple):
-        return None, job.frames
+    calls = load_script(job.scene, print_line=lambda line: None)
+    if len(calls) != 1:
+        raise FarmError(f"{job.scene.name}: the farm renders scripts that call gr.render once")
+    if job.frames not in (None, (1,), SCENE_RANGE):
+        raise FarmError(
+            f"--frames: {job.scene.name} is a CS488 script, one image (frame 1); "
+            "leave --frames out for it"
+        )
+    settings = calls[0].settings
+    return (settings.width, settings.height), (1,)
+
+
+def _blend_frames(client, job: Job):
+    """The frames of a .blend to render (its borders are cut by the workers): reading its
+    current frame or frame range costs a Blender start on a worker, done only when
+    --frames does not say."""
+    if job.frames not in (None, SCENE_RANGE):
+        return job.frames
     future = client.submit(probe_scene, str(job.scene.resolve()), job.blender, job.addon,
                            key=f"{TASK_KEY_PREFIX}probe-{uuid.uuid4().hex}")  # fmt: skip
     try:
@@ -95,8 +117,8 @@ def _size_and_frames(client, job: Job) -> tuple[tuple[int, int] | None, tuple[in
     except TaskError as error:
         raise FarmError(str(error)) from None
     if job.frames == SCENE_RANGE:
-        return None, tuple(range(first, last + 1))
-    return None, (current,)
+        return FrameSet([(first, last)])
+    return (current,)
 
 
 def run_job(job: Job, say: Callable[[str], None] = print) -> JobReport:
@@ -105,31 +127,32 @@ def run_job(job: Job, say: Callable[[str], None] = print) -> JobReport:
     from distributed import Event, as_completed, wait
 
     started = time.perf_counter()
+    if job.scene.suffix == ".lua":
+        size, frames = _script_size_and_frames(job)
     client, cluster = connect(job.scheduler, job.workers)
     try:
-        size, frames = _size_and_frames(client, job)
-        tasks = plan(str(job.scene.resolve()), frames, size, job.split, job.chunk, job.blender,
+        if job.scene.suffix != ".lua":
+            size, frames = None, _blend_frames(client, job)
+        tasks = Plan(str(job.scene.resolve()), frames, size, job.split, job.chunk, job.blender,
                      job.threads)  # fmt: skip
+        if len(tasks) == 0:
+            raise FarmError(f"{job.scene.name}: no frames to render (its frame range is empty)")
         if len(frames) > 1 and "#" not in job.output:
             raise FarmError(f"-o {job.output}: name the frames with #### (Blender's convention)")
         workers = len(client.scheduler_info(n_workers=-1)["workers"])
-        say(f"Farm: {len(tasks)} tasks on {workers} workers ({tasks[0].describe()}, ...)")
+        say(f"Farm: {len(tasks)} tasks on {workers} workers ({next(iter(tasks)).describe()}, ...)")
         cancel = Event(f"whitted-cancel-{uuid.uuid4().hex}", client=client)
-        futures = {
-            client.submit(
-                run_task, task, cancel.name, job.addon, job.fresh_blender, key=task.key, pure=False
-            ): task  # fmt: skip
-            for task in tasks
-        }
+        submitting = _Submitter(client, iter(tasks), tasks.tasks_of_frame(), cancel.name, job)
         report = JobReport(tasks=len(tasks), workers=workers)
         try:
-            _collect(futures, size, job, report, started, say, as_completed)
+            _collect(submitting, size, job, report, started, say, as_completed,
+                     ahead=max(1, workers) * TASKS_AHEAD_PER_WORKER)  # fmt: skip
         except BaseException:
             cancel.set()
             # The running tasks see the flag within a poll and end by themselves: waited
             # for, a local cluster's workers then close with nothing in flight
-            wait(list(futures), timeout=CANCEL_WAIT_S)
-            client.cancel(list(futures), force=True)
+            wait(list(submitting.futures), timeout=CANCEL_WAIT_S)
+            client.cancel(list(submitting.futures), force=True)
             raise
         report.wall_s = time.perf_counter() - started
         return report
@@ -137,18 +160,42 @@ def run_job(job: Job, say: Callable[[str], None] = print) -> JobReport:
         client.close()
         if cluster is not None:
             cluster.close()
+            setting, folder = cluster.whitted_cleanup
+            setting.__exit__(None, None, None)
+            shutil.rmtree(folder, ignore_errors=True)
 
 
-def _collect(futures, size, job, report, started, say, as_completed) -> None:
-    remaining: dict[int, int] = {}  # frame -> its tasks not yet back
+class _Submitter:
+    """Submits the plan's tasks as room is made for them, and counts each frame's tasks."""
+
+    def __init__(self, client, tasks, tasks_of_frame: int, cancel_name: str, job: Job):
+        self.client, self.tasks, self.tasks_of_frame = client, tasks, tasks_of_frame
+        self.cancel_name, self.job = cancel_name, job
+        self.futures: dict = {}  # in flight -> its task
+        self.remaining: dict[int, int] = {}  # frame -> its tasks not yet back
+
+    def next(self):
+        """The next task's future, or None when every task is submitted."""
+        task = next(self.tasks, None)
+        if task is None:
+            return None
+        for frame in task.frames:  # a frame's tasks follow one another in the plan
+            self.remaining.setdefault(frame, self.tasks_of_frame)
+        future = self.client.submit(run_task, task, self.cancel_name, self.job.addon,
+                                    self.job.fresh_blender, key=task.key, pure=False)  # fmt: skip
+        self.futures[future] = task
+        return future
+
+
+def _collect(submitting, size, job, report, started, say, as_completed, ahead: int) -> None:
+    first = [f for f in (submitting.next() for _ in range(ahead)) if f is not None]
+    remaining = submitting.remaining
     parts: dict[int, dict] = {}
     sizes: dict[int, tuple[int, int]] = {}  # frame -> its size, as the workers found it
-    for task in futures.values():
-        for frame in task.frames:
-            remaining[frame] = remaining.get(frame, 0) + 1
     busy: dict[str, float] = {}
-    for done, future in enumerate(as_completed(futures), start=1):
-        task = futures[future]
+    finished = as_completed(first)
+    for done, future in enumerate(finished, start=1):
+        task = submitting.futures.pop(future)
         try:
             result = future.result()
         except TaskError as error:
@@ -157,6 +204,9 @@ def _collect(futures, size, job, report, started, say, as_completed) -> None:
             raise FarmError(f"{task.describe()}: {type(error).__name__}: {error}") from None
         if result is None:  # the task saw the job's cancel flag
             raise FarmError(f"{task.describe()}: cancelled")
+        following = submitting.next()
+        if following is not None:
+            finished.add(following)
         report.rays += result.rays
         busy[result.worker] = busy.get(result.worker, 0.0) + result.wall_s
         for frame, data in result.frames.items():
@@ -167,11 +217,12 @@ def _collect(futures, size, job, report, started, say, as_completed) -> None:
                 sizes[frame] = result.size or size
             remaining[frame] -= 1
             if remaining[frame] == 0:
+                del remaining[frame]
                 frame_size = sizes.pop(frame, size)
                 report.written.append(_write_frame(job, frame, frame_size, parts.pop(frame), say))
         elapsed = time.perf_counter() - started
-        left = elapsed / done * (len(futures) - done)
-        say(f"Farm: {done}/{len(futures)} tasks | {report.rays / elapsed / 1e6:.2f} M rays/s "
+        left = elapsed / done * (report.tasks - done)
+        say(f"Farm: {done}/{report.tasks} tasks | {report.rays / elapsed / 1e6:.2f} M rays/s "
             f"across workers | about {left:.0f} s left")  # fmt: skip
     report.busiest_worker_s = max(busy.values(), default=0.0)
 

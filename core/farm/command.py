@@ -7,7 +7,12 @@ import shlex
 import sys
 from pathlib import Path
 
-from .jobs import FarmError, parse_frames, parse_split
+from .jobs import LAST_FRAME, FarmError, parse_frames, parse_split
+
+# A local cluster's worker processes, and a task's render threads: far past any machine's
+# cores, short of what would exhaust its processes or memory before a message could be given
+MAX_LOCAL_WORKERS = 256
+MAX_THREADS = 1024
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -43,21 +48,21 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
     parser.add_argument(
         "--chunk",
-        type=int,
+        type=_count("--chunk", 1, 2 * LAST_FRAME + 1),
         default=1,
         metavar="N",
         help="frames per task when frames are not split (default 1)",
     )
     parser.add_argument(
         "--workers",
-        type=int,
+        type=_count("--workers", 0, MAX_LOCAL_WORKERS),
         default=0,
         metavar="N",
         help="worker processes of a local cluster (default: one per core)",
     )
     parser.add_argument(
         "--threads",
-        type=int,
+        type=_count("--threads", 0, MAX_THREADS),
         default=1,
         metavar="N",
         help="render threads per task (default 1: one task per core)",
@@ -79,6 +84,24 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--addon", default="whitted",
                         help="the add-on's module name in the workers' Blender (default "
                         "whitted; an extension is bl_ext.user_default.whitted)")  # fmt: skip
+
+
+def _count(option: str, low: int, high: int):
+    """An argparse type: a whole number from low to high, refused in the option's terms."""
+
+    def parse(text: str) -> int:
+        try:
+            value = int(text.strip())
+        except ValueError:
+            value = None
+        if value is None or not low <= value <= high:
+            raise argparse.ArgumentTypeError(
+                f"got {text[:40]!r}; give a whole number from {low} to {high:,}"
+            )
+        return value
+
+    parse.__name__ = option
+    return parse
 
 
 def _split(text: str):
@@ -113,9 +136,11 @@ def run(args) -> int:
     if not args.scene.is_file():
         print(f"error: {args.scene}: no such scene file", file=sys.stderr)
         return 1
+    from ..cs488 import ScriptError
+
     try:
         report = run_job(job, say=lambda line: print(line, flush=True))
-    except FarmError as error:
+    except (FarmError, ScriptError) as error:
         print(f"error: {error}", file=sys.stderr)
         return 1
     except KeyboardInterrupt:

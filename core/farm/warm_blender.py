@@ -11,11 +11,14 @@ Started from the launcher, it dies with the worker process, and only with it.
 
 from __future__ import annotations
 
+import atexit
 import collections
 import json
 import os
 import queue
+import shutil
 import subprocess
+import tempfile
 import threading
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
@@ -27,6 +30,15 @@ START_TIMEOUT_S = 300  # a cold numba cache compiles the kernels on first use
 _launcher = ThreadPoolExecutor(max_workers=1, thread_name_prefix="whitted-blender-launcher")
 _idle: dict[tuple, list[WarmBlender]] = collections.defaultdict(list)
 _lock = threading.Lock()
+_started: set[WarmBlender] = set()  # alive, or not yet cleared up
+
+
+@atexit.register
+def _stop_all() -> None:
+    """The worker process is ending: its Blenders end now, and their folders go, rather
+    than by the kernel's signal after it (which leaves the folders)."""
+    for warm in list(_started):
+        warm.kill()
 
 
 class BlenderError(Exception):
@@ -52,13 +64,20 @@ class WarmBlender:
 
     def __init__(self, blender: tuple[str, ...], addon: str, env: dict, preexec_fn) -> None:
         line = [*blender, "-b", "--addons", addon, "--python", str(server_script())]
+        # Blender makes a blender_XXXXXX folder in $TMPDIR and removes it only when it quits:
+        # a Blender killed (with its worker, or cancelled) left it. Its own TMPDIR, removed
+        # when it ends (kill, or this process's exit), leaves nothing
+        self.folder = tempfile.mkdtemp(prefix="whitted-blender-")
+        env = {**env, "TMPDIR": self.folder}
         try:
             self.process = _launcher.submit(
                 subprocess.Popen, line, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
                 stderr=subprocess.STDOUT, text=True, bufsize=1, env=env, preexec_fn=preexec_fn,
             ).result()  # fmt: skip
         except OSError as error:
+            shutil.rmtree(self.folder, ignore_errors=True)
             raise BlenderError(f"cannot run {' '.join(blender)!r}: {error}") from None
+        _started.add(self)
         self.lines: queue.Queue[str | None] = queue.Queue()
         self.tail: collections.deque[str] = collections.deque(maxlen=LOG_LINES)
         threading.Thread(target=self._read, daemon=True, name="whitted-blender-log").start()
@@ -76,6 +95,8 @@ class WarmBlender:
         if self.alive():
             self.process.kill()
         self.process.wait()
+        shutil.rmtree(self.folder, ignore_errors=True)
+        _started.discard(self)
 
     def render(self, request: dict, cancelled, poll_s: float) -> tuple[dict, list[str]]:
         """(the server's answer, the lines it printed meanwhile). Raises BlenderError, or
@@ -99,7 +120,7 @@ class WarmBlender:
                     raise BlenderError(f"Blender did not start in {timeout_s} s") from None
                 continue
             if line is None:
-                self.process.wait()
+                self.kill()  # ended: its folder goes
                 log = "\n".join(self.tail)
                 raise BlenderError(f"{log}\nBlender ended (exit {self.process.returncode})")
             word, _, rest = line.partition(" ")

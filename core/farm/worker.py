@@ -159,7 +159,8 @@ def _run_script(task: Task, folder: Path, cancelled):
     with open(log_path, "w") as log:
         render = subprocess.Popen(
             lua_command(task, folder), stdout=log, stderr=subprocess.STDOUT,
-            stdin=subprocess.DEVNULL, preexec_fn=_die_with_parent, env=_environment(),
+            stdin=subprocess.DEVNULL, preexec_fn=_die_with_parent,
+            env={**_environment(), "TMPDIR": str(folder)},  # a killed render's files go too
             cwd=os.path.dirname(os.path.abspath(task.scene)) or None,
         )  # fmt: skip
         try:

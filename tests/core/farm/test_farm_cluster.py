@@ -168,6 +168,7 @@ def test_a_failing_scene_fails_the_job_with_the_workers_message(cluster, tmp_pat
     spoil = ("import bpy; bpy.data.objects['Blue'].scale = (0, 1, 1); "
              f"bpy.ops.wm.save_as_mainfile(filepath={str(broken)!r})")  # fmt: skip
     assert blender_34(str(SAMPLE), "--python-expr", spoil).returncode == 0
+    (tmp_path / "tmp").mkdir()
     with pytest.raises(FarmError) as error:
         farm_client.run_job(job(cluster, broken, tmp_path / "out_####.png", split=(2, 1)),
                             say=lambda line: None)  # fmt: skip
@@ -186,11 +187,13 @@ def test_a_failing_scene_fails_the_job_with_the_workers_message(cluster, tmp_pat
         [sys.executable, "-m", "core", "farm", str(broken), "-o", str(tmp_path / "out_####.png"),
          "--scheduler", "local", "--workers", "1", "--blender", " ".join(BLENDER)],
         capture_output=True, text=True, cwd=ROOT, timeout=300,
+        env={**os.environ, "TMPDIR": str(tmp_path / "tmp")},
     )  # fmt: skip
     assert run.returncode == 1
     assert "error: frame 1 failed on worker" in run.stderr and "non-zero scale" in run.stderr
     assert "Compute Failed" not in run.stderr and "Traceback" not in run.stderr
     assert not list(tmp_path.glob("out_*"))
+    assert list((tmp_path / "tmp").iterdir()) == []  # a failed job leaves nothing there
 
 
 def test_a_split_finer_than_the_frames_pixels_is_a_clear_error(cluster, tmp_path):
@@ -241,7 +244,9 @@ def processes_with(variable: str) -> list[int]:
 
 def test_ctrl_c_cancels_every_task_and_writes_nothing(tmp_path):
     mark = f"WHITTED_TEST_FARM={tmp_path.name}"
-    env = dict(os.environ, PYTHONPATH=f"{ROOT}{os.pathsep}{SITE}", WHITTED_TEST_FARM=tmp_path.name)
+    (tmp_path / "tmp").mkdir()  # the job's $TMPDIR: empty again once it is cancelled
+    env = dict(os.environ, PYTHONPATH=f"{ROOT}{os.pathsep}{SITE}", WHITTED_TEST_FARM=tmp_path.name,
+               TMPDIR=str(tmp_path / "tmp"))  # fmt: skip
     env.setdefault("BLENDER_USER_SCRIPTS", str(ROOT / ".build" / "blender_scripts"))
     farm = subprocess.Popen(
         [sys.executable, "-m", "core", "farm", str(SAMPLE), "--split", "4x4", "--workers", "2",
@@ -257,3 +262,4 @@ def test_ctrl_c_cancels_every_task_and_writes_nothing(tmp_path):
     assert "every task cancelled" in stderr and "Traceback" not in stderr
     assert not list(tmp_path.glob("out_*"))
     assert processes_with(mark) == []  # no worker, no Blender left running
+    assert list((tmp_path / "tmp").iterdir()) == []  # no blender_XXXXXX, no dask-scratch-space

@@ -31,7 +31,7 @@ def test_borders_cover_every_pixel_exactly_once(size, split):
 def test_frames_chunks_and_names():
     assert parse_frames("1-4") == (1, 2, 3, 4)
     assert parse_frames("3,1-2,2") == (3, 1, 2)
-    assert chunks((1, 2, 3, 4, 5), 2) == [(1, 2), (3, 4), (5,)]
+    assert list(chunks((1, 2, 3, 4, 5), 2)) == [(1, 2), (3, 4), (5,)]
     assert parse_split("4x3") == (4, 3)
     assert frame_path("out/frame_####.png", 7).as_posix() == "out/frame_0007.png"
     assert frame_path("a##/b_##.png", 123).as_posix() == "a##/b_123.png"  # the last run
