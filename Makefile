@@ -123,7 +123,8 @@ test-python: setup
 FUZZ_EXAMPLES ?= 5000
 fuzz: setup
 	WHITTED_FUZZ_EXAMPLES=$(FUZZ_EXAMPLES) $(VENV)/bin/python -m pytest -q tests/core/test_fuzz.py \
-	  tests/core/cs488/test_fuzz_scripts.py
+	  tests/core/cs488/test_fuzz_scripts.py tests/core/test_fuzz_files.py \
+	  tests/blender/test_numeric_settings.py
 
 bench: setup $(VENV)/.embree $(BUILD)/povray.ok
 	$(VENV)/bin/python -m tests.benchmarks

@@ -10,6 +10,7 @@ it renders) does not pay numba's import, a quarter of a second or more.
 
 import importlib
 
+from .checks import MAX_EXTENT, MAX_LIGHT
 from .errors import SceneError
 from .image_io import save_png
 from .model import (
@@ -40,6 +41,8 @@ from .model import (
 from .version import VERSION
 
 __all__ = [
+    "MAX_EXTENT",
+    "MAX_LIGHT",
     "VERSION",
     "AreaLight",
     "Box",

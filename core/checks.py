@@ -17,6 +17,16 @@ Vec3 = tuple[float, float, float]
 SINGULAR_RATIO = 1e-12
 # The shortest direction vector accepted: normalising anything shorter underflows
 MIN_LENGTH = 1e-150
+# The brightest light a scene may hold (a light's power, a World's radiance): the kernels
+# carry light in float32, whose largest value is 3.4e38, and multiply it by factors of many
+# sizes on the way to a pixel; a World of 1e76 (Color x Strength at Blender's largest) gave a
+# white frame. The sun is 1e3 W/m^2, its disc 2e7 W/m^2/sr: 1e20 leaves room for any scene
+MAX_LIGHT = 1e20
+# The farthest a shape may reach from the origin, in scene units: the kernels intersect in
+# each shape's own space, and a sphere of radius 1e308 around the camera, scaled down by
+# 1e-308, left rays of length 1e-308 whose squares vanish: it was not drawn at all. 1e30
+# keeps every square and product within float64, and boxes within float32
+MAX_EXTENT = 1e30
 
 
 def check_number(owner: str, name: str, value, low=None, high=None, low_open=False) -> float:
@@ -53,7 +63,7 @@ def check_choice(owner: str, name: str, value, choices: tuple[str, ...]) -> str:
     return value
 
 
-def check_vec3(owner, name, value, nonnegative=False, nonzero=False) -> np.ndarray:
+def check_vec3(owner, name, value, nonnegative=False, nonzero=False, high=None) -> np.ndarray:
     try:
         v = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
@@ -64,12 +74,19 @@ def check_vec3(owner, name, value, nonnegative=False, nonzero=False) -> np.ndarr
         raise SceneError(owner, name, f"got {value!r}; all three numbers must be finite")
     if nonnegative and np.any(v < 0):
         raise SceneError(owner, name, f"got {value!r}; each number must be >= 0")
+    if high is not None and np.any(v > high):
+        raise SceneError(owner, name, f"got {value!r}; each number must be at most {high:g}")
     # Squares below the smallest double vanish, so a length under 1e-150 computes as zero
     if nonzero and not np.linalg.norm(v) > MIN_LENGTH:
         raise SceneError(
             owner, name, f"got {value!r}; use a non-zero vector (length above {MIN_LENGTH})"
         )
     return v
+
+
+def check_light(owner: str, name: str, value) -> np.ndarray:
+    """A light's colour, power or radiance: three finite numbers from 0 to MAX_LIGHT."""
+    return check_vec3(owner, name, value, nonnegative=True, high=MAX_LIGHT)
 
 
 def valid_affine(matrices: np.ndarray) -> np.ndarray:

@@ -17,6 +17,7 @@ from pathlib import Path
 import numba
 from numba.core import types
 
+from .cache_healing import heal_damaged_loads
 from .portable_cache import choose_cpu_target, use_relocatable_cache_folders
 from .version import VERSION
 
@@ -45,6 +46,8 @@ def kernel_cache_dir(package: str = __package__) -> Path:
 
 
 numba.config.CACHE_DIR = str(kernel_cache_dir())
+# A damaged cache file of any kernel is removed and that kernel compiled again, not raised
+heal_damaged_loads(kernel_cache_dir())
 # The cache can be moved to another folder and another machine (core.portable_cache): the
 # extension ships it filled
 use_relocatable_cache_folders()

@@ -23,13 +23,13 @@ import sys
 import time
 from pathlib import Path
 
+from . import cache_healing
+from .cache_healing import REFUSED
 from .jit import kernel_cache_dir
 from .portable_cache import PACKAGE_ROOT
 
 # Where the extension's zip holds its compiled kernels: beside `core`, one folder a version
 SHIPPED_KERNELS = PACKAGE_ROOT / "kernel_cache"
-# Left in a cache folder that healed: a damaged shipped copy is not copied in again
-REFUSED = "shipped.refused"
 # A cache folder no render has used this long is removed after a warm-up fills a new one
 STALE_DAYS = 30
 
@@ -52,9 +52,11 @@ def raised_reading_cache(error: BaseException) -> bool:
 def load_or_rebuild(get_kernels):
     """get_kernels() (which compiles the kernels or loads them from the cache); if it fails
     reading a damaged cache, remove the cache folder, say so on stderr, and call it again.
-    Returns (its result, whether the cache was rebuilt)."""
+    Returns (its result, whether the cache was rebuilt). Damage to one function's files is
+    healed as numba loads it (core.cache_healing); this catches what that cannot see."""
+    healed_before = len(cache_healing.healed)
     try:
-        return get_kernels(), False
+        return get_kernels(), len(cache_healing.healed) > healed_before
     except Exception as error:
         if not raised_reading_cache(error):
             raise

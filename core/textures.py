@@ -34,6 +34,8 @@ def open_image(path):
     (too_large) decides, with a message of its own."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", Image.DecompressionBombWarning)
+        # A damaged file's metadata (Pillow's "Corrupt EXIF data"): the pixels still count
+        warnings.simplefilter("ignore", UserWarning)
         with Image.open(path) as image:
             yield image
 

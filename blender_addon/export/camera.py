@@ -56,6 +56,7 @@ def convert(scene, depsgraph, settings: core.RenderSettings) -> core.Camera:
 # The largest lens shift read, in sensor widths (Blender's panel offers -2 to 2): past it a
 # picture is of a sliver of the view a million widths away
 MAX_SHIFT = 100.0
+MIN_FSTOP = 1e-5  # Cycles' floor on Depth of Field > F-Stop
 
 
 def _check_lens(data, owner: str) -> None:
@@ -124,5 +125,6 @@ def depth_of_field(scene, camera, eye, view) -> tuple[float, float]:
             f"is {focus:.4g} in front of the camera; put the focus object in front of it or "
             "set a positive Focus Distance",
         )
-    radius = camera.data.lens * 1e-3 / (2.0 * dof.aperture_fstop)
+    # As Cycles reads it: an F-Stop of 0 (which Blender's field allows) as 1e-5, the widest
+    radius = camera.data.lens * 1e-3 / (2.0 * max(dof.aperture_fstop, MIN_FSTOP))
     return radius / scene.unit_settings.scale_length, focus

@@ -38,6 +38,7 @@ def convert(obj, matrix_world, warn=lambda text: None):
         warn(text)
     light = obj.data
     kind = light.type
+    _check_power(obj)
     if kind in {"POINT", "AREA"} and light.whitted.model == "CS488":
         return (
             _point_light(obj, matrix_world) if kind == "POINT" else _area_light(obj, matrix_world)
@@ -100,6 +101,20 @@ def _nodes_change_the_light(light) -> bool:
         if tuple(colour[:3]) != (1.0, 1.0, 1.0) or strength != 1.0:
             return True
     return False
+
+
+def _check_power(obj) -> None:
+    """Refuse a light brighter than the renderer carries (Color x Power reaches 1e76 in
+    Blender's fields: a white frame), in the panel's terms."""
+    brightest = float(np.max(blender_power(obj.data)))
+    if not brightest <= core.MAX_LIGHT:
+        field = "Strength" if obj.data.type == "SUN" else "Power"
+        raise core.SceneError(
+            f"light '{obj.name}'",
+            f"Light Properties > Light > {field}",
+            f"with its Color and Exposure gives {brightest:g}; Whitted takes lights of up to "
+            f"{core.MAX_LIGHT:g}: lower it",
+        )
 
 
 def blender_power(light) -> np.ndarray:

@@ -40,19 +40,34 @@ def convert(world, warn=lambda text: None, with_pixels: bool = True):
     Environment Texture's image is not read and no environment is made of it."""
     if world is None:
         return None, BLACK, BLACK
-    ambient = tuple(float(c) for c in world.whitted.ambient)
+    ambient = _bounded(world, tuple(float(c) for c in world.whitted.ambient), "Whitted > Ambient")
     if world.whitted.model == "CS488":
-        return None, _cs488_background(world), ambient
+        return None, _bounded(world, _cs488_background(world), "Surface > Color"), ambient
     tree = node_tree_in_use(world)
     if tree is None:
-        colour = tuple(float(c) for c in world.color)
+        colour = _bounded(world, tuple(float(c) for c in world.color), "Viewport Display > Color")
         environment = core.Environment(colour=colour, name=world.name, **_ray_visibility(world))
         return environment, colour, ambient
     environment = _from_nodes(world, tree, warn, with_pixels)
     if environment is not None:
+        _bounded(world, environment.colour, "Surface > Color x Strength")
         for name, visible in _ray_visibility(world).items():
             setattr(environment, name, visible)
     return environment, BLACK, ambient
+
+
+def _bounded(world, colour: tuple, field: str) -> tuple:
+    """`colour`, unless it is brighter than any light the renderer carries (Blender's fields
+    reach 3.4e38, and Color x Strength 1e76: a white frame), refused in the panel's terms."""
+    brightest = max(colour)
+    if not brightest <= core.MAX_LIGHT:
+        raise core.SceneError(
+            f"world '{world.name}'",
+            f"World Properties > {field}",
+            f"gives {brightest:g}; Whitted takes a World of up to {core.MAX_LIGHT:g} (a clear "
+            "sky is about 1): lower it",
+        )
+    return colour
 
 
 def _cs488_background(world) -> tuple:

@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..checks import MAX_EXTENT
+from ..errors import SceneError
 from ..kernels.bvh_build import build_bvh
 from ..kernels.bvh_wide import WIDTH
 from ..kernels.layout import Geometry
@@ -47,7 +49,9 @@ def pack_geometry(scene_shapes: list, shapes: list, world_from_object: np.ndarra
             shape_index[i] = m
             box_lo[i], box_hi[i] = meshes.lo[m], meshes.hi[m]
     object_from_world = np.linalg.inv(world_from_object)[:, :3] if n else np.empty((0, 3, 4))
-    lo, hi = _world_boxes(world_from_object, box_lo, box_hi)
+    with np.errstate(over="ignore", invalid="ignore"):  # a shape too large: named next
+        lo, hi = _world_boxes(world_from_object, box_lo, box_hi)
+    _check_reach(shapes, lo, hi)
     for i, tree in tree_of_row.items():
         lo[i], hi[i] = csg_world_box(csg.program, *csg.ranges[tree], lo, hi)
     # Only the scene's own shapes enter the top level (CSG operands are reached through
@@ -95,6 +99,23 @@ def _shadow_transparency(shapes: list, scene_rows: int, shadow_share: list) -> n
         else:
             tau[i] = 0.0 if isinstance(shape, Csg) else shadow_share[i]
     return tau
+
+
+def _check_reach(shapes: list, lo: np.ndarray, hi: np.ndarray) -> None:
+    """Refuse a shape reaching past MAX_EXTENT from the origin, by name: drawn in its own
+    space, scaled by the inverse of its size, it would vanish or fill the frame wrongly."""
+    with np.errstate(invalid="ignore"):
+        reach = np.maximum(np.abs(lo), np.abs(hi)).max(axis=1, initial=0.0)
+        empty = np.any(lo > hi, axis=1)  # a mesh left without triangles
+        bad = np.flatnonzero(~empty & ~(reach <= MAX_EXTENT))
+    if len(bad):
+        shape = shapes[bad[0]]
+        raise SceneError(
+            shape.owner,
+            "transform",
+            f"reaches {reach[bad[0]]:.3g} scene units from the origin (its size and place); "
+            f"Whitted renders shapes within {MAX_EXTENT:g} of it: scale the scene down",
+        )
 
 
 def _world_boxes(world_from_object, lo, hi):

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..checks import Vec3, check_choice, check_flag, check_number, check_vec3
+from ..checks import Vec3, check_choice, check_flag, check_light, check_number, check_vec3
 from ..errors import SceneError
 from .lights import check_parallelogram
 
@@ -67,7 +67,7 @@ class SphereLight(Emitter):
     def validate(self) -> None:
         owner = f"light '{self.name}'"
         check_vec3(owner, "position", self.position)
-        check_vec3(owner, "power", self.power, nonnegative=True)
+        check_light(owner, "power", self.power)
         check_number(owner, "radius", self.radius, low=0.0)
         check_flag(owner, "soft_falloff", self.soft_falloff)
         self._check_switches(owner)
@@ -120,7 +120,7 @@ class PanelLight(Emitter):
         owner = f"area light '{self.name}'"
         check_parallelogram(owner, self.centre, self.edge_u, self.edge_v)
         check_choice(owner, "shape", self.shape, PANEL_SHAPES)
-        check_vec3(owner, "power", self.power, nonnegative=True)
+        check_light(owner, "power", self.power)
         self._check_switches(owner)
 
     def area(self) -> float:
@@ -142,7 +142,7 @@ class SunLight(Emitter):
     def validate(self) -> None:
         owner = f"sun '{self.name}'"
         check_vec3(owner, "direction", self.direction, nonzero=True)
-        check_vec3(owner, "irradiance", self.irradiance, nonnegative=True)
+        check_light(owner, "irradiance", self.irradiance)
         check_number(owner, "angle", self.angle, low=0.0, high=180.0)
         check_choice(owner, "sampling", self.sampling, SUN_SAMPLINGS)
         self._check_switches(owner)

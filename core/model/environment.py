@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..checks import Vec3, check_choice, check_flag, check_vec3
+from ..checks import Vec3, check_choice, check_flag, check_light
 from ..errors import SceneError
 from .materials import Texture
 
@@ -50,7 +50,7 @@ class Environment:
 
     def validate(self) -> None:
         owner = f"world '{self.name}'"
-        check_vec3(owner, "colour", self.colour, nonnegative=True)
+        check_light(owner, "colour", self.colour)
         check_choice(owner, "interpolation", self.interpolation, INTERPOLATIONS)
         for switch in ("camera", "diffuse", "glossy", "transmission"):
             check_flag(owner, switch, getattr(self, switch))

@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..checks import Vec3, check_vec3
+from ..checks import Vec3, check_light, check_vec3
 from ..errors import SceneError
 
 
@@ -41,7 +41,7 @@ class PointLight:
     def validate(self) -> None:
         owner = f"light '{self.name}'"
         check_vec3(owner, "position", self.position)
-        check_vec3(owner, "intensity", self.intensity, nonnegative=True)
+        check_light(owner, "intensity", self.intensity)
         _check_attenuation(owner, self.attenuation)
 
 
@@ -60,7 +60,7 @@ class DirectionalLight:
     def validate(self) -> None:
         owner = f"directional light '{self.name}'"
         check_vec3(owner, "direction", self.direction, nonzero=True)
-        check_vec3(owner, "intensity", self.intensity, nonnegative=True)
+        check_light(owner, "intensity", self.intensity)
 
 
 @dataclass
@@ -89,5 +89,5 @@ class AreaLight:
     def validate(self) -> None:
         owner = f"area light '{self.name}'"
         check_parallelogram(owner, self.centre, self.edge_u, self.edge_v)
-        check_vec3(owner, "intensity", self.intensity, nonnegative=True)
+        check_light(owner, "intensity", self.intensity)
         _check_attenuation(owner, self.attenuation)

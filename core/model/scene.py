@@ -6,7 +6,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..checks import Vec3, check_vec3, valid_affine
+from ..checks import Vec3, check_light, valid_affine
 from ..errors import SceneError
 from .camera import Camera
 from .emitters import EMITTERS
@@ -48,8 +48,8 @@ class Scene:
         checked = self._checked_transforms()
         for shape in self.shapes:
             shape.validate(checked)
-        check_vec3("scene", "ambient", self.ambient, nonnegative=True)
-        check_vec3("scene", "background", self.background, nonnegative=True)
+        check_light("scene", "ambient", self.ambient)
+        check_light("scene", "background", self.background)
         if self.environment is not None:
             if not isinstance(self.environment, Environment):
                 raise SceneError("scene", "environment", f"got {self.environment!r}")
