@@ -1,5 +1,6 @@
 """OpenEXR files of float channels, written with the standard library and numpy: what the
-command line's `--passes` writes (Pillow reads EXR but cannot write it).
+command line's `--passes` writes (Pillow neither reads nor writes EXR; `exr_read` reads
+texture files).
 
 Single-part scanline files, 32-bit float channels, ZIP compression (zlib over blocks of 16
 rows, after OpenEXR's byte split and delta predictor: a tenth of the size of raw floats for

@@ -13,6 +13,7 @@ import numpy as np
 from PIL import Image, UnidentifiedImageError
 
 from .errors import SceneError
+from .exr_read import MAGIC, ExrError, read_exr_rgb
 from .model import Texture
 
 # 8192 x 8192: 0.8 GB as the kernels' float32 RGB. A small PNG can hold far more pixels (a
@@ -24,6 +25,7 @@ MAX_TEXTURE_PIXELS = 2**26
 # read again; at most this many bytes of float32 pixels are kept, the least recently used
 # dropped first
 TEXTURE_CACHE_BYTES = 512 * 2**20
+EXR_MAGIC = MAGIC.to_bytes(4, "little")
 _decoded: OrderedDict = OrderedDict()
 _decoded_lock = threading.Lock()
 
@@ -119,12 +121,35 @@ class ImageFileError(Exception):
 
 def read_rgb(path) -> np.ndarray:
     """(h, w, 3) float64 RGB of the image file at its true values: 0..1 for 8 and 16-bit
-    integers, as stored for floating point. Raises ImageFileError."""
-    if str(path).lower().endswith(".exr"):
-        raise ImageFileError(
-            "is an OpenEXR image, which the command line does not read (Blender does); save "
-            "it as a float TIFF or a 16-bit PNG"
-        )
+    integers, as stored for floating point (float TIFF, OpenEXR). Raises ImageFileError."""
+    rgb = (_read_exr if _is_exr(path) else _read_with_pillow)(path)
+    if not np.all(np.isfinite(rgb)):
+        raise ImageFileError("holds NaN or infinite values; a texture's values are finite")
+    return rgb
+
+
+def _is_exr(path) -> bool:
+    """Told by its first bytes, as Pillow tells its formats: not by the name's suffix."""
+    try:
+        with open(path, "rb") as file:
+            return file.read(4) == EXR_MAGIC
+    except OSError:
+        return False  # Pillow's opening says why
+
+
+def _read_exr(path) -> np.ndarray:
+    try:
+        with open(path, "rb") as file:
+            return read_exr_rgb(file.read(), too_large)
+    except ExrError as problem:
+        raise ImageFileError(str(problem)) from None
+    except OSError as error:
+        raise ImageFileError(f"cannot be read: {error.strerror or error}") from None
+    except MemoryError:
+        raise ImageFileError("needs more memory to decode than is free") from None
+
+
+def _read_with_pillow(path) -> np.ndarray:
     try:
         with open_image(path) as image:
             if problem := too_large(image.size):
@@ -140,8 +165,6 @@ def read_rgb(path) -> np.ndarray:
         raise ImageFileError("needs more memory to decode than is free") from None
     except Exception as error:  # noqa: BLE001 - a broken file can fail anywhere in a decoder
         raise ImageFileError(_decoder_problem(error)) from None
-    if not np.all(np.isfinite(rgb)):
-        raise ImageFileError("holds NaN or infinite values; a texture's values are finite")
     return rgb
 
 

@@ -7,7 +7,7 @@ import shlex
 import sys
 from pathlib import Path
 
-from .jobs import LAST_FRAME, FarmError, parse_frames, parse_split
+from .jobs import LAST_FRAME, FarmError, frame_path, parse_frames, parse_split
 
 # A local cluster's worker processes, and a task's render threads: far past any machine's
 # cores, short of what would exhaust its processes or memory before a message could be given
@@ -135,6 +135,13 @@ def run(args) -> int:
     )  # fmt: skip
     if not args.scene.is_file():
         print(f"error: {args.scene}: no such scene file", file=sys.stderr)
+        return 1
+    from ..output_file import OutputError, check_writable
+
+    try:  # before any cluster starts: a folder that cannot take the frames
+        check_writable(frame_path(args.output, 1), f"-o {args.output}")
+    except OutputError as error:
+        print(f"error: {error}", file=sys.stderr)
         return 1
     from ..cs488 import ScriptError
 

@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 from PIL import Image
 
+from ..output_file import reason
 from .jobs import Border, FarmError
 
 
@@ -31,18 +32,23 @@ def stitch(width: int, height: int, parts: dict[Border, bytes]) -> np.ndarray:
 
 
 def write_whole(path: Path, data: bytes) -> None:
-    """Write beside the target, then rename: readers never see half a frame."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    handle, temporary = tempfile.mkstemp(suffix=path.suffix, prefix=".whitted-", dir=path.parent)
+    """Write beside the target, then rename: readers never see half a frame. A path that
+    cannot take it is a FarmError with the system's reason."""
+    temporary = None
     try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        handle, temporary = tempfile.mkstemp(suffix=path.suffix, prefix=".whitted-",
+                                             dir=path.parent)  # fmt: skip
         with os.fdopen(handle, "wb") as out:
             out.write(data)
         umask = os.umask(0)
         os.umask(umask)
         os.chmod(temporary, 0o666 & ~umask)
         os.replace(temporary, path)
+    except OSError as error:
+        raise FarmError(f"-o: {path} was not written: {reason(error, path)}") from None
     finally:
-        if os.path.exists(temporary):
+        if temporary is not None and os.path.exists(temporary):
             os.unlink(temporary)
 
 

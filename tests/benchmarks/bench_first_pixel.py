@@ -58,6 +58,37 @@ out = render(scene, settings, on_tile=on_tile)
 print(f"first_pixel {first[0]:.3f} kernels {out.stats.kernel_source}")
 """
 
+# The same from the unpacked zip, its `core` imported under the name Blender gives it (the
+# kernels it ships are compiled for that name: a `core` imported as `core` would find none),
+# its parents bare packages (the add-on's own __init__ needs bpy); also says what it shipped
+INSTALLED = "bl_ext.user_default.whitted.core"
+INSTALLED_FIRST_PIXEL = f"""
+import time
+start = time.perf_counter()
+import dataclasses, importlib, pickle, sys, types
+folder = sys.argv[2]
+for name, path in (("bl_ext", []), ("bl_ext.user_default", []),
+                   ("bl_ext.user_default.whitted", [folder])):
+    package = types.ModuleType(name)
+    package.__path__ = path
+    sys.modules[name] = package
+warmup = importlib.import_module("{INSTALLED}.kernel_warmup")
+shipped = importlib.import_module("{INSTALLED}.kernel_cache").shipped_kernels()
+found = sorted(p.name for p in shipped.glob("warm-*.ok")) if shipped.is_dir() else []
+print(f"shipped {{shipped.name if shipped.is_dir() else 'none'}} {{','.join(found) or '-'}} "
+      f"wanted {{warmup.MARKER}}")
+kernels_ready, warm_kernels = warmup.kernels_ready, warmup.warm_kernels
+render = importlib.import_module("{INSTALLED}.driver").render
+
+class Installed(pickle.Unpickler):
+    def find_class(self, module, name):
+        if module == "core" or module.startswith("core."):
+            module = "{INSTALLED[:-4]}" + module
+        return super().find_class(module, name)
+""" + FIRST_PIXEL.split("from core.driver import render", 1)[1].replace(
+    'pickle.load(open(sys.argv[1], "rb"))', 'Installed(open(sys.argv[1], "rb")).load()'
+).replace("from core.kernel_warmup import kernels_ready, warm_kernels\n", "")
+
 SCENE_SOURCE = """
 import pickle, sys
 from core import RenderSettings, render
@@ -78,11 +109,15 @@ def python(code, cache, *args, cwd=ROOT):
     return done.stdout
 
 
-def first_pixel(cache, scene_file, cwd=ROOT):
-    out = python(FIRST_PIXEL, cache, str(scene_file), cwd=cwd)
+def first_pixel(cache, scene_file, installed=None):
+    if installed is None:
+        out = python(FIRST_PIXEL, cache, str(scene_file))
+    else:
+        out = python(INSTALLED_FIRST_PIXEL, cache, str(scene_file), str(installed))
     seconds, source = re.search(r"first_pixel ([\d.]+) kernels (\w+)", out).groups()
     ready = READY.search(out)
-    return float(seconds), source, ready
+    shipped = re.search(r"shipped (\S+) (\S+) wanted (\S+)", out)
+    return float(seconds), source, ready, shipped
 
 
 def main():
@@ -91,8 +126,8 @@ def main():
     with tempfile.TemporaryDirectory() as folder:
         cache, scene_file = Path(folder) / "cache", Path(folder) / "final.pkl"
         scene_file.write_bytes(pickle.dumps(final_scene()))
-        cold, cold_source, ready = first_pixel(cache, scene_file)
-        cached, cached_source, _ = first_pixel(cache, scene_file)
+        cold, cold_source, ready, _ = first_pixel(cache, scene_file)
+        cached, cached_source, _, _ = first_pixel(cache, scene_file)
         # The extension as Blender unpacks it; its `core` comes first on the path (the
         # working folder), before the checkout's
         installed_folder = Path(folder) / "installed"
@@ -101,8 +136,8 @@ def main():
             platforms=("linux-x64",),
         )["linux-x64"]  # fmt: skip
         zipfile.ZipFile(zip_path).extractall(installed_folder)
-        installed, installed_source, compiled = first_pixel(
-            Path(folder) / "new_user_cache", scene_file, cwd=installed_folder
+        installed, installed_source, compiled, shipped = first_pixel(
+            Path(folder) / "new_user_cache", scene_file, installed_folder
         )
         names = [*scenes(), "final scene"]
         sources = {n: python(SCENE_SOURCE, cache, n, str(scene_file)).split()[-1] for n in names}
@@ -114,7 +149,7 @@ def main():
     print(f"first_pixel_cached_s: {cached:.2f} (kernels from the {cached_source})")
     print(
         f"first_pixel_installed_s: {installed:.2f} (kernels from the {installed_source}"
-        + ("; compiled!" if compiled else ", shipped")
+        + (f"; compiled! {why_not_shipped(shipped)}" if compiled else ", shipped")
         + ")"
     )
     recompiled = [n for n, s in sources.items() if s != "cache"]
@@ -123,6 +158,18 @@ def main():
         + (f" {recompiled}" * bool(recompiled))
     )
     write_results(steps, cold, cached, installed)
+
+
+def why_not_shipped(shipped) -> str:
+    """Why the installed zip's kernels were not used, from what the installed run saw."""
+    if shipped is None:
+        return "(the installed run said nothing of its shipped kernels)"
+    folder, markers, wanted = shipped.groups()
+    if folder == "none":
+        return "(the zip holds no kernels for this core's cache folder: built for another name?)"
+    if wanted not in markers.split(","):
+        return f"(the zip ships {markers}; this CPU compiles for {wanted[5:-3]})"
+    return f"(the zip ships {wanted}, yet its kernels did not load: numba's key differs)"
 
 
 def write_results(steps, cold, cached, installed):

@@ -1,26 +1,30 @@
-"""Fuzzing the files a scene reads: texture images (random valid PNG, JPEG, TIFF, BMP and GIF
-files of every mode, then broken: bytes flipped, cut short, chunks of random kind and size put
-in, header fields set to edge values; OpenEXR headers) and OBJ meshes (lines of every
-statement with edge numbers and indices, and random bytes). Each must read to finite values
-of the right shape or fail with the reader's own error (`ImageFileError`, `ObjError`), whose
-message the caller puts at the script's line: never another exception, and in bounded time.
+"""Fuzzing the files a scene reads: texture images (random valid PNG, JPEG, TIFF, BMP, GIF
+and OpenEXR files of every mode, then broken: bytes flipped, cut short, chunks of random kind
+and size put in, header fields set to edge values; bare OpenEXR headers) and OBJ meshes
+(lines of every statement with edge numbers and indices, and random bytes). Each must read
+to finite values of the right shape or fail with the reader's own error (`ImageFileError`,
+`ObjError`), whose message the caller puts at the script's line: never another exception,
+and in bounded time.
 
 `make test` runs a fixed-seed sample; `make fuzz` runs thousands with a random seed.
 """
 
 import io
 import struct
+import tempfile
 import time
 import zlib
+from pathlib import Path
 
 import numpy as np
 from hypothesis import given
 from hypothesis import strategies as st
 from PIL import Image
 
+from core.exr import write_exr
 from core.obj_file import ObjError, parse_obj
 from core.textures import MAX_TEXTURE_PIXELS, ImageFileError, read_rgb
-from tests.core.cs488.test_fuzz_scripts import FUZZ
+from tests.support.fuzz_scenes import FUZZ
 
 EXAMPLE_SECONDS = 20  # one file read, however hostile (a 64 M pixel bomb decodes in ~5)
 FORMATS = {
@@ -40,11 +44,16 @@ def png_chunk(kind: bytes, data: bytes) -> bytes:
 
 @st.composite
 def valid_images(draw) -> bytes:
-    kind = draw(st.sampled_from(sorted(FORMATS)))
-    mode = draw(st.sampled_from(FORMATS[kind]))
+    kind = draw(st.sampled_from([*sorted(FORMATS), "EXR"]))
     width, height = draw(st.integers(1, 24)), draw(st.integers(1, 24))
     seed = draw(st.integers(0, 2**32 - 1))
     rng = np.random.default_rng(seed)
+    if kind == "EXR":  # Whitted's own writer: float channels, ZIP blocks
+        names = draw(st.sampled_from([("R", "G", "B"), ("A", "B", "G", "R"), ("Y",), ("Z",)]))
+        with tempfile.TemporaryDirectory() as folder:
+            channels = {n: rng.random((height, width)).astype(np.float32) for n in names}
+            return write_exr(Path(folder) / "t.exr", channels).read_bytes()
+    mode = draw(st.sampled_from(FORMATS[kind]))
     image = Image.frombytes("RGB", (width, height), rng.integers(0, 256, width * height * 3,
                                                                  np.uint8).tobytes())  # fmt: skip
     if mode in ("I;16", "I", "F"):

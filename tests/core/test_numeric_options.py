@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from tests.support import ROOT
+from tests.support import ROOT, hostile
 
 SCRIPT = """r = gr.node('r')
 r:add_child(gr.sphere('s'))
@@ -31,11 +31,8 @@ RANDOM_VALUES = 40  # besides those above, random numbers of every size and sign
 
 
 def render(folder, *args):
-    return subprocess.run(
-        [sys.executable, "-m", "core", "render", "scene.lua", *args],
-        cwd=folder, capture_output=True, text=True, timeout=120,
-        env={**os.environ, "PYTHONPATH": str(ROOT)},
-    )  # fmt: skip
+    """The command line, leaving no temporary file or process (checked by `hostile.run`)."""
+    return hostile.run(folder, "scene.lua", *args)
 
 
 def random_values(seed: int) -> list[tuple[str, str]]:

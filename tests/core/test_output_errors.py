@@ -9,12 +9,11 @@ elsewhere those two cases are skipped."""
 import contextlib
 import os
 import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
-from tests.support import ROOT
+from tests.support import hostile
 
 SCRIPT = """r = gr.node('r')
 r:add_child(gr.sphere('s'))
@@ -24,12 +23,9 @@ gr.render(r, '{file}', {size}, {size}, {{0, 0, 5}}, {{0, 0, -1}}, {{0, 1, 0}}, 5
 
 
 def run(folder: Path, *args, file="o.png", size=8):
+    """The command line, leaving no temporary file or process (checked by `hostile.run`)."""
     (folder / "scene.lua").write_text(SCRIPT.format(file=file, size=size))
-    return subprocess.run(
-        [sys.executable, "-m", "core", "render", "scene.lua", *map(str, args)],
-        cwd=folder, capture_output=True, text=True, timeout=300,
-        env={**os.environ, "PYTHONPATH": str(ROOT)},
-    )  # fmt: skip
+    return hostile.run(folder, "scene.lua", *args)
 
 
 def tree(folder: Path) -> list[str]:

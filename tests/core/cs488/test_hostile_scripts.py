@@ -15,9 +15,7 @@ import pytest
 
 from core.cs488.script_process import GRACE_S
 from tests.support import ROOT
-
-RENDER = "gr.render(r, 'o.png', 8, 8, {0, 0, 5}, {0, 0, -1}, {0, 1, 0}, 50, {0, 0, 0}, {})"
-NORMAL = "r = gr.node('r')\nr:add_child(gr.sphere('s'))\n" + RENDER + "\n"
+from tests.support.hostile import NORMAL, RENDER, run
 
 
 def deep_chain(levels: int) -> str:
@@ -72,14 +70,6 @@ CASES = [
     ("output path a folder", NORMAL.replace("o.png", "taken.png").encode(), {"taken.png/": b""},
      "error: "),
 ]  # fmt: skip
-
-
-def run(folder, *args):
-    return subprocess.run(
-        [sys.executable, "-m", "core", "render", *map(str, args)],
-        cwd=folder, capture_output=True, text=True, timeout=300,
-        env={**os.environ, "PYTHONPATH": str(ROOT)},
-    )  # fmt: skip
 
 
 @pytest.mark.parametrize("case, source, files, message", CASES, ids=[c[0] for c in CASES])

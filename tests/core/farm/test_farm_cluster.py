@@ -11,7 +11,6 @@ import signal
 import subprocess
 import sys
 import threading
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -22,6 +21,7 @@ from core.farm.jobs import FarmError
 from core.farm.worker import SUMMARY
 from tests.support import ROOT
 from tests.support.blender34 import blender_34
+from tests.support.hostile import processes_with
 
 distributed = pytest.importorskip("distributed")
 
@@ -228,18 +228,6 @@ def test_an_unreachable_scheduler_is_a_clear_error(tmp_path):
     assert run.returncode == 1
     assert "--scheduler tcp://127.0.0.1:9: cannot reach a Dask scheduler there" in run.stderr
     assert "Traceback" not in run.stderr
-
-
-def processes_with(variable: str) -> list[int]:
-    """Processes whose environment holds `variable`: those the farm started, and theirs."""
-    found = []
-    for environ in Path("/proc").glob("[0-9]*/environ"):
-        try:
-            if variable.encode() in environ.read_bytes().split(b"\0"):
-                found.append(int(environ.parent.name))
-        except OSError:  # ended meanwhile, or not ours to read
-            pass
-    return found
 
 
 def test_ctrl_c_cancels_every_task_and_writes_nothing(tmp_path):

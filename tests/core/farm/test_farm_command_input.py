@@ -5,6 +5,7 @@ and no job, finished, failed or cancelled, leaves a file in $TMPDIR (Blender's
 blender_XXXXXX folders, Dask's dask-scratch-space)."""
 
 import os
+import random
 import subprocess
 import sys
 import time
@@ -43,6 +44,43 @@ CASES = [
     ("frames listed 10,000 times", ["--frames", ",".join(["1-1000000"] * 10_000)], 1,
      "no such scene file"),
 ]  # fmt: skip
+
+
+def random_options(seed: int, count: int) -> list[tuple[str, str]]:
+    """Random values for every numeric option of the farm command: numbers of every size
+    and sign, and lists and pairs of them where the option takes those."""
+    rng = random.Random(seed)
+
+    def number() -> str:
+        return rng.choice([
+            str(rng.randint(-(10 ** rng.randint(0, 25)), 10 ** rng.randint(0, 25))),
+            repr(rng.uniform(-1, 1) * 10.0 ** rng.randint(-30, 30)),
+            rng.choice(["nan", "inf", "-0", "0", "1", "", " 7 ", "0x1f", "1_000"]),
+        ])  # fmt: skip
+
+    shapes = {
+        "--workers": number, "--threads": number, "--chunk": number,
+        "--split": lambda: f"{number()}x{number()}",
+        "--frames": lambda: ",".join(
+            f"{number()}-{number()}" if rng.random() < 0.5 else number()
+            for _ in range(rng.randint(1, 5))
+        ),
+    }  # fmt: skip
+    return [(option, shapes[option]()) for option in rng.choices(sorted(shapes), k=count)]
+
+
+@pytest.mark.parametrize("option, value", random_options(40, 40))
+def test_random_numeric_options_are_refused_or_taken_at_once(tmp_path, option, value):
+    """A missing scene: every value taken ends at its message, every value refused at the
+    option's; never a traceback, in seconds."""
+    start = time.monotonic()
+    run = farm(tmp_path / "missing.blend", "-o", tmp_path / "out_####.png", f"{option}={value}")
+    assert time.monotonic() - start < 30
+    assert "Traceback" not in run.stderr, run.stderr
+    if run.returncode == 2:
+        assert f"argument {option}: " in run.stderr, run.stderr
+    else:
+        assert run.returncode == 1 and "no such scene file" in run.stderr, run.stderr
 
 
 def farm(*args, tmp=None, timeout=120):
@@ -104,3 +142,34 @@ def test_a_finished_blend_job_leaves_nothing_in_tmpdir(tmp_path):
     assert run.returncode == 0, run.stderr[-3000:]
     assert (tmp_path / "out_0001.png").is_file()
     assert list((tmp_path / "tmp").iterdir()) == []
+
+
+@pytest.mark.parametrize(
+    "output, says",
+    [
+        ("taken/out_####.png", "taken is a file, not a folder"),
+        ("n" * 300 + "_####.png", "File name too long"),
+        ("taken/deeper/out_####.png", "taken is a file, not a folder"),
+    ],
+)
+def test_a_frame_path_that_cannot_be_written_is_named_before_any_cluster(tmp_path, output, says):
+    (tmp_path / "taken").write_text("not a folder")
+    start = time.monotonic()
+    run = farm(SAMPLE, "-o", tmp_path / output)
+    assert time.monotonic() - start < 30
+    assert run.returncode == 1, run.stderr
+    assert run.stderr.startswith(f"error: -o {tmp_path / output}: ") and says in run.stderr
+    assert "Traceback" not in run.stderr
+
+
+def test_a_frame_the_disk_refuses_is_a_farm_error_and_leaves_nothing(tmp_path):
+    from core.farm.stitch import write_whole
+
+    (tmp_path / "taken").write_text("not a folder")
+    with pytest.raises(FarmError, match="taken is a file, not a folder"):
+        write_whole(tmp_path / "taken" / "out_0001.png", b"png")
+    (tmp_path / "dir").mkdir()
+    (tmp_path / "dir" / "out_0001.png").mkdir()  # a folder where the frame goes
+    with pytest.raises(FarmError, match="out_0001.png was not written"):
+        write_whole(tmp_path / "dir" / "out_0001.png", b"png")
+    assert sorted(p.name for p in (tmp_path / "dir").iterdir()) == ["out_0001.png"]

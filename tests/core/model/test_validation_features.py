@@ -106,7 +106,9 @@ def test_missing_and_unreadable_textures(tmp_path):
     junk = tmp_path / "junk.png"
     junk.write_bytes(b"not an image at all")
     material.texture = Texture(junk)
-    with pytest.raises(SceneError, match=r"material 'Wood'.*texture: Pillow cannot read"):
+    with pytest.raises(
+        SceneError, match=r"material 'Wood'.*texture: .*junk.png' is not an image Pillow reads"
+    ):
         attempt(scene_with(Sphere("S", material)))
 
 
