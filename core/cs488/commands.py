@@ -9,6 +9,7 @@ names (meshes, textures, the output PNG) are resolved against the script's own f
 from __future__ import annotations
 
 import errno
+import os
 from pathlib import Path
 
 import numpy as np
@@ -135,13 +136,7 @@ class Commands:
         except OSError as error:
             raise ArgumentError(f"{what} '{name}': {_reason(error)}") from None
         if not found:
-            if path.is_dir():
-                problem = "is a folder, not a file"
-            elif path.exists():  # read, a pipe or a device would wait or never end
-                problem = "is not a regular file (a pipe, socket or device)"
-            else:
-                problem = "not found"
-            raise ArgumentError(f"{what} '{name}' {problem} (looked for {path})")
+            raise ArgumentError(f"{what} '{name}' {_not_a_file(path, what, name)}")
         return path
 
     def inside(self, name: str, what: str, does: str) -> Path:
@@ -369,6 +364,22 @@ class Commands:
         call.build()  # checks the whole scene now, so its errors name this line
         self.renders.append(call)
         self.print_line(call.summary())
+
+
+def _not_a_file(path: Path, what: str, name: str) -> str:
+    """What is at `path` instead of a file, as the rest of a sentence."""
+    if path.is_dir():
+        return f"is a folder, not a file (looked for {path})"
+    if os.path.lexists(path):
+        try:
+            os.stat(path)
+        except OSError as error:  # a link: to nothing, or a loop (Python 3.13 resolves loops)
+            if error.errno != errno.ELOOP:
+                return f"not found (looked for {path}: a symbolic link to nothing)"
+            raise ArgumentError(f"{what} '{name}': {_reason(error)}") from None
+        # read, a pipe or a device would wait or never end
+        return f"is not a regular file (a pipe, socket or device: {path})"
+    return f"not found (looked for {path})"
 
 
 def _reason(error: Exception) -> str:

@@ -121,6 +121,16 @@ def _frames(text: str):
 
 
 def run(args) -> int:
+    from ..output_file import OutputError, check_writable
+
+    if not args.scene.is_file():
+        print(f"error: {args.scene}: no such scene file", file=sys.stderr)
+        return 1
+    try:  # before any cluster starts: a folder that cannot take the frames
+        check_writable(frame_path(args.output, 1), f"-o {args.output}")
+    except OutputError as error:
+        print(f"error: {error}", file=sys.stderr)
+        return 1
     try:
         from .client import Job, run_job
     except ImportError as error:  # distributed is the farm command's alone
@@ -133,16 +143,6 @@ def run(args) -> int:
         workers=args.workers, threads=args.threads, addon=args.addon,
         fresh_blender=args.fresh_blender,
     )  # fmt: skip
-    if not args.scene.is_file():
-        print(f"error: {args.scene}: no such scene file", file=sys.stderr)
-        return 1
-    from ..output_file import OutputError, check_writable
-
-    try:  # before any cluster starts: a folder that cannot take the frames
-        check_writable(frame_path(args.output, 1), f"-o {args.output}")
-    except OutputError as error:
-        print(f"error: {error}", file=sys.stderr)
-        return 1
     from ..cs488 import ScriptError
 
     try:

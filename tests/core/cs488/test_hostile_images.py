@@ -3,8 +3,6 @@ render`): the script's line names the file and why it cannot be read (decoder li
 included), exit 1, no traceback, nothing written. Before, a PNG whose text chunk was too
 large to decompress killed the process running the script ("this is Whitted's fault")."""
 
-import subprocess
-import sys
 import time
 
 import numpy as np
@@ -48,8 +46,5 @@ def test_the_message_names_a_file_by_the_scripts_name_of_it(tmp_path):
     (tmp_path / "sub").mkdir()
     (tmp_path / "sub" / "t.png").write_bytes(b"")
     (tmp_path / "scene.lua").write_text("t = gr.texture('sub/t.png', {0, 0, 0}, 1)\n")
-    result = subprocess.run(
-        [sys.executable, "-m", "core", "render", "scene.lua"],
-        cwd=tmp_path, capture_output=True, text=True, timeout=120,
-    )  # fmt: skip
+    result = run(tmp_path, "scene.lua")
     assert "texture file 'sub/t.png' is not an image" in result.stderr
