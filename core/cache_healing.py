@@ -19,9 +19,6 @@ import os
 import sys
 from pathlib import Path
 
-# Left in a cache folder that healed: a damaged shipped copy is not copied in again
-REFUSED = "shipped.refused"
-
 healed: list[str] = []  # the functions healed in this process, for callers to report
 
 
@@ -64,8 +61,6 @@ def _forget(cache, error: BaseException) -> None:
     for path in removed:
         with contextlib.suppress(OSError):
             os.remove(path)
-    with contextlib.suppress(OSError):
-        Path(files._cache_path, REFUSED).touch()
     function = getattr(cache, "_py_func", None)
     name = getattr(function, "__qualname__", None) or Path(files._index_path).stem
     if module := getattr(function, "__module__", None):

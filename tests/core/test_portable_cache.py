@@ -15,7 +15,6 @@ import pytest
 
 import core
 from core import kernel_cache, kernel_warmup, portable_cache
-from core.kernel_cache import REFUSED, load_or_rebuild
 from core.portable_cache import PORTABLE_LEVELS, host_portable_level
 
 CORE = os.path.dirname(core.__file__)
@@ -102,24 +101,6 @@ def test_shipped_kernels_for_another_target_are_left_alone(shipped):
     (shipped / "warm-some-other-cpu.ok").write_text("built\n")
     assert not kernel_warmup.kernels_ready()
     assert not kernel_warmup.kernel_cache_dir().exists()
-
-
-def test_a_healed_cache_copies_no_shipped_kernels_again(shipped, monkeypatch):
-    """The heal removes a damaged folder; were the damage in the shipped copy, copying it in
-    again would only damage the next render too."""
-    (shipped / kernel_warmup.MARKER).write_text("built\n")
-    failures = iter([EOFError("cut short")])
-
-    def kernels():
-        for error in failures:
-            raise error
-        return "compiled"
-
-    # as if raised in numba's cache reader, where load_or_rebuild tells damage apart
-    monkeypatch.setattr(kernel_cache, "raised_reading_cache", lambda error: True)
-    assert load_or_rebuild(kernels) == ("compiled", True)
-    assert (kernel_warmup.kernel_cache_dir() / REFUSED).exists()
-    assert not kernel_warmup.kernels_ready()
 
 
 @pytest.mark.parametrize(
