@@ -20,6 +20,26 @@ TRANSMISSION_INPUTS = ("Transmission Weight", "Transmission")
 PRINCIPLED_LAYERED = bpy.app.version >= (4, 0, 0)
 
 
+# Blender 5.0 renamed the passes Cycles and EEVEE write (and multilayer EXR files carry, and
+# the Render Layers node offers) from the short names of Blender 2.x to words; Whitted names
+# its passes as Cycles does in the running Blender, so compositing set-ups made for Cycles
+# find them (tests/blender/test_pass_names.py compares with what Cycles writes)
+PASS_NAMES_FROM_5 = {
+    "IndexOB": "Object Index",
+    "IndexMA": "Material Index",
+    "DiffCol": "Diffuse Color",
+    "Env": "Environment",
+    "Emit": "Emission",
+}
+
+
+def pass_name(name: str) -> str:
+    """The name Cycles gives the pass Blender before 5.0 called `name`, in this Blender."""
+    if bpy.app.version >= (5, 0, 0):
+        return PASS_NAMES_FROM_5.get(name, name)
+    return name
+
+
 def node_tree_in_use(datablock):
     """The node tree a material or world renders with, or None. Blender 5.0 always uses nodes
     (and deprecates `use_nodes`); before 5.0 the flag decides."""

@@ -2,8 +2,8 @@
 Passes), Whitted's terms, Cryptomatte's levels, and the World's Mist Pass settings.
 
 Each pass Whitted makes is listed once here with the name, channels and type Blender's
-Render Layers node and multilayer EXR files know it by (Cycles' names, so compositing
-setups made for Cycles find them).
+Render Layers node and multilayer EXR files know it by (Cycles' names in the running Blender,
+`compat.pass_name`, so compositing set-ups made for Cycles find them).
 """
 
 from __future__ import annotations
@@ -11,6 +11,7 @@ from __future__ import annotations
 from typing import NamedTuple
 
 from .. import core
+from ..compat import pass_name
 from ..core import passes as core_passes
 
 
@@ -28,17 +29,17 @@ PASSES = (
     BlenderPass("normal", "Normal", "XYZ", "VECTOR", "use_pass_normal"),
     BlenderPass("position", "Position", "XYZ", "VECTOR", "use_pass_position"),
     BlenderPass("uv", "UV", "UVA", "VECTOR", "use_pass_uv"),
-    BlenderPass("object_index", "IndexOB", "X", "VALUE", "use_pass_object_index"),
-    BlenderPass("material_index", "IndexMA", "X", "VALUE", "use_pass_material_index"),
-    BlenderPass("diffuse_color", "DiffCol", "RGB", "COLOR", "use_pass_diffuse_color"),
+    BlenderPass("object_index", pass_name("IndexOB"), "X", "VALUE", "use_pass_object_index"),
+    BlenderPass("material_index", pass_name("IndexMA"), "X", "VALUE", "use_pass_material_index"),
+    BlenderPass("diffuse_color", pass_name("DiffCol"), "RGB", "COLOR", "use_pass_diffuse_color"),
     BlenderPass("shadow", "Shadow", "RGB", "COLOR", "use_pass_shadow"),
-    BlenderPass("environment", "Env", "RGB", "COLOR", "use_pass_environment"),
+    BlenderPass("environment", pass_name("Env"), "RGB", "COLOR", "use_pass_environment"),
     BlenderPass("ambient", "Whitted Ambient", "RGB", "COLOR", "whitted.use_pass_terms"),
     BlenderPass("diffuse", "Whitted Diffuse", "RGB", "COLOR", "whitted.use_pass_terms"),
     BlenderPass("specular", "Whitted Specular", "RGB", "COLOR", "whitted.use_pass_terms"),
     BlenderPass("reflection", "Whitted Reflection", "RGB", "COLOR", "whitted.use_pass_terms"),
     BlenderPass("refraction", "Whitted Refraction", "RGB", "COLOR", "whitted.use_pass_terms"),
-    BlenderPass("emission", "Emit", "RGB", "COLOR", "use_pass_emit"),
+    BlenderPass("emission", pass_name("Emit"), "RGB", "COLOR", "use_pass_emit"),
 )
 # Cryptomatte: core's pass, Blender's switch and the layer's name after the view layer's
 CRYPTO = (
