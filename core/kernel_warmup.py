@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import contextlib
 import math
+import re
 import sys
 import time
 from collections.abc import Callable
@@ -114,6 +115,30 @@ def warmup_steps() -> list[tuple[str, Callable[[], None]]]:
 
 def progress_line(step: int, steps: int, label: str) -> str:
     return f"{PROGRESS_PREFIX}{step} of {steps} ({label})"
+
+
+# Each step's share of a cold warm-up and the whole's length, as measured on the development
+# machine (132-147 s, four warm-ups: packing 15 %, nearest hits 9 %, shadow rays 8 %, the
+# render kernel 68 %), so that a progress bar moves evenly rather than by quarters
+STEP_SHARES = {"scene packing": 0.15, "nearest hits": 0.09, "shadow rays": 0.08,
+               "render kernel": 0.68}  # fmt: skip
+TYPICAL_WARMUP_S = 140.0
+_PROGRESS = re.compile(r"(\d+) of (\d+) \((.*)\)$")
+
+
+def progress_fraction(line: str, step_seconds: float) -> float | None:
+    """How far a warm-up is, 0 to 1, given its last progress line and the seconds since that
+    line: the steps before it, plus this step's share in proportion to its typical length
+    (never past 95 % of it: a slower machine waits at the step's end, not beyond). None for a
+    line that is not a step's."""
+    found = _PROGRESS.search(line)
+    if found is None:
+        return None
+    label = found.group(3)
+    done = sum(STEP_SHARES.get(lbl, 0.0) for lbl in list(STEP_SHARES)[: int(found.group(1)) - 1])
+    share = STEP_SHARES.get(label, 0.0)
+    within = min(0.95, step_seconds / (share * TYPICAL_WARMUP_S)) if share else 0.0
+    return min(1.0, done + share * within)
 
 
 @contextlib.contextmanager

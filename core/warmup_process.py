@@ -15,6 +15,7 @@ If the child fails, or compiled another `core`, the caller compiles in-process i
 
 from __future__ import annotations
 
+import math
 import subprocess
 import threading
 import time
@@ -22,7 +23,13 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from . import child_process
-from .kernel_warmup import PROGRESS_PREFIX, READY_PREFIX, kernels_ready, own_core
+from .kernel_warmup import (
+    PROGRESS_PREFIX,
+    READY_PREFIX,
+    kernels_ready,
+    own_core,
+    progress_fraction,
+)
 
 
 @dataclass(frozen=True)
@@ -30,6 +37,7 @@ class WarmupStatus:
     state: str  # "idle", "running", "ready" or "failed"
     text: str  # the last progress line, or why it failed
     seconds: float  # since the warm-up started
+    fraction: float = 0.0  # how far it is, 0 to 1 (kernel_warmup.progress_fraction)
 
 
 class WarmupProcess:
@@ -40,6 +48,7 @@ class WarmupProcess:
         self._state = "ready" if kernels_ready() else "idle"
         self._text = ""
         self._started = 0.0
+        self._line_at = 0.0  # when the last progress line came
         self._output: list[str] = []
 
     def start(self) -> None:
@@ -79,6 +88,7 @@ class WarmupProcess:
                     foreign = line[len("Whitted: core ") :]
                 if line.startswith(PROGRESS_PREFIX) or line.startswith(READY_PREFIX):
                     self._text = line[len("Whitted: ") :]
+                    self._line_at = time.perf_counter()
         status = process.wait()
         with self._lock:
             if status == 0 and not foreign:
@@ -94,8 +104,12 @@ class WarmupProcess:
 
     def status(self) -> WarmupStatus:
         with self._lock:
-            seconds = time.perf_counter() - self._started if self._started else 0.0
-            return WarmupStatus(self._state, self._text, seconds)
+            now = time.perf_counter()
+            seconds = now - self._started if self._started else 0.0
+            if self._state == "ready":
+                return WarmupStatus(self._state, self._text, seconds, 1.0)
+            fraction = progress_fraction(self._text, now - self._line_at) or 0.0
+            return WarmupStatus(self._state, self._text, seconds, fraction)
 
     def wait(
         self,
@@ -104,14 +118,15 @@ class WarmupProcess:
         poll_s: float = 0.1,
     ) -> WarmupStatus:
         """Wait until the child is done (or was never needed), calling on_progress on each new
-        line and polling should_cancel(); returns the last status, "running" if cancelled."""
-        last = ""
+        line and at least once a second (for a clock and a progress bar), and polling
+        should_cancel(); returns the last status, "running" if cancelled."""
+        last, shown_at = "", -math.inf
         while True:
             status = self.status()
             if status.state != "running":
                 return status
-            if status.text != last:
-                last = status.text
+            if status.text != last or time.perf_counter() - shown_at >= 1.0:
+                last, shown_at = status.text, time.perf_counter()
                 on_progress(status)
             if should_cancel():
                 return status

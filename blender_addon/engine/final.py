@@ -11,6 +11,7 @@ import numpy as np
 from .. import core, export
 from ..core.warmup_process import shared_warmup
 from ..reporting import report_internal_failure
+from . import result_notes
 
 # Meshes converted by earlier final renders of this Blender session, so that the frames of an
 # animation re-export only the meshes that changed. Kept here, not on the engine: Blender
@@ -26,16 +27,19 @@ def render(engine, depsgraph):
     the driver between tiles and while the kernels warm up. A preview (`is_preview`: a
     material or world thumbnail, the Preview panel) renders the same way, quietly."""
     preview = engine.is_preview
+    timings = result_notes.Timings()
     try:
         start = time.perf_counter()
         scene, settings, warnings = export.convert(
             depsgraph, PREVIEW_MESHES if preview else MESHES, with_passes=not preview
         )
-        export_s = time.perf_counter() - start
+        timings.export_s = time.perf_counter() - start
         for warning in () if preview else warnings:
             engine.report({"WARNING"}, warning)
+        start = time.perf_counter()
         if not _kernels_ready(engine):
             return
+        timings.compile_s = time.perf_counter() - start
         view_layer = depsgraph.view_layer
         layer = view_layer.name
         tile_writer = TileWriter(engine, layer, settings, export.passes.blender_passes(view_layer))
@@ -61,17 +65,19 @@ def render(engine, depsgraph):
     for warning in output.warnings:
         engine.report({"WARNING"}, f"Whitted: {warning}")
     stats = output.stats
-    summary = (
-        f"Whitted | {settings.width}x{settings.height} | export {export_s:.2f} s | "
-        f"{stats.summary()} | {stats.tiles_done}/{stats.tiles_total} tiles"
-        + (" | cancelled" if output.cancelled else "")
+    timings.load_s, timings.kernels_from, timings.render_s = (
+        stats.kernel_s,
+        stats.kernel_source,
+        stats.render_s,
     )
+    summary = result_notes.summary_line(settings, timings, stats, output.cancelled)
     engine.update_stats("", summary)
     if not preview:
         print(summary)
-        keep_summary(engine, summary)
-        keep_warnings(engine, warnings + [f"Whitted: {w}" for w in output.warnings])
-        keep_cryptomatte_manifests(engine, view_layer, scene)
+        print(f"Whitted: {result_notes.kernels_note(timings)}")  # for farm logs, always
+        kept = warnings + [f"Whitted: {w}" for w in output.warnings]
+        result_notes.keep(engine, summary, timings, kept)
+        result_notes.keep_cryptomatte_manifests(engine, view_layer, scene)
 
 
 def register_passes(engine, scene, view_layer) -> None:
@@ -85,58 +91,47 @@ def register_passes(engine, scene, view_layer) -> None:
         )
 
 
-def keep_cryptomatte_manifests(engine, view_layer, scene) -> None:
-    """Each Cryptomatte layer's name, hash and manifest in the result's metadata, where
-    Blender's Cryptomatte node and other compositors look for them (and multilayer EXR files
-    carry them)."""
-    layers = export.passes.crypto_layers(view_layer)
-    result = engine.get_result()
-    if not layers or result is None:
-        return
-    names = core.passes.crypto_names(scene)
-    for core_name, layer_name in layers:
-        for key, value in core.passes.crypto_metadata(layer_name, names[core_name]).items():
-            result.stamp_data_add_field(key, value)
-
-
-def keep_summary(engine, summary: str) -> None:
-    """Blender replaces the engine's stats line with its own when the render ends: the summary
-    stays in the result's metadata (the Image Editor's sidebar, Metadata; written to files
-    that carry metadata) and in the Info log and status bar."""
-    engine.report({"INFO"}, summary)
-    result = engine.get_result()
-    if result is not None:
-        result.stamp_data_add_field("Whitted", summary)
-
-
-def keep_warnings(engine, warnings: list[str]) -> None:
-    """What Whitted could not honour, kept with the picture (the Image Editor's Metadata
-    sidebar, and files that carry metadata) besides the Info log."""
-    result = engine.get_result()
-    if warnings and result is not None:
-        result.stamp_data_add_field("Whitted Warnings", " | ".join(warnings))
-
-
 def _kernels_ready(engine) -> bool:
     """Wait for the kernel warm-up (started when the add-on loaded, or now), showing its
     steps in the render's stats and, for `blender -b`, on stdout. False if Esc was
     pressed meanwhile: the warm-up goes on, the render stops."""
 
+    printed = []
+
     def show(status):
-        engine.update_stats("", f"Whitted | {status.text}")
-        print(f"Whitted: {status.text}", flush=True)
+        # The render's own progress bar and header follow the compile (the tiles start the
+        # bar again from 0); a first-use compile is not part of the render time
+        engine.update_progress(status.fraction)
+        engine.update_stats("", f"Whitted | {compile_progress(status)}")
+        if status.text not in printed:  # stdout (blender -b): each step once
+            printed.append(status.text)
+            print(f"Whitted: {status.text}", flush=True)
 
     warmup = shared_warmup()
     warmup.start()
     status = warmup.wait(lambda: cancelled(engine), show)
     if status.state == "running":
-        print("Whitted: render cancelled while the kernels compile", flush=True)
+        message = (
+            "Whitted: render cancelled while the kernels compiled (first use on this "
+            "machine); they go on compiling, and the next render starts when they are done"
+        )
+        engine.update_stats("", message)
+        engine.report({"INFO"}, message)
+        print(message, flush=True)
         return False
     if status.state == "failed":
         engine.report({"WARNING"}, f"Whitted: {status.text}; compiling in this process")
         print(f"Whitted: {status.text}; compiling in this process", flush=True)
     engine.update_stats("", "Whitted | Loading kernels")
     return True
+
+
+def compile_progress(status) -> str:
+    """ "Compiling kernels (first use on this machine): 37 %, 52 s" for the render's header."""
+    return (
+        f"Compiling kernels (first use on this machine, not render time): "
+        f"{100 * status.fraction:.0f} %, {status.seconds:.0f} s"
+    )
 
 
 def cancelled(engine) -> bool:

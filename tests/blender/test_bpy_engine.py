@@ -228,27 +228,6 @@ def test_a_border_without_crop_fills_its_region_of_the_whole_frame(
     assert np.all(framed[outside] == 0.0)  # Blender leaves the rest empty
 
 
-def test_the_render_summary_stays_in_the_results_metadata(sample_scene, bpy_with_whitted, tmp_path):
-    """Blender replaces the engine's stats line when the render ends; the summary is kept in
-    the result's metadata, which the PNG carries."""
-    path = tmp_path / "summary.png"
-    render_to_array(bpy_with_whitted, sample_scene, path)
-    summary = Image.open(path).info.get("Whitted", "")
-    assert "M rays/s" in summary and "160x120" in summary, summary
-
-
-def test_what_whitted_cannot_honour_is_kept_with_the_picture(
-    sample_scene, bpy_with_whitted, tmp_path
-):
-    """A warning is reported (the Info log) and kept in the result's metadata too."""
-    light = next(o for o in sample_scene.objects if o.type == "LIGHT")
-    light.data.shadow_soft_size = 0.5  # unused by its CS488 light model
-    path = tmp_path / "warned.png"
-    render_to_array(bpy_with_whitted, sample_scene, path)
-    kept = Image.open(path).info.get("Whitted Warnings", "")
-    assert f"light '{light.name}'" in kept and "Radius 0.5 m" in kept, kept
-
-
 def test_film_transparent_writes_the_background_transparent(
     sample_scene, bpy_with_whitted, tmp_path
 ):
