@@ -2,9 +2,9 @@
 
 In Blender's window the warm-up process (`core.warmup_process`) starts as soon as the add-on
 loads, so that the kernels are usually ready by the first F12; a timer on the main thread
-reads its status twice a second and shows the step in the status bar ("Whitted: compiling
-kernels: 2 of 4 (nearest hits), 12 s") and the render panel. Under `blender -b` nothing
-starts at load (a farm node rendering with another engine should not compile), the first
+reads its status twice a second and shows it in the status bar ("Whitted: compiling kernels
+(first use on this machine): 37 %, 52 s") and Render Properties › Sampling. Under `blender -b`
+nothing starts at load (a farm node rendering with another engine should not compile), the first
 render starts it and prints the same lines.
 """
 
@@ -21,12 +21,25 @@ POLL_S = 0.5
 
 
 def status_text() -> str:
-    """One line for the status bar and the render panel, or "" when there is nothing to say."""
+    """One line for the status bar, or "" when there is nothing to say."""
     status = shared_warmup().status()
     if status.state == "running":
-        return f"Whitted: {status.text}, {status.seconds:.0f} s"
+        return (
+            f"Whitted: compiling kernels (first use on this machine): "
+            f"{100 * status.fraction:.0f} %, {status.seconds:.0f} s"
+        )
     if status.state == "failed":
         return "Whitted: kernel warm-up failed; the first render compiles them itself"
+    return ""
+
+
+def panel_text() -> str:
+    """The same, short enough for Render Properties › Sampling at its default width."""
+    status = shared_warmup().status()
+    if status.state == "running":
+        return f"Compiling: {100 * status.fraction:.0f} %"
+    if status.state == "failed":
+        return "Kernel warm-up failed"
     return ""
 
 

@@ -6,18 +6,22 @@ imported). From Blender's window the import is modal: Blender stays usable while
 runs, the status bar shows it, and Esc stops it at once (the child is killed); from a
 script or under `blender -b` it runs to the end before the operator returns.
 
-Each gr.render call becomes a scene: the first call's into the current scene, any later
-one's into a new scene named after its image. A scene gets the objects under the call's node
-(`lua_build`), the camera from eye/view/up/fovy and the depth of field, the lights, the world
-colour from the ambient term, and the render settings from gr.render, with the Raw view
-transform: the render then writes the same PNG as `python -m core render`, which writes the
-renderer's values as the report's program did.
+Each gr.render call becomes a new scene named after its image, and the window shows the
+first: the user's own scene is left exactly as it was (its objects, camera, World, render and
+colour settings). A new scene gets the objects under the call's node (`lua_build`), the
+camera from eye/view/up/fovy and the depth of field, the lights, the world colour from the
+ambient term, and the render settings from gr.render, with the Raw view transform: the render
+then writes the same PNG as `python -m core render`, which writes the renderer's values as
+the original course project's program did. Imported Into Current Scene instead, the first
+call's objects, camera and lights are added to the current scene and none of its settings is
+changed (the scene's camera is set only if it has none), and the report says so.
 """
 
 from __future__ import annotations
 
 import contextlib
 import math
+import os
 import time
 from pathlib import Path
 
@@ -43,33 +47,49 @@ from .build import Y_UP_TO_Z_UP, Builder
 POLL_S = 0.1
 
 
-def import_script(context, path: str | Path, limits=DEFAULT_LIMITS, anywhere=False) -> list:
+NEW_SCENE, CURRENT_SCENE = "NEW_SCENE", "CURRENT_SCENE"
+
+
+def import_script(
+    context, path: str | Path, limits=DEFAULT_LIMITS, anywhere=False, into=NEW_SCENE
+) -> list:
     """Run the script, then build every gr.render call of it; returns the scenes. Raises
     ScriptError."""
     calls = load_script(path, print_line=print, anywhere=anywhere, limits=limits,
                         notice=lambda text: print(f"Whitted: {text}", flush=True))  # fmt: skip
-    return build_scenes(context, Path(path), calls)
+    return build_scenes(context, Path(path), calls, into)
 
 
-def build_scenes(context, path: Path, calls: list) -> list:
-    """A scene for each gr.render call (the first into the current scene)."""
+def build_scenes(context, path: Path, calls: list, into: str = NEW_SCENE) -> list:
+    """A new scene for each gr.render call, the window switched to the first (`into` is
+    NEW_SCENE); or the first call's objects, camera and lights added to the current scene,
+    whose settings stay as they are (CURRENT_SCENE)."""
     if not calls:
         raise ScriptError(f"{path.name}: the script never calls gr.render: nothing to import")
     scenes, shared = [], {}
     for number, call in enumerate(calls):
-        scene = context.scene if number == 0 else bpy.data.scenes.new(call.output.stem)
+        new = into == NEW_SCENE or number > 0
+        scene = bpy.data.scenes.new(call.output.stem) if new else context.scene
         collection = bpy.data.collections.new(f"{path.stem}: {call.output.name}")
         scene.collection.children.link(collection)
         root = bpy.data.objects.new(f"{path.stem} (y up)", None)
         collection.objects.link(root)
         root.matrix_world = Matrix(Y_UP_TO_Z_UP.tolist())
         Builder(collection, shared).node(call.root, root, np.eye(4))
-        scene.camera = _camera(call, collection, root)
+        camera = _camera(call, collection, root)
+        if new or scene.camera is None:
+            scene.camera = camera
         for number_of_light, light in enumerate(call.lights, start=1):
             _light(light, f"Light {number_of_light}", collection, root)
-        _configure(scene, call)
+        if new:
+            _configure(scene, call)
         scenes.append(scene)
-    context.view_layer.update()
+    window = context.window or next(iter(context.window_manager.windows), None)
+    if into == NEW_SCENE and window is not None:
+        window.scene = scenes[0]  # the user sees what was imported; their scene is unchanged
+    for scene in scenes:
+        for layer in scene.view_layers:
+            layer.update()
     return scenes
 
 
@@ -185,6 +205,19 @@ class WHITTED_OT_import_lua(bpy.types.Operator, ImportHelper):
         default=DEFAULT_LIMITS.memory_mib, min=MIN_SCRIPT_MEMORY_MIB, max=MAX_SCRIPT_MEMORY_MIB,
         soft_max=65536,
     )  # fmt: skip
+    into: bpy.props.EnumProperty(
+        name="Import Into",
+        description="Where the script's scene goes",
+        items=[
+            (NEW_SCENE, "New Scene", "A scene of its own for each gr.render call, with the "
+             "script's camera, lights, World and render settings; the current scene is left "
+             "as it was"),
+            (CURRENT_SCENE, "Current Scene", "The script's objects, camera and lights added "
+             "to the current scene, changing none of its settings (its camera, World, render "
+             "and colour management stay as they are)"),
+        ],
+        default=NEW_SCENE,
+    )  # fmt: skip
     allow_outside_files: bpy.props.BoolProperty(
         name="Files Outside Its Folder",
         description="Let the script read meshes and textures outside its own folder tree",
@@ -205,8 +238,9 @@ class WHITTED_OT_import_lua(bpy.types.Operator, ImportHelper):
         if bpy.app.background or context.window is None:
             try:  # nothing to keep responsive: run the script to its end here
                 scenes = import_script(
-                    context, self.filepath, self.limits("Ctrl-C"), self.allow_outside_files
-                )
+                    context, self.filepath, self.limits("Ctrl-C"), self.allow_outside_files,
+                    self.into,
+                )  # fmt: skip
             except ScriptError as error:
                 self.report({"ERROR"}, f"Whitted: {error}")
                 return {"CANCELLED"}
@@ -248,7 +282,7 @@ class WHITTED_OT_import_lua(bpy.types.Operator, ImportHelper):
             return {"PASS_THROUGH"}
         self._stop(context)
         try:
-            scenes = build_scenes(context, Path(self.filepath), self._run.result())
+            scenes = build_scenes(context, Path(self.filepath), self._run.result(), self.into)
         except ScriptError as error:
             self.report({"ERROR"}, f"Whitted: {error}")
             return {"CANCELLED"}
@@ -280,9 +314,27 @@ class WHITTED_OT_import_lua(bpy.types.Operator, ImportHelper):
         with contextlib.suppress(AttributeError, RuntimeError, ReferenceError):
             context.workspace.status_text_set(None)
 
+    def invoke(self, context, event):
+        # The file browser opens in the .blend's folder with an empty name: given no path,
+        # Blender would offer the open .blend's own name ("final_scene.blend"), not a script
+        if not self.filepath.lower().endswith(".lua"):
+            folder = Path(bpy.data.filepath).parent if bpy.data.filepath else Path.home()
+            self.filepath = str(folder) + os.sep
+        context.window_manager.fileselect_add(self)
+        return {"RUNNING_MODAL"}
+
     def _imported(self, scenes):
         names = ", ".join(f"'{scene.name}'" for scene in scenes)
-        self.report({"INFO"}, f"Whitted: imported {Path(self.filepath).name} into {names}")
+        name = Path(self.filepath).name
+        if self.into == NEW_SCENE:
+            self.report({"INFO"}, f"Whitted: imported {name} into new scene(s) {names}")
+        else:
+            self.report(
+                {"INFO"},
+                f"Whitted: added {name}'s objects, camera and lights to {names}; its camera, "
+                "World, render and colour settings were left as they were (import into a New "
+                "Scene for the script's own)",
+            )
         return {"FINISHED"}
 
 

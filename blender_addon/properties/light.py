@@ -1,5 +1,5 @@
-"""Light Properties › Light: which light model a light follows, and the report's attenuation
-for those that follow the report's, drawn by ui.light."""
+"""Light Properties › Light: which light model a light follows, and the attenuation of those
+that follow the CS488 scripts' model, drawn by ui.light."""
 
 import bpy
 from bpy.props import (

@@ -1,4 +1,4 @@
-"""Material › Whitted Material: the report's gr.material values."""
+"""Material › Whitted Material: the CS488 scripts' gr.material values, drawn by ui.material."""
 
 import bpy
 from bpy.props import (

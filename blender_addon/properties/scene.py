@@ -1,4 +1,6 @@
-"""Render › Whitted: depth, sampling, seed, tiles."""
+"""Render Properties › Sampling, Light Paths, Performance: Whitted's render settings, drawn by
+ui.render. Tooltips speak of what a user sees (noise, time, blur), not of the CS488 report
+the project grew from."""
 
 import bpy
 from bpy.props import (
@@ -28,8 +30,8 @@ class WhittedSceneSettings(bpy.types.PropertyGroup):
     pixel_samples: IntProperty(
         name="Anti-Aliasing",
         description=(
-            "n: each pixel averages n x n camera rays (the report used 3); render time grows "
-            "as n squared"
+            "n: each pixel averages n x n camera rays, smoothing jagged edges (3 is smooth for "
+            "most scenes); render time grows as n squared"
         ),
         min=1,
         soft_max=8,
@@ -40,7 +42,7 @@ class WhittedSceneSettings(bpy.types.PropertyGroup):
         name="Pattern",
         description="Where in the pixel the camera rays go",
         items=[
-            ("GRID", "Grid", "At the centres of an n x n grid (the report's supersampling)"),
+            ("GRID", "Grid", "At the centres of an n x n grid: no noise, fine patterns may alias"),
             ("JITTERED", "Jittered", "At a random point in each grid cell: noise, not aliasing"),
             ("RANDOM", "Random", "At independent random points in the pixel (for comparison)"),
         ],
@@ -51,7 +53,7 @@ class WhittedSceneSettings(bpy.types.PropertyGroup):
         description="Where on an area light the shadow rays go",
         items=[
             ("STRATIFIED", "Stratified", "One ray in each of equal cells of the light: less noise"),
-            ("UNIFORM", "Uniform", "Independent random points (the report's way)"),
+            ("UNIFORM", "Uniform", "Independent random points: the most noise, for comparison"),
             ("HALTON", "Halton", "Low-discrepancy points, randomly shifted per shading point"),
         ],
         default="STRATIFIED",

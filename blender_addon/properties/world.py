@@ -1,5 +1,5 @@
-"""World Properties › Whitted World: how the World lights the scene, and the report's ambient
-term, drawn by ui.world."""
+"""World Properties › Whitted World: how the World lights the scene, and the CS488 model's
+ambient term, drawn by ui.world."""
 
 import bpy
 from bpy.props import EnumProperty, FloatVectorProperty
@@ -30,8 +30,8 @@ class WhittedWorldSettings(bpy.types.PropertyGroup):
     ambient: FloatVectorProperty(
         name="Ambient",
         description=(
-            "The report's ambient light, added to every surface as its diffuse colour times "
-            "this, unshadowed (black: none)"
+            "A constant light added to every surface as its diffuse colour times this, "
+            "unshadowed: lifts the shadows evenly (black: none)"
         ),
         subtype="COLOR",
         size=3,

@@ -13,9 +13,9 @@ from .base import ENGINE
 from .light import WHITTED_PT_light
 from .material import WHITTED_PT_material
 from .object import WHITTED_PT_object_ray_visibility, WHITTED_PT_object_shape
-from .render import WHITTED_PT_render
+from .render import PANELS as RENDER_PANELS
 from .view_layer import PANELS as VIEW_LAYER_PANELS
-from .world import WHITTED_PT_world
+from .world import WHITTED_PT_world, WHITTED_PT_world_preview
 
 # Blender's panels open to Whitted, as Cycles opens them: every panel open to BLENDER_RENDER
 # (the engine-independent ones: output, format, frame range, camera lens, object visibility,
@@ -61,11 +61,12 @@ def blender_panels():
 _opened = []  # the panels register() opened, to close on unregister
 
 _classes = (
-    WHITTED_PT_render,
+    *RENDER_PANELS,
     WHITTED_PT_object_shape,
     WHITTED_PT_object_ray_visibility,
     WHITTED_PT_material,
     WHITTED_PT_light,
+    WHITTED_PT_world_preview,
     WHITTED_PT_world,
     *VIEW_LAYER_PANELS,
 )

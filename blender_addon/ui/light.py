@@ -32,7 +32,7 @@ class WHITTED_PT_light(WhittedPanel, bpy.types.Panel):
             col.prop(light, "exposure")
         cs488 = light.type in {"POINT", "AREA"} and light.whitted.model == "CS488"
         if light.type in {"POINT", "AREA"}:
-            col.prop(light.whitted, "model")
+            col.prop(light.whitted, "model", text="Model")
         if light.type in {"POINT", "SPOT"}:
             col.prop(light, "shadow_soft_size", text="Radius")
             if hasattr(light, "use_soft_falloff") and not cs488:
@@ -42,12 +42,13 @@ class WHITTED_PT_light(WhittedPanel, bpy.types.Panel):
         else:
             self._draw_area(col, light, cs488)
         if light.type == "SPOT":
-            col.prop(light, "spot_size", text="Spot Size")
+            col.prop(light, "spot_size", text="Size")
             col.prop(light, "spot_blend", text="Blend")
-        col.prop(*cast_shadow_setting(light), text="Cast Shadow")
+        # "Cast Shadow" is cut at the Properties editor's default width
+        col.prop(*cast_shadow_setting(light), text="Shadow")
         if cs488:
             # intensity / (c0 + c1 d + c2 d^2): each coefficient under its own name
-            attenuation = layout.column(align=True, heading="Attenuation")
+            attenuation = layout.column(align=True, heading="Falloff")
             for index, label in enumerate(ATTENUATION_LABELS):
                 attenuation.prop(light.whitted, "attenuation", index=index, text=label)
         obj = context.object

@@ -21,8 +21,10 @@ class WHITTED_PT_material(WhittedPanel, bpy.types.Panel):
         material = context.material
         settings = material.whitted
         # The Material Index pass's value (Cycles shows it in its material Settings)
-        layout.prop(material, "pass_index")
-        layout.prop(settings, "use_whitted")
+        layout.prop(material, "pass_index", text="Index")
+        # Labels of at most about eight characters: longer ones are cut at the Properties
+        # editor's default width
+        layout.row(heading="Model").prop(settings, "use_whitted", text="CS488")
         if not settings.use_whitted:
             self.draw_nodes(context, material)
             return
@@ -32,12 +34,14 @@ class WHITTED_PT_material(WhittedPanel, bpy.types.Panel):
         else:
             layout.prop(material, "diffuse_color", text="Diffuse")
         layout.template_ID(settings, "image", open="image.open")
-        for name in ("specular", "shininess", "reflectivity", "transparency"):
-            layout.prop(settings, name)
+        layout.prop(settings, "specular")
+        layout.prop(settings, "shininess", text="Shine")
+        layout.prop(settings, "reflectivity", text="Mirror")
+        layout.prop(settings, "transparency", text="Refract")
         column = layout.column(align=True)
         column.active = settings.transparency > 0.0
-        column.prop(settings, "outer_ior")
-        column.prop(settings, "inner_ior")
+        column.prop(settings, "outer_ior", text="IOR Out")
+        column.prop(settings, "inner_ior", text="IOR In")
 
     def draw_nodes(self, context, material):
         layout = self.layout
@@ -51,5 +55,5 @@ class WHITTED_PT_material(WhittedPanel, bpy.types.Panel):
         shown = ", ".join(kind.replace("_", " ") for kind in kinds) or "nothing (black)"
         layout.label(text="Renders as: " + shown)
         if surface is not None and emits(surface):
-            layout.prop(material.whitted, "emission_lights")
+            layout.prop(material.whitted, "emission_lights", text="Lights")
         draw_warnings(layout, context, [f"material '{material.name}': {p}" for p in problems])

@@ -22,8 +22,9 @@ class WHITTED_PT_object_shape(WhittedPanel, bpy.types.Panel):
         obj = context.object
         layout.prop(obj.whitted, "shape")
         if obj.whitted.shape == "TORUS":
-            layout.prop(obj.whitted, "major_radius")
-            layout.prop(obj.whitted, "minor_radius")
+            radii = layout.column(align=True)
+            radii.prop(obj.whitted, "major_radius", text="Major")
+            radii.prop(obj.whitted, "minor_radius", text="Minor")
         booleans = boolean_modifiers(obj)
         if booleans:
             box = layout.box()

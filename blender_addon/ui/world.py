@@ -8,6 +8,19 @@ from ..export.world import source, unsupported
 from .base import WhittedPanel, draw_warnings
 
 
+class WHITTED_PT_world_preview(WhittedPanel, bpy.types.Panel):
+    """World Properties › Preview: the World rendered by Whitted (bl_use_preview), as
+    Cycles' own World preview panel shows it."""
+
+    bl_label = "Preview"
+    bl_context = "world"
+    bl_options = {"DEFAULT_CLOSED"}
+    context_member = "world"
+
+    def draw(self, context):
+        self.layout.template_preview(context.world)
+
+
 class WHITTED_PT_world(WhittedPanel, bpy.types.Panel):
     bl_label = "Whitted World"
     bl_context = "world"
@@ -17,10 +30,10 @@ class WHITTED_PT_world(WhittedPanel, bpy.types.Panel):
         layout = self.layout
         layout.use_property_split = True
         world = context.world
-        layout.prop(world.whitted, "model")
+        layout.prop(world.whitted, "model", text="Model")
         blender = world.whitted.model == "BLENDER"
         background = find_node(world, "BACKGROUND")
-        label = "Color" if blender else "Background"
+        label = "Color"
         if background is None:
             layout.prop(world, "color", text=label)
         else:
@@ -31,6 +44,6 @@ class WHITTED_PT_world(WhittedPanel, bpy.types.Panel):
                 layout.label(text=f"{label}: from '{fed[0].name}'", icon="NODE")
             layout.prop(background.inputs[1], "default_value", text="Strength")
         if blender:
-            layout.prop(context.scene.whitted, "environment_samples")
+            layout.prop(context.scene.whitted, "environment_samples", text="Samples")
         layout.prop(world.whitted, "ambient")
         draw_warnings(layout, context, unsupported(world))

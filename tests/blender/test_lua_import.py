@@ -166,3 +166,41 @@ def test_the_final_scene_script_imports_to_the_same_picture(imported, bpy_with_w
     call.settings.width = call.settings.height = 96
     call.settings.shadow_samples = 4
     assert_same_picture(blender, to_bytes(core.render(call.scene, call.settings).image))
+
+
+def scene_state(scene) -> dict:
+    """What a user set up in a scene and would not want an import to change."""
+    view = scene.view_settings
+    return {
+        "objects": sorted(obj.name for obj in scene.objects),
+        "camera": scene.camera.name if scene.camera else None,
+        "world": scene.world.name if scene.world else None,
+        "colour": (view.view_transform, view.look, view.exposure, view.gamma),
+        "render": (scene.render.engine, scene.render.resolution_x, scene.render.resolution_y,
+                   scene.render.resolution_percentage, scene.render.filepath),
+        "whitted": (scene.whitted.max_depth, scene.whitted.pixel_samples),
+    }  # fmt: skip
+
+
+def test_the_import_leaves_the_users_scene_as_it_was(sample_scene, bpy_with_whitted):
+    """A new scene for the script, shown in the window; the open scene unchanged, down to
+    its colour management (the script's scene renders with Raw)."""
+    bpy = bpy_with_whitted
+    before = scene_state(sample_scene)
+    assert bpy.ops.import_scene.cs488_lua(filepath=str(EVERY_COMMAND)) == {"FINISHED"}
+    assert scene_state(sample_scene) == before
+    imported = bpy.context.scene
+    assert imported is not sample_scene and imported.name.startswith("every_command")
+    assert imported.view_settings.view_transform == "Raw" and imported.camera is not None
+    assert not set(before["objects"]) & {obj.name for obj in imported.objects}
+
+
+def test_into_the_current_scene_adds_objects_and_changes_no_setting(sample_scene, bpy_with_whitted):
+    bpy = bpy_with_whitted
+    before = scene_state(sample_scene)
+    done = bpy.ops.import_scene.cs488_lua(filepath=str(EVERY_COMMAND), into="CURRENT_SCENE")
+    assert done == {"FINISHED"} and bpy.context.scene is sample_scene
+    after = scene_state(sample_scene)
+    added = set(after.pop("objects")) - set(before.pop("objects"))
+    assert after == before  # the camera, World, colour and render settings as they were
+    assert any(name.startswith("Camera") for name in added) and len(added) > 5
