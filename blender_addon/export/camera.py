@@ -46,10 +46,9 @@ def convert(scene, depsgraph, settings: core.RenderSettings) -> core.Camera:
         )
     rotation = camera.matrix_world.to_3x3().normalized()
     eye, view = camera.matrix_world.translation, -rotation.col[2]
-    aperture, focus = depth_of_field(scene, camera, eye, view)
     return from_projection(
-        projection, eye, view, rotation.col[1], camera.name, aperture, focus,
-        orthographic=camera.data.type == "ORTHO",
+        projection, eye, view, rotation.col[1], camera.name,
+        depth_of_field(scene, camera, eye, view), orthographic=camera.data.type == "ORTHO",
     )  # fmt: skip
 
 
@@ -79,18 +78,11 @@ def _check_lens(data, owner: str) -> None:
 
 
 def from_projection(
-    projection, eye, view, up, name: str, aperture: float, focus: float, orthographic: bool
+    projection, eye, view, up, name: str, lens: dict, orthographic: bool
 ) -> core.Camera:
     """A core.Camera from Blender's projection matrix (a camera's `calc_matrix_camera`, a 3D
-    view's `window_matrix`) and the eye and axes it looks from."""
-    common = dict(
-        eye=tuple(eye),
-        view=tuple(view),
-        up=tuple(up),
-        name=name,
-        aperture_radius=aperture,
-        focal_distance=focus,
-    )
+    view's `window_matrix`), the eye and axes it looks from, and its `depth_of_field`."""
+    common = dict(eye=tuple(eye), view=tuple(view), up=tuple(up), name=name, **lens)
     if orthographic:
         # Blender's orthographic projection: 2 / height of the view in its [1][1] term, and
         # the lens shift, in half-widths and half-heights, in the translation column
@@ -108,13 +100,17 @@ def from_projection(
     )
 
 
-def depth_of_field(scene, camera, eye, view) -> tuple[float, float]:
-    """(aperture radius, focus distance) from Blender's own camera depth of field, as
-    Cycles reads it: radius = focal length / (2 f-stop), in scene units; the focus object's
-    distance along the view, else the focus distance. A pinhole when depth of field is off."""
+PINHOLE = {"aperture_radius": 0.0, "focal_distance": 10.0}
+
+
+def depth_of_field(scene, camera, eye, view) -> dict:
+    """core.Camera's lens fields from Blender's own camera depth of field, as Cycles reads
+    it: radius = focal length / (2 f-stop), in scene units; the focus object's distance along
+    the view, else the focus distance; the aperture's Blades, Rotation and Ratio. A pinhole
+    when depth of field is off."""
     dof = camera.data.dof
     if not dof.use_dof:
-        return 0.0, 10.0
+        return dict(PINHOLE)
     focus = dof.focus_distance
     if dof.focus_object is not None:
         focus = float((dof.focus_object.matrix_world.translation - eye).dot(view))
@@ -127,4 +123,10 @@ def depth_of_field(scene, camera, eye, view) -> tuple[float, float]:
         )
     # As Cycles reads it: an F-Stop of 0 (which Blender's field allows) as 1e-5, the widest
     radius = camera.data.lens * 1e-3 / (2.0 * max(dof.aperture_fstop, MIN_FSTOP))
-    return radius / scene.unit_settings.scale_length, focus
+    return {
+        "aperture_radius": radius / scene.unit_settings.scale_length,
+        "focal_distance": focus,
+        "aperture_blades": int(dof.aperture_blades),
+        "aperture_rotation": float(dof.aperture_rotation),
+        "aperture_ratio": float(dof.aperture_ratio),
+    }

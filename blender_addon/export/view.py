@@ -15,7 +15,7 @@ import numpy as np
 from mathutils import Vector
 
 from .. import core
-from .camera import depth_of_field, from_projection
+from .camera import PINHOLE, depth_of_field, from_projection
 
 Matrix4 = tuple[tuple[float, ...], ...]
 
@@ -54,12 +54,12 @@ def camera(view: View, depsgraph) -> core.Camera:
     projection = view.window_matrix
     axes = world_from_view[:3, :3] / np.linalg.norm(world_from_view[:3, :3], axis=0)
     eye, forward, up = world_from_view[:3, 3], -axes[:, 2], axes[:, 1]
-    aperture, focus = 0.0, 10.0
+    lens = dict(PINHOLE)
     scene_camera = depsgraph.scene.camera
     if view.perspective == "CAMERA" and scene_camera is not None:
         evaluated = scene_camera.evaluated_get(depsgraph)
         if evaluated.type == "CAMERA":
-            aperture, focus = depth_of_field(
+            lens = depth_of_field(
                 depsgraph.scene, evaluated, Vector(tuple(eye)), Vector(tuple(forward))
             )
     orthographic = projection[3][3] == 1.0
@@ -67,9 +67,7 @@ def camera(view: View, depsgraph) -> core.Camera:
         # Blender's orthographic views clip half the clip distance behind the eye; rays start
         # on the image plane, so it moves back that far (the picture stays put)
         eye = eye - forward * (view.clip_end / 2.0)
-    return from_projection(
-        projection, eye, forward, up, "3D Viewport", aperture, focus, orthographic
-    )
+    return from_projection(projection, eye, forward, up, "3D Viewport", lens, orthographic)
 
 
 def settings(render: core.RenderSettings, view: View) -> core.RenderSettings:

@@ -47,10 +47,20 @@ from .environment import environment_kind
 SHADOW_CULLING_MIN_SAMPLES = 8
 
 
+def _lens(camera) -> np.ndarray:
+    """Aperture radius, focal distance, blades (0: a disk), rotation, 1 / ratio."""
+    blades = camera.aperture_blades if camera.aperture_blades >= 3 else 0
+    return np.array(
+        [camera.aperture_radius, camera.focal_distance, blades, camera.aperture_rotation,
+         1.0 / camera.aperture_ratio],
+        float,
+    )  # fmt: skip
+
+
 def pack_frame(scene: Scene, settings: RenderSettings) -> Frame:
     return Frame(
         camera=_camera(scene, settings),
-        lens=np.array([scene.camera.aperture_radius, scene.camera.focal_distance], float),
+        lens=_lens(scene.camera),
         ambient=np.asarray(scene.ambient, float),
         background=np.asarray(scene.background, float),
         options=_options(scene, settings),

@@ -19,7 +19,8 @@ class Frame(NamedTuple):
     # centre, forward is the unit view direction, right and up are scaled by the image's
     # half-width and half-height in scene units
     camera: np.ndarray  # float64 (4, 3)
-    lens: np.ndarray  # float64 (2,): aperture radius, focal distance
+    # float64 (5,): aperture radius, focal distance, blades (0: a disk), rotation, 1 / ratio
+    lens: np.ndarray
     ambient: np.ndarray  # float64 (3,)
     background: np.ndarray  # float64 (3,)
     options: np.ndarray  # int64 (OPTION_COUNT,)

@@ -73,6 +73,25 @@ def concentric_disk(a, b):
 
 
 @kernel
+def regular_polygon(corners, rotation, a, b):
+    """The unit square onto the regular polygon with `corners` corners on the unit circle,
+    turned by `rotation` radians (a camera's aperture blades): `a` picks one of the triangles
+    fanned from the centre, corner k at angle rotation + (2k + 1) pi / corners, and with `b`
+    places the point in it uniformly, so the polygon is covered with even density."""
+    scaled = a * corners
+    wedge = min(math.floor(scaled), corners - 1)
+    a = scaled - wedge
+    # Uniform in the triangle (centre, c0, c1): sqrt(a) reaches out from the centre, b slides
+    # between the two corners
+    reach = math.sqrt(a)
+    first = rotation + (2.0 * wedge + 1.0) * math.pi / corners
+    second = first + 2.0 * math.pi / corners
+    x = reach * ((1.0 - b) * math.cos(first) + b * math.cos(second))
+    y = reach * ((1.0 - b) * math.sin(first) + b * math.sin(second))
+    return x, y
+
+
+@kernel
 def basis(w):
     """Two unit vectors that make a right-handed orthonormal frame with unit w, continuous in
     w except where w's z changes sign (Duff et al. 2017)."""

@@ -5,13 +5,15 @@ cell centres ("grid", the report's 3 x 3 supersampling when n = 3) or at a rando
 each cell ("jittered"). With a lens (aperture > 0) each ray starts at a point on the lens,
 also stratified over n x n cells of the lens (in a random order per pixel, so that the pixel and
 lens positions are not correlated), and aims at where the pinhole ray meets the plane in
-focus. With aperture 0 the lens code does not run: the pinhole picture, exactly.
+focus. With aperture 0 the lens code does not run: the pinhole picture, exactly. The lens is
+a disk, or a regular polygon with the camera's blades (polygonal bokeh), and its width may be
+divided by an aspect ratio (anamorphic bokeh), as Blender's Aperture panel sets it.
 """
 
 from ..jit import kernel
 from .borrow import borrowed
 from .integrator import trace_ray
-from .light_samples import concentric_disk
+from .light_samples import concentric_disk, regular_polygon
 from .options import (
     OPTION_PASSES,
     OPTION_PIXEL_PATTERN,
@@ -63,7 +65,13 @@ def camera_ray(frame, image_width, image_height, px, py, sample, key):
     pixel_key = sample_key(frame.options[OPTION_SEED], px, py, n * n)
     cell = permuted(sample, n * n, pixel_key)
     a, b = uniform2(key, PURPOSE_LENS, 0, 0)
-    lx, ly = concentric_disk(((cell % n) + a) / n, ((cell // n) + b) / n)
+    u, v = ((cell % n) + a) / n, ((cell // n) + b) / n
+    blades = int(frame.lens[2])
+    if blades == 0:
+        lx, ly = concentric_disk(u, v)
+    else:
+        lx, ly = regular_polygon(blades, frame.lens[3], u, v)
+    lx *= frame.lens[4]  # 1 / the aperture ratio
     origin = add(
         eye, add(scale(normalize(right), aperture * lx), scale(normalize(up), aperture * ly))
     )

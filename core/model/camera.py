@@ -11,6 +11,9 @@ from ..checks import Vec3, check_choice, check_number, check_vec3
 from ..errors import SceneError
 from ..vocabulary import PROJECTIONS
 
+# Blender's Blades field stops at 100; more sides than that are a disk to the eye
+MAX_BLADES = 100
+
 
 @dataclass
 class Camera:
@@ -25,6 +28,11 @@ class Camera:
                        (perspective)
     ortho_height    -- height of the image in scene units, > 0 (orthographic)
     aperture_radius -- radius of the lens; 0 is a pinhole (everything sharp)
+    aperture_blades -- the aperture's shape: 0 (or 1, 2) a disk; n >= 3 a regular n-gon whose
+                       corners lie on the circle of aperture_radius (polygonal bokeh)
+    aperture_rotation -- the polygon's turn about the view axis, in radians
+    aperture_ratio  -- the aperture's width is divided by this (anamorphic bokeh): below 1
+                       out-of-focus highlights stretch sideways, above 1 upwards; 1 is round
     focal_distance  -- distance along `view` of the plane that is in focus, > 0
     shift           -- (x, y) offset of the image on the image plane, in half-widths and
                        half-heights of the image (a view-camera lens shift, as Blender's
@@ -37,6 +45,9 @@ class Camera:
     fovy: float = 50.0
     name: str = "Camera"
     aperture_radius: float = 0.0
+    aperture_blades: int = 0
+    aperture_rotation: float = 0.0
+    aperture_ratio: float = 1.0
     focal_distance: float = 10.0
     shift: tuple[float, float] = (0.0, 0.0)
     projection: str = "perspective"
@@ -56,6 +67,13 @@ class Camera:
         check_choice(owner, "projection", self.projection, tuple(PROJECTIONS))
         check_number(owner, "ortho_height", self.ortho_height, low=0.0, low_open=True)
         check_number(owner, "aperture_radius", self.aperture_radius, low=0.0)
+        check_number(owner, "aperture_blades", self.aperture_blades, low=0, high=MAX_BLADES)
+        if self.aperture_blades != int(self.aperture_blades):
+            raise SceneError(
+                owner, "aperture_blades", f"got {self.aperture_blades!r}; use a whole number"
+            )
+        check_number(owner, "aperture_rotation", self.aperture_rotation)
+        check_number(owner, "aperture_ratio", self.aperture_ratio, low=0.0, low_open=True)
         check_number(owner, "focal_distance", self.focal_distance, low=0.0, low_open=True)
         if len(self.shift) != 2:
             raise SceneError(owner, "shift", f"got {self.shift!r}; use two numbers (x, y)")
