@@ -87,9 +87,11 @@ def build_scenes(context, path: Path, calls: list, into: str = NEW_SCENE) -> lis
     window = context.window or next(iter(context.window_manager.windows), None)
     if into == NEW_SCENE and window is not None:
         window.scene = scenes[0]  # the user sees what was imported; their scene is unchanged
+    # Every new scene's depsgraph made and evaluated now, its parented objects placed (a
+    # scene no window shows has none until asked for one)
     for scene in scenes:
         for layer in scene.view_layers:
-            layer.update()
+            layer.depsgraph.update()
     return scenes
 
 

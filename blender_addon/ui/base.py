@@ -24,7 +24,9 @@ def draw_warnings(layout, context, warnings: list[str]) -> None:
     """Each warning under an ERROR icon, wrapped to the panel's width (a label is cut, not
     wrapped), without its leading 'light 'X': ' (the panel is the light's own)."""
     width = getattr(context.region, "width", 300)
-    per_line = max(24, int(width / (7.0 * context.preferences.system.ui_scale)) - 6)
+    # (A scale of 0 is what Blender without a window reports)
+    scale = context.preferences.system.ui_scale or 1.0
+    per_line = max(24, int(width / (7.0 * scale)) - 6)
     for warning in warnings:
         words = warning.split(": ", 1)[-1].split()
         lines, line = [], ""

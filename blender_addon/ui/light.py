@@ -36,7 +36,7 @@ class WHITTED_PT_light(WhittedPanel, bpy.types.Panel):
         if light.type in {"POINT", "SPOT"}:
             col.prop(light, "shadow_soft_size", text="Radius")
             if hasattr(light, "use_soft_falloff") and not cs488:
-                col.prop(light, "use_soft_falloff")
+                col.prop(light, "use_soft_falloff", text="Soft Edge")
         elif light.type == "SUN":
             col.prop(light, "angle")
         else:

@@ -56,4 +56,5 @@ class WHITTED_PT_object_ray_visibility(WhittedPanel, bpy.types.Panel):
         column.prop(obj, "visible_camera", text="Camera", toggle=False)
         column.prop(obj, "visible_shadow", text="Shadow", toggle=False)
         column.prop(obj, "visible_glossy", text="Glossy", toggle=False)
-        column.prop(obj, "visible_transmission", text="Transmission", toggle=False)
+        # Cycles' "Transmission" is cut at the default width
+        column.prop(obj, "visible_transmission", text="Transmit", toggle=False)

@@ -72,8 +72,9 @@ class WHITTED_PT_film(_RenderPanel, bpy.types.Panel):
     bl_label = "Film"
 
     def draw(self, context):
-        # Film › Transparent, as Cycles and EEVEE name it
-        self.split_layout().prop(context.scene.render, "film_transparent", text="Transparent")
+        # Film › Transparent, as Cycles and EEVEE name it, on the panel's whole width (its
+        # label column would cut it)
+        self.layout.prop(context.scene.render, "film_transparent", text="Transparent")
 
 
 class WHITTED_PT_performance(_RenderPanel, bpy.types.Panel):

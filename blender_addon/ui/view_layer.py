@@ -32,8 +32,8 @@ class WHITTED_PT_passes_data(WhittedPanel, bpy.types.Panel):
         column.prop(view_layer, "use_pass_position")
         column.prop(view_layer, "use_pass_uv")
         column = layout.column(heading="Indexes", align=True)
-        column.prop(view_layer, "use_pass_object_index")
-        column.prop(view_layer, "use_pass_material_index")
+        column.prop(view_layer, "use_pass_object_index", text="Object")
+        column.prop(view_layer, "use_pass_material_index", text="Material")
         world = context.scene.world
         if view_layer.use_pass_mist and world is not None:
             column = layout.column(align=True)
@@ -57,8 +57,9 @@ class WHITTED_PT_passes_light(WhittedPanel, bpy.types.Panel):
         column = layout.column(heading="Other", align=True)
         column.prop(view_layer, "use_pass_shadow")
         column.prop(view_layer, "use_pass_emit", text="Emission")
-        column.prop(view_layer, "use_pass_environment")
-        column.prop(view_layer.whitted, "use_pass_terms")
+        # Labels of at most about nine characters: longer ones are cut at the default width
+        column.prop(view_layer, "use_pass_environment", text="World")
+        column.prop(view_layer.whitted, "use_pass_terms", text="Terms")
 
 
 class WHITTED_PT_passes_crypto(WhittedPanel, bpy.types.Panel):

@@ -82,7 +82,9 @@ def test_the_import_builds_blender_data_a_user_recognises(imported, bpy_with_whi
     assert tuple(area.whitted.attenuation) == (1.0, 0.0, 0.0)
     camera = scene.camera.data
     assert math.isclose(math.degrees(camera.angle_y), 40.0, rel_tol=1e-6) and camera.dof.use_dof
-    assert scene.camera.matrix_world.col[1][2] > 0.99  # the script's y is Blender's z, up
+    # The script's y is Blender's z, up: the camera as the scene's depsgraph places it
+    placed = scene.camera.evaluated_get(scene.view_layers[0].depsgraph)
+    assert placed.matrix_world.col[1][2] > 0.99
     assert tuple(scene.world.color) == pytest.approx((0.25, 0.25, 0.25))
     settings = scene.whitted
     assert (scene.render.resolution_x, scene.render.resolution_y) == (48, 36)

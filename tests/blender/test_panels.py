@@ -117,3 +117,113 @@ def test_the_material_panel_offers_emission_lights_only_where_something_emits(bp
     principled.inputs["Emission Strength"].default_value = 2.0
     surface, _ = material.read_graph(plain, textures=False)
     assert nodes.emits(surface)
+
+
+class RecordingLayout:
+    """Stands for a panel's layout: records the label of each property drawn (its `text`,
+    else the property's own name) and passes as every sub-layout a panel asks for."""
+
+    def __init__(self, labels):
+        self.labels = labels
+        self.use_property_split = self.use_property_decorate = False
+        self.enabled = self.active = True
+
+    def prop(self, data, name, text=None, expand=False, **_):
+        label = text if text is not None else data.bl_rna.properties[name].name
+        # Split, a label has the left column (or a checkbox's, the right); unsplit, the width
+        limit = LONGEST_LABEL if self.use_property_split else LONGEST_UNSPLIT_LABEL
+        self.labels.append((type(data).__name__, name, label, limit))
+
+    def _inner(self, *args, **kwargs):
+        inner = RecordingLayout(self.labels)
+        inner.use_property_split = self.use_property_split
+        return inner
+
+    row = column = box = split = grid_flow = _inner
+
+    def label(self, *args, **kwargs):
+        pass
+
+    template_ID = template_preview = separator = operator = label  # noqa: N815 (Blender's)
+
+
+def drawn_labels(bpy, panel_name, context):
+    labels = []
+    panel = getattr(bpy.types, panel_name)
+    # The panel's own Python methods (its mixins' too) on a stand-in with the recording layout
+    own = {}
+    for cls in reversed(panel.__mro__):
+        if cls.__module__.split(".")[0] == panel.__module__.split(".")[0]:
+            own.update(vars(cls))
+    fake = type("Drawn", (), {**own, "layout": RecordingLayout(labels)})()
+    panel.draw(fake, context)
+    return labels
+
+
+# A label longer than this is cut ("Soft Shado…") at the Properties editor's default width
+# (measured in Blender 3.4's window at 1280 x 800: "Strength" fits, "Backgr…" is cut)
+LONGEST_LABEL = 9
+LONGEST_UNSPLIT_LABEL = 24  # a row of the panel's whole width
+
+
+def test_whitteds_panels_fit_their_labels_and_tooltips_speak_a_users_words(
+    sample_scene, bpy_with_whitted
+):
+    bpy = bpy_with_whitted
+    scene = sample_scene
+    ball = next(o for o in scene.objects if o.type == "MESH" and o.whitted.shape == "SPHERE")
+    light = next(o for o in scene.objects if o.type == "LIGHT")
+    context = type("Context", (), {
+        "scene": scene, "world": scene.world, "object": ball, "material": ball.active_material,
+        "light": light.data, "view_layer": scene.view_layers[0],
+        "region": type("Region", (), {"width": 300})(), "preferences": bpy.context.preferences,
+    })()  # fmt: skip
+    panels = [name for name in dir(bpy.types) if name.startswith("WHITTED_PT_")]
+    assert len(panels) >= 14
+    checked = 0
+    for name in panels:
+        if name in ("WHITTED_PT_passes", "WHITTED_PT_world_preview"):
+            continue  # a header only; a preview image
+        for owner, prop, label, limit in drawn_labels(bpy, name, context):
+            checked += 1
+            assert len(label) <= limit, f"{name}: {owner}.{prop} is labelled {label!r}"
+    # Every light type under both light models, both World models
+    for kind in ("POINT", "SUN", "SPOT", "AREA"):
+        for model in ("BLENDER", "CS488"):
+            light.data.type, light.data.whitted.model = kind, model
+            context.light = light.data
+            for owner, prop, label, limit in drawn_labels(bpy, "WHITTED_PT_light", context):
+                checked += 1
+                assert len(label) <= limit, f"{kind} light: {owner}.{prop} is {label!r}"
+    for model in ("BLENDER", "CS488"):
+        scene.world.whitted.model = model
+        for owner, prop, label, limit in drawn_labels(bpy, "WHITTED_PT_world", context):
+            assert len(label) <= limit, f"{model} World: {owner}.{prop} is {label!r}"
+    assert checked > 60
+    for group in (scene.whitted, scene.world.whitted, ball.active_material.whitted,
+                  light.data.whitted, ball.whitted):  # fmt: skip
+        for prop in group.bl_rna.properties:
+            words = [prop.description] + [
+                item.description for item in getattr(prop, "enum_items", [])
+            ]
+            assert not any("report" in text.lower() for text in words), prop.identifier
+
+
+def test_the_world_preview_and_the_whole_aperture_are_shown(sample_scene, bpy_with_whitted):
+    """World › Preview is there (rendered by Whitted); Camera › Aperture shows Blades,
+    Rotation and Ratio, which Whitted now reads (test_cycles_camera)."""
+    bpy = bpy_with_whitted
+    preview = bpy.types.WHITTED_PT_world_preview
+    context = type("Context", (), {"engine": "WHITTED", "world": sample_scene.world})()
+    assert preview.bl_context == "world" and preview.poll(context)
+    assert "DATA_PT_camera_dof_aperture" in shown_panels(bpy)
+    camera = sample_scene.camera
+    camera.data.dof.use_dof = True
+    lens = exported(bpy)[0].camera
+    camera.data.dof.aperture_blades, camera.data.dof.aperture_ratio = 6, 0.5
+    camera.data.dof.aperture_rotation = 0.25
+    after = exported(bpy)[0].camera
+    assert (lens.aperture_blades, lens.aperture_ratio) == (0, 1.0)
+    assert (after.aperture_blades, after.aperture_rotation, after.aperture_ratio) == (
+        6, pytest.approx(0.25), 0.5
+    )  # fmt: skip
