@@ -44,6 +44,7 @@ def build_spheres():
     kit.point_light("Key", (3.0, -4.0, 8.0), 2000.0 / kit.WATTS_PER_INTENSITY, (0.0, 0.0, 1.0))
     camera_data = bpy.data.cameras.new("Camera")
     camera_data.lens = 35.0
+    camera_data.clip_end = 1e4  # past the ground sphere, 2 km across
     camera = bpy.data.objects.new("Camera", camera_data)
     camera.location = (0.0, -11.0, 4.5)
     camera.rotation_euler = (math.radians(72.0), 0.0, 0.0)

@@ -33,7 +33,38 @@ def new_file():
     return bpy.context.scene
 
 
+def frame_views(scene) -> None:
+    """Every 3D view of the file looks through the scene's camera, with clip distances that fit
+    the scene: Blender's own (1 cm to 1 km) left the final scene, a few hundred metres across,
+    clipped, and a new file opened with the view inside an object. Orbiting out of the camera
+    view circles the scene's middle at a distance that shows all of it."""
+    bpy.context.view_layer.update()  # world matrices of objects placed since the last update
+    corners = np.array(
+        [
+            obj.matrix_world @ Vector(corner)
+            for obj in scene.objects
+            if obj.type == "MESH"
+            for corner in obj.bound_box
+        ]  # fmt: skip
+    )
+    low, high = corners.min(axis=0), corners.max(axis=0)
+    extent = float(np.linalg.norm(high - low))
+    for screen in bpy.data.screens:
+        for area in screen.areas:
+            if area.type != "VIEW_3D":
+                continue
+            space = area.spaces.active
+            space.clip_end = max(1000.0, 4.0 * extent)
+            space.clip_start = space.clip_end * 1e-5
+            view = space.region_3d
+            view.view_location = Vector(((low + high) / 2.0).tolist())
+            view.view_distance = extent
+            if scene.camera is not None:
+                view.view_perspective = "CAMERA"
+
+
 def save(name: str) -> Path:
+    frame_views(bpy.context.scene)
     path = OUTPUT / name
     bpy.ops.wm.save_as_mainfile(filepath=str(path), compress=True)
     bpy.ops.file.make_paths_relative()  # textures as //textures/..., next to the file

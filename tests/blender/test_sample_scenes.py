@@ -406,3 +406,33 @@ def test_final_scene_has_the_report_settings_and_renders(bpy_with_whitted, tmp_p
     wall = (slice(2, 14), slice(8, 56))
     assert np.all(np.isfinite(mirrored))
     assert np.abs(mirrored[wall] - matte[wall]).mean() > 0.05
+
+
+@pytest.mark.parametrize("name", sorted(p.name for p in SAMPLES.glob("*.blend")))
+def test_each_sample_opens_framed_through_its_camera(bpy_with_whitted, name):
+    """Opened as a user opens it (with its UI), every 3D view looks through the scene's
+    camera, and the view's and the camera's clip distances hold the whole scene (Blender's
+    defaults, 1 km, cut the final scene and put the view inside an object)."""
+    bpy = bpy_with_whitted
+    from mathutils import Vector  # Blender's, once bpy is loaded
+
+    bpy.ops.wm.open_mainfile(filepath=str(SAMPLES / name), load_ui=True)
+    scene = bpy.context.scene
+    corners = np.array(
+        [
+            obj.matrix_world @ Vector(corner)
+            for obj in scene.objects
+            if obj.type == "MESH"
+            for corner in obj.bound_box
+        ]  # fmt: skip
+    )
+    size = float(np.linalg.norm(corners.max(axis=0) - corners.min(axis=0)))
+    views = [area.spaces.active for screen in bpy.data.screens for area in screen.areas
+             if area.type == "VIEW_3D"]  # fmt: skip
+    assert views
+    for view in views:
+        assert view.region_3d.view_perspective == "CAMERA"
+        assert view.clip_end >= size and view.clip_start <= 0.01 * size
+    eye = np.array(scene.camera.matrix_world.translation)
+    farthest = float(np.linalg.norm(corners - eye, axis=1).max())
+    assert scene.camera.data.clip_end > farthest
