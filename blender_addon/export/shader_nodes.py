@@ -38,6 +38,11 @@ OUTPUTS = {
         {"UV": "UV", "Generated": "Generated", "Object": "Object", "Normal": "Normal"},
     ),  # fmt: skip
     "UVMAP": ("tex_coord", {"UV": "UV"}),
+    "LIGHT_PATH": (
+        "light_path",
+        {"Is Camera Ray": "Is Camera Ray", "Is Shadow Ray": "Is Shadow Ray",
+         "Ray Depth": "Ray Depth"},
+    ),  # fmt: skip
     "MAPPING": ("mapping", {"Vector": "Vector"}),
     "MATH": ("math", {"Value": "Value"}),
     "MIX_RGB": ("mix_color", {"Color": "Color"}),

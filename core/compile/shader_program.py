@@ -35,6 +35,8 @@ from ..model.shader import (
 
 COORDS = {"UV": sp.COORD_UV, "Generated": sp.COORD_GENERATED, "Object": sp.COORD_OBJECT,
           "Normal": sp.COORD_NORMAL}  # fmt: skip
+RAY_COORDS = {"Is Camera Ray": sp.COORD_IS_CAMERA, "Is Shadow Ray": sp.COORD_IS_SHADOW,
+              "Ray Depth": sp.COORD_RAY_DEPTH}  # fmt: skip
 # Outputs that are colours (as numbers: their luminance) rather than vectors (their mean)
 COLOUR_OUTPUTS = {"Color"}
 
@@ -217,6 +219,10 @@ class ProgramBuilder:
             self.outputs[(id(node), name, self.where)] = (slots[name], shape)
         if kind == "tex_coord":
             for name, which in COORDS.items():
+                p.step(sp.OP_COORD, slots[name], which, self.where)
+            p.varying = True
+        elif kind == "light_path":
+            for name, which in RAY_COORDS.items():
                 p.step(sp.OP_COORD, slots[name], which, self.where)
             p.varying = True
         elif kind == "bump":

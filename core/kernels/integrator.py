@@ -255,7 +255,10 @@ def trace_ray(ps, o, d, key, ws):
             with_frame = mats.shader_frame[material] != 0
             hit, across = hit_frame(geo, surf, shape, part, p, n_shading, u, v, with_frame)
             rows = normal_rows(geo.shape_object_from_world, shape)
-            run_program(mats, material, ws.shader_stack, ws.lobes, hit, across, rows)
+            # Light Path: a camera ray until it reflects or refracts (passing a transparent
+            # surface keeps it one, as in Cycles)
+            ray = (1.0 if depth == 0 else 0.0, 0.0, float(depth))
+            run_program(mats, material, ws.shader_stack, ws.lobes, hit, across, rows, ray)
             here = terms_from_lobes(ws.lobes)
             if here.normal[0] != 0.0 or here.normal[1] != 0.0 or here.normal[2] != 0.0:
                 n_shading = here.normal  # Bump, Normal Map: the graph's shading normal

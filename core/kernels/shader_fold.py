@@ -28,7 +28,10 @@ def fold_surfaces(mats, rows, out):
     here = (zero, zero, zero, zero)
     rows3 = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
     for k in range(rows.shape[0]):
-        run_program(mats, rows[k], stack, lobes, (here, here, here), (zero, zero, zero), rows3)
+        # (A program that reads the ray is varying, never folded: the ray here is nobody's)
+        run_program(
+            mats, rows[k], stack, lobes, (here, here, here), (zero, zero, zero), rows3, zero
+        )
         s = terms_from_lobes(lobes)
         o = out[k]
         _three(o, 0, s.kd)

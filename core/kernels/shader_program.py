@@ -78,6 +78,8 @@ OP_MORE = 28  # transmission, emission colour, emission strength, specular level
 
 # Texture coordinates (OP_COORD)
 COORD_UV, COORD_GENERATED, COORD_OBJECT, COORD_NORMAL = 0, 1, 2, 3
+# What the ray that met the surface is (OP_COORD too; Light Path's outputs), from `ray`
+COORD_IS_CAMERA, COORD_IS_SHADOW, COORD_RAY_DEPTH = 4, 5, 6
 # Normal Map spaces (OP_NORMAL_MAP)
 NORMAL_MAP_TANGENT, NORMAL_MAP_OBJECT, NORMAL_MAP_WORLD = 0, 1, 2
 
@@ -293,12 +295,13 @@ def _add_normal(lobes, stack, weight, slot):
 
 
 @kernel
-def run_program(mats, material, stack, lobes, hit, frame, normal_rows):
+def run_program(mats, material, stack, lobes, hit, frame, normal_rows, ray):
     """Run the material's program with `hit` = the texture coordinates (uv, generated,
     object, normal) at the hit and a step along u and v (core.kernels.surface.hit_frame),
     `frame` = (step along u, step along v, normal) in world space, `normal_rows` the rows
-    of the object-to-world normal transform, leaving its lobes in `lobes` (LOBE_COUNT
-    zeroed first)."""
+    of the object-to-world normal transform, `ray` = (1 for a camera ray, 1 for a shadow
+    ray, its bounces) for Light Path, leaving its lobes in `lobes` (LOBE_COUNT zeroed
+    first)."""
     lobes[:] = 0.0
     first, end = mats.shader_range[material, 0], mats.shader_range[material, 1]
     c0, c1 = mats.shader_constant_range[material, 0], mats.shader_constant_range[material, 1]
@@ -313,7 +316,11 @@ def run_program(mats, material, stack, lobes, hit, frame, normal_rows):
         c, d, e, f = ops[row, 4], ops[row, 5], ops[row, 6], ops[row, 7]
         row += 1
         if op == OP_COORD:
-            _put(s, out, hit[b][a])
+            if a >= COORD_IS_CAMERA:  # a number about the ray, as a triple
+                value = ray[a - COORD_IS_CAMERA]
+                _put(s, out, (value, value, value))
+            else:
+                _put(s, out, hit[b][a])
         elif op == OP_BUMP:
             _bump(s, out, s[a], s[b], s[c], s[d], s[e], f != 0, frame)
         elif op == OP_NORMAL_MAP:

@@ -23,7 +23,8 @@ def crossing_share(geo, surf, mats, ws, shape, part, b1, b2, o, d, t):
     with_frame = mats.shader_frame[material] != 0
     hit, across = hit_frame(geo, surf, shape, part, p, n_shading, u, v, with_frame)
     rows = normal_rows(geo.shape_object_from_world, shape)
-    run_program(mats, material, ws.shader_stack, ws.lobes, hit, across, rows)
+    # Light Path: a shadow ray (its depth is not known here: read as 0)
+    run_program(mats, material, ws.shader_stack, ws.lobes, hit, across, rows, (0.0, 1.0, 0.0))
     here = terms_from_lobes(ws.lobes)
     straight = (here.transparent[0] + here.transparent[1] + here.transparent[2]) / 3.0
     return min(1.0, max(0.0, here.transparency + straight))

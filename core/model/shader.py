@@ -65,6 +65,11 @@ SHADER_NODES = {
         inputs={},
         outputs={"UV": "triple", "Generated": "triple", "Object": "triple", "Normal": "triple"},
     ),  # fmt: skip
+    # What the ray that met the surface is: 1 or 0, and its bounces (Blender's Light Path)
+    "light_path": dict(
+        inputs={},
+        outputs={"Is Camera Ray": "value", "Is Shadow Ray": "value", "Ray Depth": "value"},
+    ),  # fmt: skip
     "mapping": dict(
         inputs={
             "Vector": (0.0, 0.0, 0.0),

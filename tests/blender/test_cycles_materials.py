@@ -362,3 +362,38 @@ def test_emissive_surfaces_light_the_scene_as_in_cycles(bpy_with_whitted, tmp_pa
         material.whitted.emission_lights = "OFF"
     _, dark = side_by_side(bpy, scene, tmp_path, samples=16)
     assert dark.max() == 0.0
+
+
+def test_light_path_tells_camera_rays_from_others_as_in_cycles(bpy_with_whitted, tmp_path):
+    """Light Path › Is Camera Ray, as library materials and Blender's own preview floor use it
+    (its Alpha is 1 - Is Camera Ray: hidden from the camera, seen in mirrors): a ball whose
+    Mix Shader is red to the camera and green to everything else shows red, and green in a
+    mirror ball beside it; Ray Depth and Is Shadow Ray are read too (Cycles agrees)."""
+    bpy = bpy_with_whitted
+    scene, mirror_ball = ball_on_floor(bpy, _glossy_tinted)
+    mirror_ball.location = (-1.6, 0.0, 1.0)
+    material = bpy.data.materials.new("Two Faced")
+    material.use_nodes = True
+    tree = material.node_tree
+    tree.nodes.clear()
+    path = tree.nodes.new("ShaderNodeLightPath")
+    mix = tree.nodes.new("ShaderNodeMixShader")
+    green, red = (tree.nodes.new("ShaderNodeEmission") for _ in range(2))
+    green.inputs["Color"].default_value = (0.1, 1.0, 0.1, 1.0)
+    red.inputs["Color"].default_value = (1.0, 0.1, 0.1, 1.0)
+    output = tree.nodes.new("ShaderNodeOutputMaterial")
+    tree.links.new(path.outputs["Is Camera Ray"], mix.inputs["Fac"])
+    tree.links.new(green.outputs[0], mix.inputs[1])
+    tree.links.new(red.outputs[0], mix.inputs[2])
+    tree.links.new(mix.outputs[0], output.inputs[0])
+    two_faced = add_ball(bpy, scene, material, location=(1.6, 0.0, 1.0), radius=1.0)
+    two_faced.visible_diffuse = False  # its glow lights nothing (Whitted's lights nothing)
+    cycles, whitted = side_by_side(bpy, scene, tmp_path, samples=256)
+    assert disagreement(cycles, whitted) < TOLERANCE
+    seen = whitted[14:18, 22:26].mean(axis=(0, 1))  # the ball itself, to the camera
+    assert seen[0] > 5 * seen[1], seen
+    # In the mirror ball (the picture's left half) its green side shows, in both renderers
+    for picture in (cycles, whitted):
+        left = picture[:, :16]
+        green = (left[..., 1] > 2 * left[..., 0]) & (left[..., 1] > 0.1)
+        assert green.sum() >= 4, green.sum()

@@ -1,8 +1,10 @@
 """Material previews in Blender 3.4's real window (under Xvfb) render with Whitted: the
 refraction sample's diffuse walls, its checker texture and its glass ball, and a pink node
 material, each get a thumbnail, made by Whitted's engine (its preview renders counted), that
-shows the material in its colour."""
+shows the material in its colour; and saturated materials' thumbnails look as Cycles'
+thumbnails of them do (hue, brightness, backdrop) and take the hue they render with."""
 
+import colorsys
 import json
 import os
 import shutil
@@ -11,6 +13,7 @@ import sys
 
 import numpy as np
 import pytest
+from PIL import Image
 
 from tests.support import ROOT
 
@@ -20,17 +23,22 @@ DRIVER = ROOT / "tests" / "blender" / "scripts" / "window_previews.py"
 SAMPLE = ROOT / "sample_blends" / "refraction.blend"
 
 
-def test_material_previews_render_with_whitted(display, tmp_path):
-    out = tmp_path / "previews.json"
+def run_window_script(display, script, out):
+    """Blender 3.4's window on `display`, the refraction sample open, running `script`."""
     site = ROOT / ".venv" / "lib" / "python3.11" / "site-packages"
     if not site.is_dir():
         site = next(p for p in sys.path if p.endswith("site-packages"))
     env = dict(os.environ, DISPLAY=display, PYTHONPATH=f"{ROOT}{os.pathsep}{site}")
-    run = subprocess.run(
+    return subprocess.run(
         [shutil.which("blender"), "--python-use-system-env", "--addons", "whitted",
-         str(SAMPLE), "--python", str(DRIVER), "--", str(out)],
+         str(SAMPLE), "--python", str(script), "--", str(out)],
         env=env, capture_output=True, text=True, timeout=300,
     )  # fmt: skip
+
+
+def test_material_previews_render_with_whitted(display, tmp_path):
+    out = tmp_path / "previews.json"
+    run = run_window_script(display, DRIVER, out)
     assert out.is_file(), run.stdout[-3000:] + run.stderr[-3000:]
     seen = json.loads(out.read_text())
     previews = {name: np.array(rows) for name, rows in seen["materials"].items()}
@@ -57,3 +65,41 @@ def test_material_previews_render_with_whitted(display, tmp_path):
     glass = ball["Glass"].mean(axis=(0, 1))
     assert np.ptp(glass) < 0.05 * glass.max()
     assert "Traceback" not in run.stdout + run.stderr, run.stderr[-3000:]
+
+
+COLOURS = ROOT / "tests" / "blender" / "scripts" / "window_preview_colours.py"
+
+
+def hue(rgb) -> float:
+    return colorsys.rgb_to_hsv(*rgb)[0]
+
+
+def hue_apart(a, b) -> float:
+    """How far apart two hues are, around the colour wheel (0 to 0.5)."""
+    apart = abs(hue(a) - hue(b)) % 1.0
+    return min(apart, 1.0 - apart)
+
+
+def test_a_saturated_materials_preview_looks_as_it_renders(display, tmp_path):
+    """The thumbnails of saturated materials, rendered by Whitted under Blender's preview
+    scene (its own lights and World, its floor hidden from the camera through Light Path),
+    against the same thumbnails by Cycles (the reference for Blender data): the same hue and
+    brightness, the same empty backdrop; and the hue the material shows in an F12 render of
+    the sample scene with Whitted."""
+    out = tmp_path / "colours.json"
+    run = run_window_script(display, COLOURS, out)
+    assert out.is_file(), run.stdout[-3000:] + run.stderr[-3000:]
+    seen = json.loads(out.read_text())
+    assert seen["previews rendered by Whitted"] >= 3  # Cycles made the others
+    for name in ("Red", "Pink", "Teal"):
+        whitted = np.array(seen["thumbnails"]["WHITTED"][name])
+        cycles = np.array(seen["thumbnails"]["CYCLES"][name])
+        ball_w = whitted[40:88, 40:88].mean(axis=(0, 1))
+        ball_c = cycles[40:88, 40:88].mean(axis=(0, 1))
+        assert hue_apart(ball_w, ball_c) < 0.01, (name, ball_w, ball_c)
+        assert max(ball_w) == pytest.approx(max(ball_c), rel=0.03), (name, ball_w, ball_c)
+        corner_w, corner_c = whitted[:12, :12].mean(), cycles[:12, :12].mean()
+        assert abs(corner_w - corner_c) < 0.02, (name, corner_w, corner_c)
+        rendered = np.asarray(Image.open(seen["f12"][name]).convert("RGB")) / 255.0
+        ball_f12 = rendered[60:80, 90:110].mean(axis=(0, 1))  # the sample's ball, lit side
+        assert hue_apart(ball_w, ball_f12) < 0.04, (name, ball_w, ball_f12)

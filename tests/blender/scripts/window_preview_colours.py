@@ -1,0 +1,98 @@
+"""Run inside Blender's window: each material's preview thumbnail (`ed.lib_id_generate_preview`,
+as the Material tab makes it), first with Whitted, then with Cycles as the render engine; then
+an F12 render with Whitted of the sample scene with the materials on its ball. Writes, to the
+path after `--`, JSON: per engine and material the thumbnail's RGB rows (as displayed, row 0
+at the top); the F12 image's rows; the count of previews Whitted's engine rendered.
+
+A thumbnail is taken once its pixels have held still for a second (Cycles refines its in
+passes; Whitted's comes in one)."""
+
+import json
+import sys
+import time
+
+import bpy
+
+OUT = sys.argv[sys.argv.index("--") + 1]
+TIMEOUT_S = 90
+final = sys.modules["whitted.engine.final"]
+seen = {"previews rendered by Whitted": 0, "thumbnails": {}, "f12": {}}
+original_render = final.render
+
+
+def counting_render(engine, depsgraph):
+    seen["previews rendered by Whitted"] += bool(engine.is_preview)
+    original_render(engine, depsgraph)
+
+
+final.render = counting_render
+
+
+def principled(name, colour):
+    material = bpy.data.materials.new(name)
+    material.use_nodes = True
+    node = material.node_tree.nodes["Principled BSDF"]
+    node.inputs["Base Color"].default_value = (*colour, 1.0)
+    return material
+
+
+# Saturated colours as users pick them, and a pale one (linear RGB)
+MATERIALS = [principled("Red", (0.8, 0.02, 0.02)), principled("Pink", (1.0, 0.3, 0.55)),
+             principled("Teal", (0.02, 0.5, 0.45))]  # fmt: skip
+queue = [(engine, m) for engine in ("WHITTED", "CYCLES") for m in MATERIALS]
+state = {"job": None, "since": 0.0, "last": None, "still_since": 0.0}
+
+
+def rgb_rows(preview):
+    width, height = preview.image_size
+    values = preview.image_pixels_float[:]
+    rows = [[values[4 * (y * width + x) : 4 * (y * width + x) + 3] for x in range(width)]
+            for y in range(height)]  # fmt: skip
+    return rows[::-1]
+
+
+def f12():
+    """The sample's glass ball wearing each material in turn, rendered by Whitted."""
+    scene = bpy.context.scene
+    scene.render.engine = "WHITTED"
+    scene.render.resolution_percentage = 50
+    ball = bpy.data.objects["Glass Ball"]
+    for material in MATERIALS:
+        ball.material_slots[0].material = material
+        bpy.ops.render.render()
+        image = bpy.data.images["Render Result"]
+        path = f"{OUT}.{material.name}.png"
+        image.save_render(path)
+        seen["f12"][material.name] = path
+
+
+def tick():
+    if sys.modules["whitted.core"].warmup_process.shared_warmup().status().state == "running":
+        return 0.25
+    job = state["job"]
+    if job is not None:
+        engine, material = job
+        rows = rgb_rows(material.preview)
+        waited = time.monotonic() - state["since"]
+        if rows != state["last"]:
+            state["last"], state["still_since"] = rows, time.monotonic()
+        lit = max(max(max(pixel) for pixel in row) for row in rows) > 0.0
+        still = time.monotonic() - state["still_since"] > 1.0
+        if not (lit and still and waited > 2.0) and waited < TIMEOUT_S:
+            return 0.25
+        seen["thumbnails"].setdefault(engine, {})[material.name] = rows
+    if not queue:
+        f12()
+        with open(OUT, "w") as f:
+            json.dump(seen, f)
+        bpy.ops.wm.quit_blender()
+        return None
+    engine, material = state["job"] = queue.pop(0)
+    bpy.context.scene.render.engine = engine
+    state["since"], state["last"] = time.monotonic(), None
+    with bpy.context.temp_override(id=material):
+        bpy.ops.ed.lib_id_generate_preview()
+    return 0.25
+
+
+bpy.app.timers.register(tick, first_interval=2.0)
