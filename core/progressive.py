@@ -5,8 +5,12 @@ One worker thread per view. `submit` hands it a compiled scene; it renders `PASS
 each at 1/scale of the view's pixels along each axis, and publishes each finished pass
 enlarged to the view's size (the last pass also tile by tile, over the one before) as a
 `ViewImage`. A newer `submit`, or `close`, stops the pass in flight within a pixel's rays
-(the driver's cancel flag). Nothing here runs on the caller's thread but the bookkeeping, so
-a UI that submits never waits for a render.
+(the driver's cancel flag) — but for the coarsest pass, which a newer view lets finish and
+publish: while a view is dragged, a submit comes with every mouse move, faster than any pass,
+and cancelling each left the picture at the view before the drag until the hand stopped. So
+the picture follows the hand at the coarse pass's rate, each time at the newest view then
+waiting (intermediate views are dropped). Nothing here runs on the caller's thread but the
+bookkeeping, so a UI that submits never waits for a render.
 """
 
 from __future__ import annotations
@@ -173,6 +177,9 @@ class ProgressiveRender:
         for index, step in enumerate(self.passes):
             if stale():
                 return
+            # The coarse first pass runs to its end whatever comes meanwhile (see above)
+            finish = index == 0 and step.scale > 1
+            cancel = (lambda: self._closed) if finish else stale
             small = pass_settings(settings, step)
             streamed = step.scale == 1 and previous is not None and index == len(self.passes) - 1
             base = previous.copy() if streamed else None
@@ -185,13 +192,13 @@ class ProgressiveRender:
                 with_frame(compiled, scene, small),
                 small,
                 on_tile=show_tile if streamed else None,
-                should_cancel=stale,
+                should_cancel=cancel,
             )
-            if output.cancelled or stale():
+            if output.cancelled or cancel():
                 return
             previous = enlarged(output.image, settings)
             self.renders += 1
-            self._publish(ViewImage(previous, generation, index, True, output.stats), stale)
+            self._publish(ViewImage(previous, generation, index, True, output.stats), cancel)
 
     def _publish(self, image: ViewImage, stale) -> None:
         with self._wake:

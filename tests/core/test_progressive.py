@@ -1,6 +1,6 @@
 """The viewport's coarse-to-fine renders (core.progressive): the last pass is exactly the final
-render, passes come coarse first, a newer view cancels the older, and a moved camera packs
-only the frame again."""
+render, passes come coarse first, a newer view cancels the older (but for its coarse pass,
+which shows while a view is dragged), and a moved camera packs only the frame again."""
 
 import threading
 import time
@@ -149,3 +149,34 @@ def test_two_progressive_renders_at_once_both_finish_right():
         for renderer in renderers:
             renderer.close()
     assert threading.active_count() < 20
+
+
+def test_while_the_view_is_dragged_the_picture_follows_it():
+    """A drag submits a new view with every mouse move, faster than any pass: the coarse
+    pass of the view at hand still finishes and shows, so the picture moves with the hand
+    (it stayed at the view before the drag until the hand stopped, every pass cancelled)."""
+    scene = area_lit()
+    # A first pass of some 50-100 ms, as a large scene's 1/8 pass takes in a real view
+    settings = replace(SETTINGS, width=1280, height=720, shadow_samples=16)
+    passes = (Pass(2, False), Pass(1, False))
+    compiled = compile_scene(scene, settings)
+    renderer = ProgressiveRender(passes=passes)
+    try:
+        first = renderer.wait_for(renderer.submit(compiled, scene, settings), 0)
+        assert first.stats.render_s > 0.02  # slower than the moves below
+        shown, start = set(), time.perf_counter()
+        for step in range(60):  # a 1.2 s drag, a move every 20 ms
+            eye = (10.0 * np.sin(step / 20.0), -14.0 * np.cos(step / 20.0), 7.0)
+            renderer.submit(compiled, replace(scene, camera=replace(scene.camera, eye=eye)),
+                            settings)  # fmt: skip
+            time.sleep(0.02)
+            shown.add(renderer.latest().generation)
+        dragged_s = time.perf_counter() - start
+        # The picture changed during the drag (before: once, when the hand stopped)
+        assert len(shown) >= 3, (sorted(shown), dragged_s)
+        # and the drag's last view still refines to the end once the hand stops
+        last = renderer.generation
+        image = renderer.wait_for(last, len(passes) - 1)
+        assert image is not None and image.generation == last
+    finally:
+        renderer.close()
