@@ -40,8 +40,11 @@ OUTPUTS = {
     "UVMAP": ("tex_coord", {"UV": "UV"}),
     "LIGHT_PATH": (
         "light_path",
-        {"Is Camera Ray": "Is Camera Ray", "Is Shadow Ray": "Is Shadow Ray",
-         "Ray Depth": "Ray Depth"},
+        {
+            "Is Camera Ray": "Is Camera Ray",
+            "Is Shadow Ray": "Is Shadow Ray",
+            "Ray Depth": "Ray Depth",
+        },
     ),  # fmt: skip
     "MAPPING": ("mapping", {"Vector": "Vector"}),
     "MATH": ("math", {"Value": "Value"}),

@@ -8,7 +8,7 @@ from ..compat import cast_shadow_setting
 from ..export.light import unsupported
 from .base import WhittedPanel, draw_warnings
 
-ATTENUATION_LABELS = ("Constant", "Linear", "Quadratic")
+ATTENUATION_LABELS = ("Constant", "Linear", "Squared")  # "Quadratic" is cut at the default width
 
 
 class WHITTED_PT_light(WhittedPanel, bpy.types.Panel):
@@ -36,7 +36,7 @@ class WHITTED_PT_light(WhittedPanel, bpy.types.Panel):
         if light.type in {"POINT", "SPOT"}:
             col.prop(light, "shadow_soft_size", text="Radius")
             if hasattr(light, "use_soft_falloff") and not cs488:
-                col.prop(light, "use_soft_falloff", text="Soft Edge")
+                col.prop(light, "use_soft_falloff", text="Soft")
         elif light.type == "SUN":
             col.prop(light, "angle")
         else:

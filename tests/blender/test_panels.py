@@ -131,7 +131,10 @@ class RecordingLayout:
     def prop(self, data, name, text=None, expand=False, **_):
         label = text if text is not None else data.bl_rna.properties[name].name
         # Split, a label has the left column (or a checkbox's, the right); unsplit, the width
-        limit = LONGEST_LABEL if self.use_property_split else LONGEST_UNSPLIT_LABEL
+        limit = LONGEST_UNSPLIT_LABEL
+        if self.use_property_split:
+            checkbox = data.bl_rna.properties[name].type == "BOOLEAN"
+            limit = LONGEST_CHECKBOX_LABEL if checkbox else LONGEST_LABEL
         self.labels.append((type(data).__name__, name, label, limit))
 
     def _inner(self, *args, **kwargs):
@@ -161,8 +164,10 @@ def drawn_labels(bpy, panel_name, context):
 
 
 # A label longer than this is cut ("Soft Shado…") at the Properties editor's default width
-# (measured in Blender 3.4's window at 1280 x 800: "Strength" fits, "Backgr…" is cut)
-LONGEST_LABEL = 9
+# (measured in Blender 3.4's window at 1280 x 800: "Strength" fits; "Quadratic" and "Backgr…"
+# are cut)
+LONGEST_LABEL = 8
+LONGEST_CHECKBOX_LABEL = 9  # beside its box in the right column ("Selecta…" of Selectable)
 LONGEST_UNSPLIT_LABEL = 24  # a row of the panel's whole width
 
 
