@@ -13,6 +13,8 @@ import time
 
 import bpy
 
+from tests.support.preview_pixels import rgb_rows
+
 OUT = sys.argv[sys.argv.index("--") + 1]
 TIMEOUT_S = 90
 final = sys.modules["whitted.engine.final"]
@@ -41,14 +43,6 @@ MATERIALS = [principled("Red", (0.8, 0.02, 0.02)), principled("Pink", (1.0, 0.3,
              principled("Teal", (0.02, 0.5, 0.45))]  # fmt: skip
 queue = [(engine, m) for engine in ("WHITTED", "CYCLES") for m in MATERIALS]
 state = {"job": None, "since": 0.0, "last": None, "still_since": 0.0}
-
-
-def rgb_rows(preview):
-    width, height = preview.image_size
-    values = preview.image_pixels_float[:]
-    rows = [[values[4 * (y * width + x) : 4 * (y * width + x) + 3] for x in range(width)]
-            for y in range(height)]  # fmt: skip
-    return rows[::-1]
 
 
 def f12():

@@ -9,6 +9,8 @@ import time
 
 import bpy
 
+from tests.support.preview_pixels import rgb_rows
+
 OUT = sys.argv[sys.argv.index("--") + 1]
 TIMEOUT_S = 60
 final = sys.modules["whitted.engine.final"]
@@ -28,14 +30,6 @@ pink.use_nodes = True
 pink.node_tree.nodes["Principled BSDF"].inputs["Base Color"].default_value = (1.0, 0.3, 0.55, 1)
 queue = list(bpy.data.materials)
 state = {"material": None, "since": 0.0}
-
-
-def rgb_rows(preview):
-    width, height = preview.image_size
-    values = preview.image_pixels_float[:]
-    rows = [[values[4 * (y * width + x) : 4 * (y * width + x) + 3] for x in range(width)]
-            for y in range(height)]  # fmt: skip
-    return rows[::-1]
 
 
 def tick():
