@@ -202,7 +202,7 @@ class WHITTED_OT_import_lua(bpy.types.Operator, ImportHelper):
         soft_max=3600.0,
     )  # fmt: skip
     memory_limit: bpy.props.IntProperty(
-        name="Memory Limit (MiB)",
+        name="Memory (MiB)",  # "Memory Limit (MiB)" is cut in the file browser's sidebar
         description="The memory the script may take while it builds the scene",
         default=DEFAULT_LIMITS.memory_mib, min=MIN_SCRIPT_MEMORY_MIB, max=MAX_SCRIPT_MEMORY_MIB,
         soft_max=65536,
@@ -221,7 +221,7 @@ class WHITTED_OT_import_lua(bpy.types.Operator, ImportHelper):
         default=NEW_SCENE,
     )  # fmt: skip
     allow_outside_files: bpy.props.BoolProperty(
-        name="Files Outside Its Folder",
+        name="Any Folder",  # "Files Outside Its Folder" is cut in the sidebar
         description="Let the script read meshes and textures outside its own folder tree",
         default=False,
     )
@@ -232,8 +232,8 @@ class WHITTED_OT_import_lua(bpy.types.Operator, ImportHelper):
             seconds=self.time_limit,
             memory_mib=self.memory_limit,
             seconds_setting="the import's Time Limit",
-            memory_setting="the import's Memory Limit",
-            outside_setting="the import's Files Outside Its Folder option",
+            memory_setting="the import's Memory (MiB) setting",
+            outside_setting="the import's Any Folder option",
         )
 
     def execute(self, context):
