@@ -66,14 +66,14 @@ def noticeable(timings: Timings) -> bool:
 
 
 def summary_line(settings, timings: Timings, stats, cancelled: bool) -> str:
-    """One short line: "Whitted | 320x240 | 5.12 s | 3.1 M rays, 2 threads", then the kernels'
+    """One short line: "Whitted | 5.12 s | 320x240 | 3.1 M rays, 2 threads", then the kernels'
     start-up when it took long enough to notice, and whether the render was cancelled."""
     rays = stats.rays_traced + stats.shadow_rays
     millions = f"{rays / 1e6:.1f}" if rays >= 1e5 else f"{rays / 1e6:.2f}"
     parts = [
         "Whitted",
+        f"{timings.render_time_s:.2f} s",  # first: what the sidebar's narrow column shows
         f"{settings.width}x{settings.height}",
-        f"{timings.render_time_s:.2f} s",
         f"{millions} M rays, {stats.threads} threads",
     ]
     if noticeable(timings):
@@ -101,7 +101,8 @@ def keep(engine, summary: str, timings: Timings, warnings: list[str]) -> None:
     result = engine.get_result()
     if result is None:
         return
-    result.stamp_data_add_field("Whitted", summary)
+    # Under the key "Whitted", without saying it twice
+    result.stamp_data_add_field("Whitted", summary.removeprefix("Whitted | "))
     result.stamp_data_add_field("Whitted Render Time", f"{timings.render_time_s:.2f} s")
     result.stamp_data_add_field("Whitted Kernels", kernels_note(timings))
     if warnings:
