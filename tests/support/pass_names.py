@@ -45,6 +45,17 @@ def render_both(bpy, folder) -> dict[str, set[str]]:
         settings.media_type = "MULTI_LAYER_IMAGE"
     settings.file_format = "OPEN_EXR_MULTILAYER"
     names = {}
+    try:
+        names = _render_each(bpy, scene, layer, folder)
+    finally:  # the next test's view layer asks for no pass it did not switch on
+        for switch in SWITCHES:
+            setattr(layer, switch, False)
+        layer.whitted.use_pass_terms = False
+    return names
+
+
+def _render_each(bpy, scene, layer, folder) -> dict[str, set[str]]:
+    names = {}
     for engine in ("CYCLES", "WHITTED"):
         scene.render.engine = engine
         if engine == "CYCLES":
