@@ -11,7 +11,7 @@ import numpy as np
 from .. import core, export
 from ..core.warmup_process import shared_warmup
 from ..reporting import report_internal_failure
-from . import result_notes
+from . import kernel_status, result_notes
 
 # Meshes converted by earlier final renders of this Blender session, so that the frames of an
 # animation re-export only the meshes that changed. Kept here, not on the engine: Blender
@@ -102,7 +102,7 @@ def _kernels_ready(engine) -> bool:
         # The render's own progress bar and header follow the compile (the tiles start the
         # bar again from 0); a first-use compile is not part of the render time
         engine.update_progress(status.fraction)
-        engine.update_stats("", f"Whitted | {compile_progress(status)}")
+        engine.update_stats("", f"Whitted | {kernel_status.compile_progress(status)}")
         if status.text not in printed:  # stdout (blender -b): each step once
             printed.append(status.text)
             print(f"Whitted: {status.text}", flush=True)
@@ -124,14 +124,6 @@ def _kernels_ready(engine) -> bool:
         print(f"Whitted: {status.text}; compiling in this process", flush=True)
     engine.update_stats("", "Whitted | Loading kernels")
     return True
-
-
-def compile_progress(status) -> str:
-    """ "Compiling kernels (first use on this machine): 37 %, 52 s" for the render's header."""
-    return (
-        f"Compiling kernels (first use on this machine, not render time): "
-        f"{100 * status.fraction:.0f} %, {status.seconds:.0f} s"
-    )
 
 
 def cancelled(engine) -> bool:

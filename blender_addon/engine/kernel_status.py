@@ -24,13 +24,19 @@ def status_text() -> str:
     """One line for the status bar, or "" when there is nothing to say."""
     status = shared_warmup().status()
     if status.state == "running":
-        return (
-            f"Whitted: compiling kernels (first use on this machine): "
-            f"{100 * status.fraction:.0f} %, {status.seconds:.0f} s"
-        )
+        return f"Whitted: {compile_progress(status)}"
     if status.state == "failed":
         return "Whitted: kernel warm-up failed; the first render compiles them itself"
     return ""
+
+
+def compile_progress(status) -> str:
+    """ "Compiling kernels (first use on this machine, not render time): 37 %, 52 s": for the
+    status bar, and for the render's header while a render waits on the compile."""
+    return (
+        f"Compiling kernels (first use on this machine, not render time): "
+        f"{100 * status.fraction:.0f} %, {status.seconds:.0f} s"
+    )
 
 
 def panel_text() -> str:

@@ -32,37 +32,34 @@ class Timings:
         return self.export_s + self.render_s
 
 
+def compiled_s(timings: Timings) -> float | None:
+    """The seconds a first-use kernel compile took before this render (the warm-up it waited
+    for, or its own compile when the warm-up failed), or None when there was none."""
+    if timings.kernels_from == "compiled":
+        return timings.compile_s + timings.load_s
+    return timings.compile_s if timings.compile_s >= NOTICEABLE_S else None
+
+
 def kernels_note(timings: Timings) -> str:
-    """Where the kernels came from, in words: compiled on first use (the warm-up this render
-    waited for, or this render itself), loaded from the cache, or already in memory."""
-    if timings.kernels_from == "compiled":  # the warm-up failed: this render compiled them
-        seconds = timings.compile_s + timings.load_s
-        return f"first-use kernel compile {seconds:.0f} s, not in the render time"
-    if timings.compile_s >= NOTICEABLE_S:
-        return (
-            f"first-use kernel compile {timings.compile_s:.0f} s (then loaded from the cache "
-            f"in {timings.load_s:.2f} s), not in the render time"
-        )
+    """Where the kernels came from, in words: compiled on first use, loaded from the cache,
+    or already in memory."""
+    compiled = compiled_s(timings)
+    if compiled is not None:
+        loaded = f" (then loaded from the cache in {timings.load_s:.2f} s)"
+        then = loaded if timings.kernels_from == "cache" else ""
+        return f"first-use kernel compile {compiled:.0f} s{then}, not in the render time"
     if timings.kernels_from == "cache":
         return f"kernels loaded from the cache in {timings.load_s:.2f} s"
     return "kernels already loaded"
 
 
 def kernels_in_short(timings: Timings) -> str:
-    """The kernels' start-up for the summary line: "+77 s first-use compile" """
-    if timings.kernels_from == "compiled" or timings.compile_s >= NOTICEABLE_S:
-        seconds = timings.compile_s + (timings.load_s if timings.kernels_from == "compiled" else 0)
-        return f"+{seconds:.0f} s first-use compile"
-    return f"+{timings.load_s:.2f} s loading kernels"
-
-
-def noticeable(timings: Timings) -> bool:
-    """Whether the kernels' start-up took long enough to say so in the summary line."""
-    return (
-        timings.compile_s >= NOTICEABLE_S
-        or timings.kernels_from == "compiled"
-        or timings.load_s >= NOTICEABLE_S
-    )
+    """The kernels' start-up for the summary line ("+77 s first-use compile", "+0.19 s
+    loading kernels"), or "" when it was too short to notice."""
+    compiled = compiled_s(timings)
+    if compiled is not None:
+        return f"+{compiled:.0f} s first-use compile"
+    return f"+{timings.load_s:.2f} s loading kernels" if timings.load_s >= NOTICEABLE_S else ""
 
 
 def summary_line(settings, timings: Timings, stats, cancelled: bool) -> str:
@@ -76,7 +73,7 @@ def summary_line(settings, timings: Timings, stats, cancelled: bool) -> str:
         f"{settings.width}x{settings.height}",
         f"{millions} M rays, {stats.threads} threads",
     ]
-    if noticeable(timings):
+    if kernels_in_short(timings):
         parts.append(kernels_in_short(timings))
     if cancelled:
         parts.append(f"cancelled after {stats.tiles_done} of {stats.tiles_total} tiles")
