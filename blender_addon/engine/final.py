@@ -73,7 +73,9 @@ def render(engine, depsgraph):
     summary = result_notes.summary_line(settings, timings, stats, output.cancelled)
     engine.update_stats("", summary)
     if not preview:
-        print(summary)
+        # stdout (blender -b, farm logs) gets the figures in full: Blender prints the
+        # summary there too, after "Info:"
+        print(result_notes.log_line(settings, timings, stats, output.cancelled))
         print(f"Whitted: {result_notes.kernels_note(timings)}")  # for farm logs, always
         kept = warnings + [f"Whitted: {w}" for w in output.warnings]
         result_notes.keep(engine, summary, timings, kept)
