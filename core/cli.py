@@ -64,6 +64,12 @@ def main(argv: list[str] | None = None) -> int:
         help="render only this part of the image, in pixels from the top left, and write it "
         "cropped (a farm's border task); its pixels are those of the whole render",
     )  # fmt: skip
+    render_command.add_argument(
+        "--adaptive-shadows", action="store_true",
+        help="adaptive soft shadows: probe each area light at nine points first and cast its "
+        "shadow rays only where the probes disagree (faster; may miss an occluder narrower "
+        "than the light); without it, the report's picture exactly",
+    )  # fmt: skip
     default = DEFAULT_LIMITS
     render_command.add_argument(
         "--script-seconds", default=default.seconds, metavar="S",
@@ -85,7 +91,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         return _render_script(
             args.script, args.output, args.threads, args.allow_outside_files, limits, args.passes,
-            args.region,
+            args.region, args.adaptive_shadows,
         )  # fmt: skip
     except (ScriptError, SceneError, OutputError) as error:
         print(f"error: {error}", file=sys.stderr)
@@ -133,7 +139,8 @@ def _region(text: str) -> tuple[int, int, int, int]:
 
 def _render_script(script: Path, output: Path | None, threads: int, anywhere: bool,
                    limits: ScriptLimits, passes: tuple[str, ...] = (),
-                   region: tuple[int, int, int, int] | None = None) -> int:  # fmt: skip
+                   region: tuple[int, int, int, int] | None = None,
+                   adaptive_shadows: bool = False) -> int:  # fmt: skip
     calls = load_script(script, print_line=print, anywhere=anywhere, limits=limits,
                         notice=lambda text: print(text, file=sys.stderr, flush=True))  # fmt: skip
     if not calls:
@@ -149,6 +156,7 @@ def _render_script(script: Path, output: Path | None, threads: int, anywhere: bo
         call.settings.threads = threads
         call.settings.passes = passes
         call.settings.region = region
+        call.settings.adaptive_shadows = adaptive_shadows
         try:  # here, not after a first render's kernel compile
             call.settings.validate()
         except SceneError as error:

@@ -255,6 +255,7 @@ def _render_one(packed: PackedScene, settings: RenderSettings, tile: Tile, stop:
     workspace = new_workspace(
         settings.max_depth, max(settings.shadow_samples, settings.environment_samples), stop,
         settings.pixel_samples**2 if crypto else 1, settings.glossy_samples,
+        tile.width + 1 if settings.adaptive_threshold > 0 else 1,
     )  # fmt: skip
     render_tile(packed, settings.width, settings.height, tile.x, tile.y, tile.width,
                 tile.height, pixels, workspace)  # fmt: skip

@@ -119,10 +119,11 @@ def progress_line(step: int, steps: int, label: str) -> str:
 
 # Each step's share of a cold warm-up and the whole's length, as measured on the development
 # machine (132-147 s, four warm-ups: packing 15 %, nearest hits 9 %, shadow rays 8 %, the
-# render kernel 68 %), so that a progress bar moves evenly rather than by quarters
+# render kernel 68 %), so that a progress bar moves evenly rather than by quarters; adaptive
+# sampling's kernels (issue 42) brought the whole to 175 s
 STEP_SHARES = {"scene packing": 0.15, "nearest hits": 0.09, "shadow rays": 0.08,
                "render kernel": 0.68}  # fmt: skip
-TYPICAL_WARMUP_S = 140.0
+TYPICAL_WARMUP_S = 175.0
 _PROGRESS = re.compile(r"(\d+) of (\d+) \((.*)\)$")
 
 

@@ -20,7 +20,7 @@ class Timings:
     """Where a final render's wall time went, in seconds."""
 
     export_s: float = 0.0  # reading Blender's scene
-    compile_s: float = 0.0  # waiting for the first-use kernel compile (the warm-up)
+    compile_s: float = 0.0  # waiting for the first-use kernel compile (the warm-up), if any
     load_s: float = 0.0  # loading the compiled kernels (or compiling them here, on failure)
     kernels_from: str = "memory"  # core's RenderStats.kernel_source
     render_s: float = 0.0  # rendering the tiles
@@ -37,7 +37,7 @@ def compiled_s(timings: Timings) -> float | None:
     for, or its own compile when the warm-up failed), or None when there was none."""
     if timings.kernels_from == "compiled":
         return timings.compile_s + timings.load_s
-    return timings.compile_s if timings.compile_s >= NOTICEABLE_S else None
+    return timings.compile_s if timings.compile_s > 0.0 else None
 
 
 def kernels_note(timings: Timings) -> str:

@@ -33,6 +33,8 @@ def convert(scene) -> core.RenderSettings:
         pixel_sampling=settings.pixel_sampling.lower(),
         shadow_samples=settings.shadow_samples,
         shadow_sampling=settings.shadow_sampling.lower(),
+        adaptive_shadows=settings.adaptive_shadows,
+        adaptive_threshold=settings.adaptive_threshold if settings.use_adaptive_pixels else 0.0,
         environment_samples=settings.environment_samples,
         glossy_samples=settings.glossy_samples,
         seed=settings.seed,

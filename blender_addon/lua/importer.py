@@ -168,6 +168,7 @@ def _configure(scene, call) -> None:
     whitted.pixel_sampling = settings.pixel_sampling.upper()
     whitted.shadow_samples = settings.shadow_samples
     whitted.shadow_sampling = settings.shadow_sampling.upper()
+    whitted.adaptive_shadows = settings.adaptive_shadows
     whitted.seed = settings.seed
     world = bpy.data.worlds.new(f"{call.output.stem} ambient")
     give_nodes(world)

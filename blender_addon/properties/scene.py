@@ -4,7 +4,9 @@ the project grew from."""
 
 import bpy
 from bpy.props import (
+    BoolProperty,
     EnumProperty,
+    FloatProperty,
     IntProperty,
 )
 
@@ -37,6 +39,26 @@ class WhittedSceneSettings(bpy.types.PropertyGroup):
         soft_max=8,
         max=32,
         default=DEFAULT_PIXEL_SAMPLES,
+    )
+    use_adaptive_pixels: BoolProperty(
+        name="Adaptive Anti-Aliasing",
+        description=(
+            "Trace one ray at each pixel corner first, and a pixel's own rays only where its "
+            "corners differ by more than the threshold: flat areas cost one ray a pixel, "
+            "edges all of them. May miss detail smaller than a pixel between its corners"
+        ),
+        default=False,
+    )
+    adaptive_threshold: FloatProperty(
+        name="Adaptive Threshold",
+        description=(
+            "How far a pixel's corners may differ (in each colour, compressed as x / (1 + x), "
+            "and in alpha) before it gets its own rays: lower is finer and slower"
+        ),
+        min=0.0001,
+        max=1.0,
+        default=0.02,
+        precision=4,
     )
     pixel_sampling: EnumProperty(
         name="Pattern",
@@ -73,6 +95,15 @@ class WhittedSceneSettings(bpy.types.PropertyGroup):
         min=1,
         soft_max=256,
         default=DEFAULT_SHADOW_SAMPLES,
+    )
+    adaptive_shadows: BoolProperty(
+        name="Adaptive Soft Shadows",
+        description=(
+            "Probe each light at nine points of its outline and centre first, and cast its "
+            "shadow rays only where they disagree: lit and shadowed areas cost nine rays, "
+            "penumbrae all of them. May miss an occluder narrower than the light"
+        ),
+        default=False,
     )
     environment_samples: IntProperty(
         name="World Samples",

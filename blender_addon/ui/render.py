@@ -31,6 +31,12 @@ class WHITTED_PT_sampling(_RenderPanel, bpy.types.Panel):
         column = layout.column(align=True)
         column.prop(settings, "pixel_samples", text="Samples")
         column.prop(settings, "pixel_sampling", text="Pattern")
+        # As Cycles' Noise Threshold: a switch with its value beside it
+        row = layout.row(heading="Adaptive")
+        row.prop(settings, "use_adaptive_pixels", text="")
+        value = row.row()
+        value.active = settings.use_adaptive_pixels
+        value.prop(settings, "adaptive_threshold", text="")
         layout.prop(settings, "seed")
 
 
@@ -43,6 +49,7 @@ class WHITTED_PT_sampling_shadows(_RenderPanel, bpy.types.Panel):
         settings = context.scene.whitted
         layout.prop(settings, "shadow_samples", text="Samples")
         layout.prop(settings, "shadow_sampling", text="Pattern")
+        layout.prop(settings, "adaptive_shadows", text="Adaptive")
 
 
 class WHITTED_PT_sampling_world(_RenderPanel, bpy.types.Panel):

@@ -25,6 +25,7 @@ from ..kernels.options import (
     OPTION_PIXEL_SAMPLES,
     OPTION_PROJECTION,
     OPTION_SEED,
+    OPTION_SHADOW_ADAPTIVE,
     OPTION_SHADOW_CULLING,
     OPTION_SHADOW_PATTERN,
     OPTION_SHADOW_SAMPLES,
@@ -72,6 +73,7 @@ def pack_frame(scene: Scene, settings: RenderSettings) -> Frame:
                 MIST_FALLOFFS[settings.mist_falloff],
             ]
         ),
+        sampling=np.array([settings.adaptive_threshold]),
     )
 
 
@@ -83,6 +85,7 @@ def _options(scene: Scene, settings: RenderSettings) -> np.ndarray:
     options[OPTION_PIXEL_PATTERN] = PIXEL_PATTERNS[settings.pixel_sampling]
     options[OPTION_SHADOW_SAMPLES] = settings.shadow_samples
     options[OPTION_SHADOW_PATTERN] = SHADOW_PATTERNS[settings.shadow_sampling]
+    options[OPTION_SHADOW_ADAPTIVE] = settings.adaptive_shadows
     options[OPTION_SEED] = settings.seed
     options[OPTION_TRANSPARENT] = settings.transparent
     options[OPTION_PASSES] = pass_bits(settings.passes)

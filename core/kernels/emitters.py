@@ -39,13 +39,15 @@ from .options import (
     EMITTER_SPHERE,
     EMITTER_SUN_CONE,
     EMITTER_SUN_DISK,
+    OPTION_SHADOW_ADAPTIVE,
     OPTION_SHADOW_CULLING,
     OPTION_SHADOW_PATTERN,
     OPTION_SHADOW_SAMPLES,
     SHADOW_HALTON,
 )
 from .rng import PURPOSE_LIGHT_SHIFT, uniform2
-from .shading import AreaLight, add_falling, light_candidates, shadow_visibility
+from .shading import AreaLight, add_falling, light_candidates
+from .shadow_rays import PROBES, light_visibility, probe_square
 from .vec import add, dot, mul, row, scale, sub
 
 # Random streams of the emitters start here, past any count of the report's area lights
@@ -121,6 +123,7 @@ def emitted_colour(frame, lights, geo, stacks, point, phong, key, event, split):
     glossy = ks[0] > 0.0 or ks[1] > 0.0 or ks[2] > 0.0
     samples = frame.options[OPTION_SHADOW_SAMPLES]
     pattern = frame.options[OPTION_SHADOW_PATTERN]
+    adaptive = frame.options[OPTION_SHADOW_ADAPTIVE] != 0
     colour = (0.0, 0.0, 0.0)
     for light in range(lights.emitter_kind.shape[0]):
         count = samples_needed(lights, light, samples)
@@ -130,8 +133,14 @@ def emitted_colour(frame, lights, geo, stacks, point, phong, key, event, split):
             shift = uniform2(key, PURPOSE_LIGHT_SHIFT, stream, 0)
         # an emissive surface's samples lie on it: the shadow rays stop just short
         short = 1.0 - SHORT_OF_SURFACE if lights.emitter_flags[light] & EMITS_FROM_SURFACE else 1.0
-        for j in range(count):
-            a, b = square_point(pattern, count, j, key, stream, shift)
+        kind = lights.emitter_kind[light]
+        probing = adaptive and kind != EMITTER_MESH  # a mesh's square is its triangles'
+        # The samples, then the probes (one call of emitter_sample: each call site is code)
+        for j in range(count + PROBES if probing else count):
+            if j < count:
+                a, b = square_point(pattern, count, j, key, stream, shift)
+            else:
+                a, b = probe_square(kind, j - count)
             direction, t, weight = emitter_sample(lights, light, origin, n, a, b)
             targets[j, 0], targets[j, 1], targets[j, 2] = direction
             targets[j, 3] = t * short if weight > 0.0 else 0.0
@@ -139,7 +148,6 @@ def emitted_colour(frame, lights, geo, stacks, point, phong, key, event, split):
         flags = lights.emitter_flags[light]
         if flags & EMITS_SHADOW:
             listed = TRAVERSE_ALL
-            kind = lights.emitter_kind[light]
             panel = EMITTER_RECTANGLE <= kind <= EMITTER_ELLIPSE
             if panel and frame.options[OPTION_SHADOW_CULLING]:
                 frames = lights.emitter_frame
@@ -149,7 +157,7 @@ def emitted_colour(frame, lights, geo, stacks, point, phong, key, event, split):
                     (frames[light, 1, 0], frames[light, 1, 1], frames[light, 1, 2]),
                 )
                 listed = light_candidates(geo, stacks, origin, area)
-            shadow_visibility(geo, stacks, listed, origin, n, count)
+            light_visibility(geo, stacks, listed, origin, n, count, probing)
         else:
             for j in range(count):
                 visibility[j] = 1.0

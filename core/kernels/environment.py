@@ -38,7 +38,8 @@ from .options import (
     SHADOW_HALTON,
 )
 from .rng import PURPOSE_LIGHT_SHIFT, uniform2
-from .shading import add_falling, shadow_visibility
+from .shading import add_falling
+from .shadow_rays import shadow_visibility
 from .surface import bilinear, nearest
 from .vec import add, as_tuple, dot, mul, row, scale
 
@@ -171,7 +172,7 @@ def environment_light(frame, lights, geo, stacks, point, kd, key, event, split):
         usable = density > 0.0 and dot(n, d) > 0.0
         targets[j, 3] = math.inf if usable else 0.0
         targets[j, 4] = 1.0 / (math.pi * density) if usable else 0.0
-    shadow_visibility(geo, stacks, TRAVERSE_ALL, point.origin, n, samples)
+    shadow_visibility(geo, stacks, TRAVERSE_ALL, point.origin, n, 0, samples)
     total = (0.0, 0.0, 0.0)
     for j in range(samples):
         if targets[j, 3] == 0.0 or visibility[j] == 0.0:

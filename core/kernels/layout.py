@@ -27,6 +27,8 @@ class Frame(NamedTuple):
     # where each pass (core.passes, in slot order) starts after the pixel's RGBA, or -1
     pass_offset: np.ndarray  # int64 (PASS_COUNT,)
     mist: np.ndarray  # float64 (3,): start, 1 / depth (0 for depth 0), falloff power
+    # float64 (1,): adaptive anti-aliasing's threshold, 0 for none (core.kernels.adaptive_tile)
+    sampling: np.ndarray
 
 
 class Geometry(NamedTuple):

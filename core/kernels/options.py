@@ -22,7 +22,10 @@ OPTION_ENVIRONMENT_HIDDEN = 14  # HIDDEN_FROM_* bits: rays the environment is bl
 # rays spread over a rough mirror's or glass's lobe at a camera ray's hit (one at later
 # hits); 0 keeps rough surfaces sharp (core.kernels.glossy)
 OPTION_GLOSSY_SAMPLES = 15
-OPTION_COUNT = 16
+# 1: adaptive soft shadows, an area light's probes deciding whether its samples' rays are
+# cast (core.kernels.shadow_rays)
+OPTION_SHADOW_ADAPTIVE = 16
+OPTION_COUNT = 17
 
 # OPTION_ENVIRONMENT_HIDDEN's bits (Blender's World > Settings > Ray Visibility, off)
 HIDDEN_FROM_CAMERA = 1

@@ -9,10 +9,12 @@ rays, one in each of N equal-area cells ("stratified"), at N independent random 
 ("uniform", the report's way), or at the first N Halton points shifted by one random offset
 per shading point (Cranley-Patterson rotation: "halton"). A light contributes only where N.L > 0.
 
-An area light's shadow rays test only the shapes whose boxes meet the pyramid from the point
-to the light, listed once per point (`core.kernels.light_pyramid`); with none listed the
-light is unobstructed and no ray is tested. The pixels are the same as with every shape
-tested (OPTION_SHADOW_CULLING off, kept to show that).
+With adaptive soft shadows an area light's probes decide first whether its samples' rays
+are cast (core.kernels.shadow_rays). An area light's shadow rays test only the shapes whose
+boxes meet the pyramid from the point to the light, listed once per point
+(`core.kernels.light_pyramid`); with none listed the light is unobstructed and no ray is
+tested. The pixels are the same as with every shape tested (OPTION_SHADOW_CULLING off, kept
+to show that).
 """
 
 import math
@@ -23,6 +25,7 @@ from .borrow import borrowed
 from .light_pyramid import TRAVERSE_ALL, build_pyramid, pyramid_candidates
 from .light_samples import square_point
 from .options import (
+    OPTION_SHADOW_ADAPTIVE,
     OPTION_SHADOW_CULLING,
     OPTION_SHADOW_PATTERN,
     OPTION_SHADOW_SAMPLES,
@@ -30,15 +33,9 @@ from .options import (
 )
 from .pass_record import TERM_ROW_LIT, TERM_ROW_UNSHADOWED
 from .rng import PURPOSE_LIGHT_SHIFT, uniform2
-from .shadow_log import STATE_CROSSINGS, STATE_RAY, STATE_REPLAY
-from .trace import transmittance
+from .shadow_rays import PROBES, light_visibility, probe_square, shadow_visibility
 from .vec import add, as_tuple, dot, mul, row, scale, sub
-from .workspace import (
-    OCCLUDER_POSITION,
-    OCCLUDER_SHAPE,
-    SHADOW_RAYS,
-    SHADOW_RAYS_UNOBSTRUCTED,
-)
+from .workspace import OCCLUDER_POSITION, OCCLUDER_SHAPE
 
 # The largest attenuation factor 1 / (c0 + c1 d + c2 d^2) applied
 MAX_FALLOFF = 1e20
@@ -82,45 +79,6 @@ def _aim(targets, j, position, origin):
     if distance > 0.0:
         light_dir = scale(to_light, 1.0 / distance)
         targets[j, 0], targets[j, 1], targets[j, 2] = light_dir
-
-
-@kernel
-def shadow_visibility(geo, stacks, listed, origin, n, count):
-    """Transmittance along the first `count` rows of stacks.light_targets (unit direction,
-    distance) from `origin` into stacks.visibility: the shadow rays of one light at one
-    point. Rays towards lights behind the surface (N.L <= 0) or at distance 0 are not cast;
-    `listed` as in `trace.transmittance` (0: nothing can block them).
-
-    A call of its own, apart from the shading that uses its results: with a shadow ray's
-    call inside the loop over samples, the loop kept its values in memory across the call,
-    and shading an unobstructed sample cost 2.3 times as much (210 ns against 91)."""
-    geo, stacks = borrowed(geo), borrowed(stacks)
-    targets, visibility = stacks.light_targets, stacks.visibility
-    state, log = stacks.shadow_state, stacks.shadow_log
-    replay = state[STATE_REPLAY] != 0
-    for j in range(count):
-        distance = targets[j, 3]
-        light_dir = row(targets, j)
-        if distance == 0.0 or dot(n, light_dir) <= 0.0:
-            continue
-        g = state[STATE_RAY]  # this ray's number in the point's log (core.kernels.shadow_log)
-        if replay and g < log.shape[0]:
-            visibility[j] = log[g]  # its varying crossings answered since it was cast
-        elif listed == 0:
-            if not replay:
-                stacks.ray_counts[SHADOW_RAYS_UNOBSTRUCTED] += 1
-            visibility[j] = 1.0
-        else:
-            listed_before = state[STATE_CROSSINGS]
-            visible = transmittance(geo, origin, light_dir, distance, stacks, listed)
-            if visible == 0.0:
-                state[STATE_CROSSINGS] = listed_before  # blocked: its crossings do not matter
-            visibility[j] = visible
-        if not replay:
-            stacks.ray_counts[SHADOW_RAYS] += 1
-        if g < log.shape[0]:
-            log[g] = visibility[j]
-        state[STATE_RAY] = g + 1
 
 
 @inlined_kernel
@@ -194,10 +152,8 @@ def light_candidates(geo, stacks, origin, area):
 
 
 @inlined_kernel
-def _light_point(area, pattern, samples, j, key, stream, shift):
-    """Point j of an area light's `samples` (see the module's docstring); `shift` is the
-    shading point's Halton offset."""
-    a, b = square_point(pattern, samples, j, key, stream, shift)
+def _square_to_light(area, a, b):
+    """The area light's point for the unit square's (a, b)."""
     return add(area.centre, add(scale(area.edge_u, a - 0.5), scale(area.edge_v, b - 0.5)))
 
 
@@ -221,14 +177,14 @@ def local_colour(frame, lights, geo, stacks, point, phong, key, event, split):
         toward = row(lights.sun_toward, light)
         targets[0, 0], targets[0, 1], targets[0, 2] = toward
         targets[0, 3] = math.inf
-        shadow_visibility(geo, stacks, TRAVERSE_ALL, origin, n, 1)
+        shadow_visibility(geo, stacks, TRAVERSE_ALL, origin, n, 0, 1)
         radiance = row(lights.sun_intensity, light)
         colour = add(colour, _phong_lit(toward, radiance, visibility[0], point, phong))
         if split:
             add_falling(terms, toward, radiance, visibility[0], n, 1.0)
     for light in range(lights.point_position.shape[0]):
         _aim(targets, 0, row(lights.point_position, light), origin)
-        shadow_visibility(geo, stacks, TRAVERSE_ALL, origin, n, 1)
+        shadow_visibility(geo, stacks, TRAVERSE_ALL, origin, n, 0, 1)
         intensity = row(lights.point_intensity, light)
         attenuation = row(lights.point_attenuation, light)
         colour = add(colour, _lit_by(targets, visibility, 0, intensity, attenuation, point, phong))
@@ -237,6 +193,7 @@ def local_colour(frame, lights, geo, stacks, point, phong, key, event, split):
             add_falling(terms, row(targets, 0), radiance, visibility[0], n, 1.0)
     samples = frame.options[OPTION_SHADOW_SAMPLES]
     pattern = frame.options[OPTION_SHADOW_PATTERN]
+    adaptive = frame.options[OPTION_SHADOW_ADAPTIVE] != 0
     for light in range(lights.area_centre.shape[0]):
         area = AreaLight(
             row(lights.area_centre, light),
@@ -247,12 +204,16 @@ def local_colour(frame, lights, geo, stacks, point, phong, key, event, split):
         shift = (0.0, 0.0)
         if pattern == SHADOW_HALTON:
             shift = uniform2(key, PURPOSE_LIGHT_SHIFT, stream, 0)
-        for j in range(samples):
-            _aim(targets, j, _light_point(area, pattern, samples, j, key, stream, shift), origin)
+        for j in range(samples + PROBES if adaptive else samples):  # the samples, the probes
+            if j < samples:
+                a, b = square_point(pattern, samples, j, key, stream, shift)
+            else:
+                a, b = probe_square(-1, j - samples)
+            _aim(targets, j, _square_to_light(area, a, b), origin)
         listed = TRAVERSE_ALL
         if frame.options[OPTION_SHADOW_CULLING]:
             listed = light_candidates(geo, stacks, origin, area)
-        shadow_visibility(geo, stacks, listed, origin, n, samples)
+        light_visibility(geo, stacks, listed, origin, n, samples, adaptive)
         intensity = row(lights.area_intensity, light)
         attenuation = row(lights.area_attenuation, light)
         total = (0.0, 0.0, 0.0)

@@ -35,6 +35,10 @@ SHADOW_VARIES = -1.0
 # Shadow rays one shading point may cast with their visibility kept (lights x samples), and
 # crossings of varying surfaces listed at one point (16 samples through 64 leaves)
 SHADOW_LOG_SIZE = 4096
+# Adaptive soft shadows' probe rays per light and shading point, beside its samples in
+# Stacks.light_targets: eight points of the light's outline and its centre
+# (core.kernels.shadow_rays)
+PROBES = 9
 VARYING_CAPACITY = 1024
 
 # Slots of Stacks.shadow_state: the number of the shadow ray being cast (the next, between

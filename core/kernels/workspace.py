@@ -11,7 +11,7 @@ from .csg import CROSSING_CAPACITY, SPAN_CAPACITY
 from .light_pyramid import MAX_CANDIDATES, PYRAMID_ROWS
 from .pass_record import ACC_COUNT, REC_COUNT, TERM_ROWS
 from .shader_program import LOBE_COUNT, SHADER_STACK
-from .shadow_log import SHADOW_LOG_SIZE, SHADOW_STATE_SLOTS, VARYING_CAPACITY
+from .shadow_log import PROBES, SHADOW_LOG_SIZE, SHADOW_STATE_SLOTS, VARYING_CAPACITY
 
 # Surfaces one ray may pass straight through (transparent shares, shapes its kind does not
 # see): Cycles' Max Bounces > Transparent is 8 by default; leaves on cards need more
@@ -26,6 +26,11 @@ MESH_STACK_SIZE = (WIDTH - 1) * MAX_TREE_DEPTH + 1
 # rays answered without a test because the light's pyramid held no shape
 RAYS_TRACED, SHADOW_RAYS, SHADOW_RAYS_UNOBSTRUCTED = 0, 1, 2
 RAY_COUNT_SLOTS = 3
+# Slots of a corner in Workspace.corners (core.kernels.adaptive_tile): RGB, alpha, then the
+# camera ray's record for the passes
+CORNER_ALPHA = 3
+CORNER_RECORD = 4
+CORNER_SLOTS = CORNER_RECORD + REC_COUNT
 # Slots of Stacks.occluder: the shape that stopped the thread's last listed shadow ray, and
 # its position in the current candidate list (-1 when it is not on it)
 OCCLUDER_SHAPE, OCCLUDER_POSITION = 0, 1
@@ -57,10 +62,10 @@ class Stacks(NamedTuple):
     candidates: np.ndarray  # int32 (MAX_CANDIDATES,): shapes that may meet the pyramid
     occluder: np.ndarray  # int64 (2,): OCCLUDER_SHAPE, OCCLUDER_POSITION
     # one light's points as seen from a shading point (see core.kernels.shading)
-    # float64 (shadow samples, 5): unit direction xyz, distance, and for lights in Blender's
-    # units the sample's weight (core.kernels.emitters)
+    # float64 (shadow samples + PROBES, 5): unit direction xyz, distance, and for lights in
+    # Blender's units the sample's weight (core.kernels.emitters)
     light_targets: np.ndarray
-    visibility: np.ndarray  # float64 (shadow samples,): what reaches the point from each
+    visibility: np.ndarray  # float64 (shadow samples + PROBES,): what reaches the point from each
     # a shading point's lighting split into the passes' terms (core.kernels.pass_record)
     terms: np.ndarray  # float64 (TERM_ROWS, 3)
     # a shading point's shadow rays through surfaces whose share varies (core.kernels.shadow_log)
@@ -101,15 +106,18 @@ class Workspace(NamedTuple):
     # a shader program's stack and the lobes it adds up (core.kernels.shader_program)
     shader_stack: np.ndarray  # float64 (SHADER_STACK,)
     lobes: np.ndarray  # float64 (LOBE_COUNT,)
+    # adaptive anti-aliasing's corners of two rows of pixel edges, (2, tile width + 1,
+    # CORNER_SLOTS) (core.kernels.adaptive_tile), or (2, 1, CORNER_SLOTS) without it
+    corners: np.ndarray
 
 
 def new_workspace(
     max_depth: int, shadow_samples: int = 1, cancel=None, crypto_rays: int = 1,
-    glossy_samples: int = 0,
+    glossy_samples: int = 0, corner_columns: int = 1,
 ) -> Workspace:  # fmt: skip
     """Scratch for one tile; `crypto_rays`: the camera rays per pixel when Cryptomatte is
     made (each keeps its ids until the pixel is done), else 1; `glossy_samples` as
-    RenderSettings'."""
+    RenderSettings'; `corner_columns`: the tile's width + 1 with adaptive anti-aliasing."""
     # Depth-first, each shading point pops one ray and pushes at most two that bounce, so no
     # more than max_depth + 2 of those ever wait; each surface passed straight through
     # (MAX_CROSSINGS) may leave two more waiting, and a camera ray's rough hit two per
@@ -134,8 +142,9 @@ def new_workspace(
             np.zeros((PYRAMID_ROWS, 4)),
             np.zeros(MAX_CANDIDATES, np.int32),
             np.full(2, -1, np.int64),
-            np.zeros((max(shadow_samples, 1), 5)),
-            np.zeros(max(shadow_samples, 1)),
+            # the samples' rows, then adaptive soft shadows' probes (core.kernels.shadow_rays)
+            np.zeros((max(shadow_samples, 1) + PROBES, 5)),
+            np.zeros(max(shadow_samples, 1) + PROBES),
             np.zeros((TERM_ROWS, 3)),
             np.zeros(SHADOW_STATE_SLOTS, np.int64),
             np.zeros(SHADOW_LOG_SIZE),
@@ -158,4 +167,5 @@ def new_workspace(
         np.zeros((max(crypto_rays, 1), 2)),
         np.zeros(SHADER_STACK),
         np.zeros(LOBE_COUNT),
+        np.zeros((2, corner_columns, CORNER_SLOTS)),
     )

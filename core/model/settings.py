@@ -49,6 +49,18 @@ class RenderSettings:
     shadow_sampling  -- "stratified": one sample in each of as many equal-area cells of the
                         light; "uniform": independent random points (the report's way);
                         "halton": the Halton sequence, shifted at random per shading point
+    adaptive_threshold -- adaptive anti-aliasing, from 2 x 2 pixel_samples up: 0 gives every
+                        pixel its n x n camera rays (the exact, report's way); t > 0 traces
+                        one ray at each pixel corner (shared by the four pixels that meet
+                        there) and gives a pixel its n x n rays only where its corners
+                        differ by more than t (in R, G, B after x / (1 + x), or alpha),
+                        otherwise their mean (core.kernels.adaptive_tile); 0 to 1
+    adaptive_shadows -- adaptive soft shadows: nine probe rays to each area light first (eight
+                        around its outline and its centre), its samples' rays only where
+                        the probes disagree; fully lit and fully shadowed points then cost
+                        9 rays, not shadow_samples (core.kernels.shadow_rays), from 18
+                        shadow samples up. False casts every sample's ray, the exact
+                        estimate
     environment_samples -- shadow rays towards the environment (the World's light) per
                         shading point, 0 to 65536; 0 lights nothing by it (it is still seen
                         behind the scene and in mirrors and glass)
@@ -85,6 +97,8 @@ class RenderSettings:
     pixel_sampling: str = "grid"
     shadow_samples: int = DEFAULT_SHADOW_SAMPLES
     shadow_sampling: str = "stratified"
+    adaptive_shadows: bool = False
+    adaptive_threshold: float = 0.0
     environment_samples: int = DEFAULT_ENVIRONMENT_SAMPLES
     glossy_samples: int = 0
     seed: int = 0
@@ -115,6 +129,8 @@ class RenderSettings:
         check_choice(owner, "pixel_sampling", self.pixel_sampling, PIXEL_SAMPLINGS)
         check_choice(owner, "shadow_sampling", self.shadow_sampling, SHADOW_SAMPLINGS)
         check_flag(owner, "shadow_culling", self.shadow_culling)
+        check_flag(owner, "adaptive_shadows", self.adaptive_shadows)
+        check_number(owner, "adaptive_threshold", self.adaptive_threshold, low=0.0, high=1.0)
         check_flag(owner, "transparent", self.transparent)
         self.passes = check_passes(owner, self.passes)
         check_count(owner, "crypto_levels", self.crypto_levels, low=1, high=MAX_CRYPTO_LEVELS)

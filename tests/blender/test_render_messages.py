@@ -130,6 +130,20 @@ def test_the_first_use_compile_drives_the_progress_bar_and_is_kept_out_of_the_re
     assert re.search(r" \| \+\d+ s first-use compile$", kept["Whitted"]), kept
 
 
+def test_a_slow_cache_check_is_no_compile(sample_scene, bpy_with_whitted, tmp_path, monkeypatch):
+    # On a busy machine the warm-up's check of a full cache (and its copy of an extension's
+    # shipped kernels) took 0.2 s; the summary called it a "+0 s first-use compile" (the
+    # fresh-clone run's extension test)
+    core = sys.modules["whitted.core"]
+    monkeypatch.setattr(core.warmup_process, "kernels_ready", lambda: True)
+    warmup = core.warmup_process.WarmupProcess(["false"])
+    real_start = warmup.start
+    monkeypatch.setattr(warmup, "start", lambda: (time.sleep(0.3), real_start()))
+    monkeypatch.setattr(final_render(), "shared_warmup", lambda: warmup)
+    kept = rendered_metadata(bpy_with_whitted, sample_scene, tmp_path / "slow_check.png")
+    assert "compile" not in kept["Whitted"] + kept["Whitted Kernels"], kept
+
+
 def test_esc_during_the_compile_says_the_render_was_cancelled(
     sample_scene, bpy_with_whitted, tmp_path, monkeypatch, seen
 ):

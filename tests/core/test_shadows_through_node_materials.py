@@ -8,6 +8,7 @@ soft shadows with their passes, against the constant-share path."""
 import math
 
 import numpy as np
+import pytest
 
 from core import (
     AreaLight,
@@ -171,8 +172,12 @@ def _constant_card(alpha, seen_by_camera=False):
                 seen_by_camera=seen_by_camera)  # fmt: skip
 
 
-def test_soft_shadows_and_their_passes_through_a_varying_card_match_a_constant_one():
-    """An area light (16 shadow rays a point), a panel light in watts and a sun of some
+@pytest.mark.parametrize("samples, adaptive", [(16, False), (24, True)])
+def test_soft_shadows_and_their_passes_through_a_varying_card_match_a_constant_one(
+    samples, adaptive
+):
+    """An area light (16 shadow rays a point; 24 with adaptive soft shadows, whose probes
+    decide in the first pass and again in the replay), a panel light in watts and a sun of some
     angle over a floor, the card between: lit through an image whose alpha is 0.3 at every
     texel (its program answered per crossing, the point lit again in replay), the floor
     and its Shadow and Diffuse passes are those of the same card with Alpha 0.3 set
@@ -190,8 +195,8 @@ def test_soft_shadows_and_their_passes_through_a_varying_card_match_a_constant_o
                    power=(20.0, 20.0, 20.0)),
         SunLight(direction=(0.2, 0.1, -1.0), irradiance=(1.0, 1.0, 1.0), angle=10.0),
     ]  # fmt: skip
-    settings = RenderSettings(24, 24, pixel_samples=1, shadow_samples=16,
-                              passes=("shadow", "diffuse"))  # fmt: skip
+    settings = RenderSettings(24, 24, pixel_samples=1, shadow_samples=samples,
+                              adaptive_shadows=adaptive, passes=("shadow", "diffuse"))  # fmt: skip
     varying = _card(np.full((TEXELS, TEXELS), 0.3), seen_by_camera=False)
     through_image = render(Scene(camera, [floor, varying], lights), settings)
     through_constant = render(Scene(camera, [floor, _constant_card(0.3)], lights), settings)
