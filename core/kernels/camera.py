@@ -13,7 +13,7 @@ Adaptive anti-aliasing's corner rays (core.kernels.adaptive_tile) go through the
 at a pixel corner, their lens point at random over the whole lens.
 """
 
-from ..jit import kernel
+from ..jit import inlined_kernel, kernel
 from .light_samples import concentric_disk, regular_polygon
 from .options import (
     OPTION_PIXEL_PATTERN,
@@ -52,10 +52,11 @@ def camera_ray(frame, image_width, image_height, px, py, sample, key):
     return ray_through(frame, image_width, image_height, px + fx, py + fy, u, v)
 
 
-@kernel
+@inlined_kernel
 def ray_through(frame, image_width, image_height, x, y, u, v):
     """(origin, unit direction) of the ray through image point (x, y) (in pixels from the
-    top left corner) from lens point (u, v) of the unit square (unused without a lens)."""
+    top left corner) from lens point (u, v) of the unit square (unused without a lens).
+    Inlined: a call passes the frame's arrays field by field, per camera ray."""
     sx = 2.0 * x / image_width - 1.0
     sy = 1.0 - 2.0 * y / image_height
     eye = row(frame.camera, 0)
