@@ -103,10 +103,20 @@ format: $(VENV)/.installed
 	$(VENV)/bin/ruff format .
 	$(VENV)/bin/ruff check --fix .
 
-test: setup $(BPY_VENVS) lint
-	$(VENV)/bin/python -m pytest
-	$(MAKE) test-python
-	@for v in $(BPY_VERSIONS); do $(VENV)/bin/python -m tests.blender.versions test $$v || exit 1; done
+# Each part timed (tests/support/timed_step), the parts and the whole printed at the end as
+# `name: seconds` lines; pytest lists its slowest tests, where the kernels' first compiles show
+TEST_TIMES := $(BUILD)/test_times
+TIMED := tests/support/timed_step $(TEST_TIMES)
+test:
+	@mkdir -p $(BUILD) && rm -f $(TEST_TIMES) && date +%s >$(TEST_TIMES).start
+	@$(TIMED) setup $(MAKE) --no-print-directory setup $(BPY_VENVS)
+	@$(TIMED) lint $(MAKE) --no-print-directory lint
+	@$(TIMED) pytest $(VENV)/bin/python -m pytest --durations=12
+	@$(TIMED) plain_python $(MAKE) --no-print-directory test-python
+	@for v in $(BPY_VERSIONS); do \
+	  $(TIMED) bpy_$$v $(VENV)/bin/python -m tests.blender.versions test $$v || exit 1; done
+	@echo "The test run's parts:"; cat $(TEST_TIMES)
+	@echo "test_run_s: $$(( $$(date +%s) - $$(cat $(TEST_TIMES).start) ))"
 
 # The kernel and render tests with numba's JIT off: the kernels run as plain Python, so a
 # failure inside one comes with a Python traceback (and pdb works). Small scenes only: the

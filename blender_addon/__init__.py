@@ -67,7 +67,7 @@ def _choose_kernel_cache() -> None:
     """Where compiled kernels are kept, unless WHITTED_CACHE_DIR says (a farm's shared
     folder, say): installed, in the folder Blender gives an extension for its user data, kept
     across updates; from a checkout, in the checkout's `.cache/kernels`, which its tests
-    share. Read by core.jit on import, and passed on to the warm-up process."""
+    share. Read by core.jit.cache_folder on import, and passed on to the warm-up process."""
     if os.environ.get("WHITTED_CACHE_DIR"):
         return
     here = Path(__file__).resolve().parent

@@ -168,7 +168,7 @@ def _render_script(script: Path, output: Path | None, threads: int, anywhere: bo
     # Here, not at the top: the farm command, which renders nothing itself, starts without
     # numba's import (a quarter of a second)
     from .driver import render
-    from .kernel_warmup import kernels_ready, warm_kernels
+    from .jit.warmup import kernels_ready, warm_kernels
 
     if not kernels_ready():
         # The first render on a machine: say what it is waiting for, step by step

@@ -22,7 +22,7 @@ import numba
 import numpy as np
 
 from .compile import CompiledScene, compile_scene
-from .kernel_cache import load_or_rebuild, note_use
+from .jit.cache_folder import load_or_rebuild, note_use
 from .kernels.csg import CROSSING_CAPACITY, SPAN_CAPACITY
 from .kernels.layout import PackedScene
 from .kernels.render_tile import render_tile

@@ -9,7 +9,7 @@ import time
 import numpy as np
 
 from .. import core, export
-from ..core.warmup_process import shared_warmup
+from ..core.jit.warmup_process import shared_warmup
 from ..reporting import report_internal_failure
 from . import kernel_status, result_notes
 

@@ -1,6 +1,6 @@
 """The kernel warm-up as Blender shows it: started early, in the status bar while it runs.
 
-In Blender's window the warm-up process (`core.warmup_process`) starts as soon as the add-on
+In Blender's window the warm-up process (`core.jit.warmup_process`) starts as soon as the add-on
 loads, so that the kernels are usually ready by the first F12; a timer on the main thread
 reads its status twice a second and shows it in the status bar ("Whitted: compiling kernels
 (first use on this machine): 37 %, 52 s") and Render Properties › Sampling. Under `blender -b`
@@ -14,8 +14,8 @@ import traceback
 
 import bpy
 
-from ..core import child_process
-from ..core.warmup_process import shared_warmup
+from ..core.jit import child_process
+from ..core.jit.warmup_process import shared_warmup
 
 POLL_S = 0.5
 

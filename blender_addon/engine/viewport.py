@@ -21,8 +21,8 @@ import bpy
 
 from .. import core, export
 from ..core.compile import compile_scene
+from ..core.jit.warmup_process import shared_warmup
 from ..core.progressive import ProgressiveRender
-from ..core.warmup_process import shared_warmup
 from . import view_texture
 
 REDRAW_S = 0.05  # how often the timer looks for new images while a session renders

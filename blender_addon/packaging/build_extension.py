@@ -3,7 +3,7 @@ own `extension build --split-platforms` makes them, each with the numba, llvmlit
 lupa wheels of that platform for every Python its Blenders run (Blender installs the ones that
 match; it brings numpy itself), and the Linux one with its kernels compiled for the x86-64-v4
 and -v3 feature levels, so that a new install renders without compiling first
-(core.portable_cache). Blender 3.4 to 4.1 load the same modules as a legacy add-on (bl_info)
+(core.jit.relocatable). Blender 3.4 to 4.1 load the same modules as a legacy add-on (bl_info)
 from a checkout's link instead.
 
     python blender_addon/packaging/build_extension.py OUT_DIR [PYTHON ...]
@@ -60,8 +60,9 @@ PLATFORMS = (
 KERNELS_FOR = "linux-x64"
 
 # The name Blender imports the installed `core` as, for an extension installed from disk into
-# the user repository it offers first; numba's cache records it (core.jit), so the shipped
-# kernels are compiled under it. Installed into another repository, Whitted compiles its own.
+# the user repository it offers first; numba's cache records it (core.jit.cache_folder), so
+# the shipped kernels are compiled under it. Installed into another repository, Whitted
+# compiles its own.
 INSTALLED_AS = "bl_ext.user_default.whitted.core"
 
 
@@ -86,8 +87,8 @@ def compile_kernels(python: str, cache_base: Path, level: str, stage: Path) -> P
     cache_base and `core` imported under INSTALLED_AS from a copy in stage, for the portable
     CPU level given, whatever this machine's (which must be able to run it); returns the
     folder of its kernels. A complete cache there only loads."""
-    from core.child_process import PROGRAM, program_arguments
-    from core.kernel_warmup import CACHE_LINE
+    from core.jit.child_process import PROGRAM, program_arguments
+    from core.jit.warmup import CACHE_LINE
 
     core = stage.joinpath(*INSTALLED_AS.split("."))
     if not core.is_dir():
@@ -96,7 +97,7 @@ def compile_kernels(python: str, cache_base: Path, level: str, stage: Path) -> P
     env.update(NUMBA_CPU_NAME=level, NUMBA_CPU_FEATURES="")
     env.pop("PYTHONPATH", None)  # nothing but the staged copy may answer to its name
     lines = subprocess.run(
-        [python, "-c", PROGRAM, *program_arguments("kernel_warmup", INSTALLED_AS, core)],
+        [python, "-c", PROGRAM, *program_arguments("jit.warmup", INSTALLED_AS, core)],
         cwd=stage, env=env, check=True, capture_output=True, text=True,
     ).stdout.splitlines()  # fmt: skip
     print(f"{python} {level}: {lines[-1]}", flush=True)
@@ -142,7 +143,7 @@ def write_zip(target: Path, manifest: str, wheels: list[Path], kernels: list[Pat
                 archive.write(path, str(inside))
         for path in sorted((ROOT / "core").rglob("*.py")):
             archive.write(path, str(path.relative_to(ROOT)))
-        # numba's index and machine-code files, in the folders core.portable_cache names
+        # numba's index and machine-code files, in the folders core.jit.relocatable names
         for folder in kernels:
             for path in sorted(folder.rglob("*")):
                 if path.suffix in (".nbi", ".nbc", ".ok"):
@@ -168,7 +169,7 @@ def build(
     in kernel_cache (out_dir/kernel_cache unless given: a second build only loads them).
     Wheels are downloaded into wheel_cache (out_dir/wheels unless given)."""
     sys.path.insert(0, str(ROOT))
-    from core.portable_cache import PORTABLE_LEVELS
+    from core.jit.relocatable import PORTABLE_LEVELS
     from core.version import VERSION
 
     template = (ADDON / "blender_manifest.toml").read_text()

@@ -35,7 +35,7 @@ from collections.abc import Callable
 from dataclasses import asdict
 from pathlib import Path
 
-from .. import child_process
+from ..jit import child_process
 from .sandbox import DEFAULT_LIMITS, ScriptError, ScriptLimits
 
 # A line of the child's stdout that carries one print() of the script, as JSON text

@@ -1,3 +1,3 @@
 """numba kernels over `PackedScene` arrays. Importing this configures the kernel cache."""
 
-from .. import jit  # noqa: F401  (sets numba's cache folder before any kernel is decorated)
+from ..jit import decorators  # noqa: F401  (sets numba's cache folder before any kernel is decorated)

@@ -19,7 +19,7 @@ What the corners cannot see -- detail smaller than a pixel that touches none of 
 corners, a thin line between them -- is missed, as in any corner-sampling method.
 """
 
-from ..jit import inlined_kernel
+from ..jit.decorators import inlined_kernel
 from .pass_record import REC_COUNT, accumulate
 from .workspace import CORNER_ALPHA, CORNER_RECORD
 

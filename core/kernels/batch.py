@@ -6,7 +6,7 @@ across threads themselves; one `Stacks` (from a `Workspace`) per calling thread.
 the packed scene's `geometry` group (and its `surfaces` group for normals).
 """
 
-from ..jit import kernel
+from ..jit.decorators import kernel
 from .borrow import borrowed
 from .light_pyramid import TRAVERSE_ALL
 from .surface import surface_at

@@ -22,7 +22,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..jit import inlined_kernel, kernel
+from ..jit.decorators import inlined_kernel, kernel
 
 # Measured on the million-triangle benchmark mesh against 16 bins, interleaved: 2% more rays
 # per second (primary, incoherent and shadow alike) for a build 20% longer (0.65 -> 0.78 s);

@@ -21,7 +21,7 @@ fills 6.1, with 58 000 nodes instead of 87 000, and traces 5-7% more rays per se
 
 import numpy as np
 
-from ..jit import kernel
+from ..jit.decorators import kernel
 from .bvh_wide import LEAF_COUNT_BITS, WIDTH
 
 # How a binary node m covers its subtree with at most j children, choice[m, j]:

@@ -25,7 +25,7 @@ The binary SAH tree is collapsed into this one by `core.kernels.bvh_collapse`.
 
 import numpy as np
 
-from ..jit import inlined_kernel
+from ..jit.decorators import inlined_kernel
 
 WIDTH = 8
 LEAF_COUNT_BITS = 3  # so a leaf holds at most 7 triangles

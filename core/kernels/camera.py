@@ -13,7 +13,7 @@ Adaptive anti-aliasing's corner rays (core.kernels.adaptive_tile) go through the
 at a pixel corner, their lens point at random over the whole lens.
 """
 
-from ..jit import inlined_kernel, kernel
+from ..jit.decorators import inlined_kernel, kernel
 from .light_samples import concentric_disk, regular_polygon
 from .options import (
     OPTION_PIXEL_PATTERN,

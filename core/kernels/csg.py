@@ -23,7 +23,7 @@ sliver of skin, on every pixel alike, and on equal footing the left operand's la
 
 import math
 
-from ..jit import inlined_kernel, kernel
+from ..jit.decorators import inlined_kernel, kernel
 from ..vocabulary import CSG_DIFFERENCE, CSG_INTERSECTION, CSG_UNION
 from .mesh_trace import coincident_crossings, line_scale, mesh_line_crossings, sort_crossings
 from .shadow_log import SHADOW_VARIES, record_crossing

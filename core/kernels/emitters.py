@@ -15,7 +15,7 @@ without angle) gets one, whatever the render's shadow samples.
 
 import math
 
-from ..jit import kernel
+from ..jit.decorators import kernel
 from .borrow import borrowed
 from .layout import (
     EMITS_DIFFUSE,

@@ -15,7 +15,7 @@ Visibility is on, by refracted rays if its Transmission is.
 
 import math
 
-from ..jit import kernel
+from ..jit.decorators import kernel
 from .layout import EMITS_SPECULAR, EMITS_SPOT, EMITS_SPOT_COSINE, EMITS_TRANSMISSION
 from .light_sphere import spot_mask
 from .options import (

@@ -20,7 +20,7 @@ bright sun is found by most rays. Only diffuse light is gathered: highlights com
 
 import math
 
-from ..jit import kernel
+from ..jit.decorators import kernel
 from .borrow import borrowed
 from .layout import ENVIRONMENT_IMAGE, ENVIRONMENT_NONE, ENVIRONMENT_UNIFORM
 from .light_pyramid import TRAVERSE_ALL

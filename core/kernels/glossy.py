@@ -17,7 +17,7 @@ sends below the surface it leaves is dropped: the light a microfacet's neighbour
 
 import math
 
-from ..jit import kernel
+from ..jit.decorators import kernel
 from .light_samples import basis, in_frame
 from .vec import add, cross, dot, normalize, scale
 

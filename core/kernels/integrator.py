@@ -25,7 +25,7 @@ seen_through_glass) is passed as if absent: the ray goes on from its far side.
 
 import math
 
-from ..jit import inlined_kernel, kernel
+from ..jit.decorators import inlined_kernel, kernel
 from .borrow import borrowed
 from .emitters import emitted_colour
 from .emitters_seen import emitters_seen

@@ -8,7 +8,7 @@ E / pi, E the irradiance from the surface, as Cycles lights it."""
 
 import math
 
-from ..jit import kernel
+from ..jit.decorators import kernel
 from .vec import add, cross, dot, scale, sub
 
 # The shadow ray stops this fraction short of the sampled point, which lies on the surface

@@ -12,7 +12,7 @@ weight and N.L averages to E / pi, the brightness a white Lambertian surface has
 
 import math
 
-from ..jit import kernel
+from ..jit.decorators import kernel
 from .light_samples import concentric_disk
 from .vec import add, dot, scale, sub
 

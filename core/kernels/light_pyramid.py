@@ -22,7 +22,7 @@ with min over its corners of normal . x > offset is outside), then its bounding 
 
 import math
 
-from ..jit import kernel
+from ..jit.decorators import kernel
 from .vec import add, cross, dot, max_abs, scale, sub
 
 # Rays are computed to a few ulps of the coordinates involved; the margin is far above that

@@ -9,7 +9,7 @@ sphere's cone of directions or a sun's.
 
 import math
 
-from ..jit import inlined_kernel, kernel
+from ..jit.decorators import inlined_kernel, kernel
 from .options import SHADOW_HALTON, SHADOW_STRATIFIED
 from .rng import PURPOSE_LIGHT, uniform2
 from .vec import add, scale

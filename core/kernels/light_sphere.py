@@ -22,7 +22,7 @@ before Blender 4.0 also the cosine from the axis.
 
 import math
 
-from ..jit import inlined_kernel, kernel
+from ..jit.decorators import inlined_kernel, kernel
 from .light_samples import concentric_disk, cone_direction, in_frame
 from .vec import add, dot, normalize, scale, sub
 

@@ -11,7 +11,7 @@ emitter table's radiance carries the rest (`core.kernels.emitters`):
   S 2 (sqrt(1 + tan^2 h) - 1) / tan^2 h, less than S for a wide sun, as Blender 3.x shows.
 """
 
-from ..jit import kernel
+from ..jit.decorators import kernel
 from .light_samples import concentric_disk, cone_direction, in_frame
 from .vec import add, normalize
 

@@ -16,7 +16,7 @@ import math
 
 import numpy as np
 
-from ..jit import inlined_kernel, kernel
+from ..jit.decorators import inlined_kernel, kernel
 from .bvh_wide import leaf_block as _leaf_block
 from .prefetch import prefetch_row
 from .shapes import NO_HIT

@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 
-from ..jit import kernel
+from ..jit.decorators import kernel
 
 _LOW32 = 0xFFFFFFFF
 # Cycles scales 3D Perlin noise so that its range is about [-1, 1]

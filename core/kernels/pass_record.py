@@ -11,7 +11,7 @@ for none of this runs: one test per camera ray.
 
 import math
 
-from ..jit import kernel
+from ..jit.decorators import kernel
 from ..vocabulary import PASS_SLOT
 from .options import OPTION_CRYPTO_LEVELS, OPTION_PROJECTION, PROJECTION_ORTHOGRAPHIC
 from .vec import cross, dot, normalize, row, sub

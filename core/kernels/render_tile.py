@@ -9,7 +9,7 @@ A pixel's rays, corners and samples alike, go through one loop with one call of
 be optimised again by LLVM (two more made the cold compile 3x as long).
 """
 
-from ..jit import kernel
+from ..jit.decorators import kernel
 from .adaptive_tile import (
     CORNER_SAMPLE,
     corner_mean,

@@ -8,7 +8,7 @@ The hash is splitmix64's finalizer (Steele, Lea and Flood 2014), applied along t
 
 import numpy as np
 
-from ..jit import kernel
+from ..jit.decorators import kernel
 
 PURPOSE_PIXEL = 1  # where in the pixel a camera ray passes
 PURPOSE_LENS = 2  # where on the lens it starts

@@ -3,7 +3,7 @@ as numbers, so that the material table holds it and the kernels run nothing per 
 
 import numpy as np
 
-from ..jit import kernel
+from ..jit.decorators import kernel
 from .shader_program import LOBE_COUNT, SHADER_STACK, run_program
 from .surface_terms import terms_from_lobes
 

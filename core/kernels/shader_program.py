@@ -13,7 +13,7 @@ blender_addon/export/shader_lobes.py documents it.
 
 import math
 
-from ..jit import kernel
+from ..jit.decorators import kernel
 from .noise import noise_texture
 from .shader_values import (
     brick,

@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from ..jit import kernel
+from ..jit.decorators import kernel
 from .vec import add, scale, sub
 
 # Math node operations (core.model.shader.MATH_OPERATIONS, in that order)

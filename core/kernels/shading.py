@@ -20,7 +20,7 @@ to show that).
 import math
 from typing import NamedTuple
 
-from ..jit import inlined_kernel, kernel
+from ..jit.decorators import inlined_kernel, kernel
 from .borrow import borrowed
 from .light_pyramid import TRAVERSE_ALL, build_pyramid, pyramid_candidates
 from .light_samples import square_point

@@ -2,7 +2,7 @@
 (`core.kernels.shadow_log`): the crossed surface's material program run at each, by the
 integrator, the one place that program is compiled in."""
 
-from ..jit import inlined_kernel, kernel
+from ..jit.decorators import inlined_kernel, kernel
 from .borrow import borrowed
 from .light_pyramid import TRAVERSE_ALL
 from .shader_program import run_program

@@ -24,7 +24,7 @@ A ray numbered past the log, or whose crossings do not fit the list, is taken as
 and counted (RenderStats' warning), never lit wrongly without a word.
 """
 
-from ..jit import inlined_kernel
+from ..jit.decorators import inlined_kernel
 from .mesh_trace import mesh_surface_crossings
 from .shapes import NO_HIT, intersect_analytic
 from .vec import affine_point, affine_vector

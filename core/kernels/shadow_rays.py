@@ -19,7 +19,7 @@ replay (the varying surfaces answered) decides as the first pass did and casts, 
 back, the same rays in the same order.
 """
 
-from ..jit import inlined_kernel, ir_inlined_kernel, kernel
+from ..jit.decorators import inlined_kernel, ir_inlined_kernel, kernel
 from .borrow import borrowed
 from .options import EMITTER_SPHERE, EMITTER_SUN_CONE
 from .shadow_log import PROBES, STATE_CROSSINGS, STATE_RAY, STATE_REPLAY

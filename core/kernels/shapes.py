@@ -17,7 +17,7 @@ passed around as a value would miss numba's cache in every new process.
 
 import math
 
-from ..jit import kernel
+from ..jit.decorators import kernel
 from ..vocabulary import (  # noqa: F401  (the kinds, listed in core.vocabulary)
     SHAPE_BOX,
     SHAPE_CONE,

@@ -19,7 +19,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..jit import inlined_kernel, ir_inlined_kernel
+from ..jit.decorators import inlined_kernel, ir_inlined_kernel
 from .shapes import NO_HIT
 from .vec import inverse
 

@@ -2,7 +2,7 @@
 
 import math
 
-from ..jit import kernel
+from ..jit.decorators import kernel
 from .shapes import SHAPE_MESH, analytic_normal, analytic_uv
 from .triangles import block_and_lane
 from .vec import (

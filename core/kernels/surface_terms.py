@@ -5,7 +5,7 @@ the same rule core.compile.shader_program folds constant programs with)."""
 import math
 from typing import NamedTuple
 
-from ..jit import kernel
+from ..jit.decorators import kernel
 from .shader_program import (
     L_COAT,
     L_COAT_HIDES,

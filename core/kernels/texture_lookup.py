@@ -4,7 +4,7 @@ image) and Mirror. The vector's x and y are the image's u and v, v = 0 its botto
 
 import math
 
-from ..jit import kernel
+from ..jit.decorators import kernel
 
 # Image Texture interpolations and extensions (core.model.shader's, in that order)
 INTERPOLATION_LINEAR, INTERPOLATION_CLOSEST = 0, 1

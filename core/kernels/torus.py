@@ -24,7 +24,7 @@ unavoidable band around tangency, and it is narrow (tested against extended prec
 
 import math
 
-from ..jit import kernel
+from ..jit.decorators import kernel
 
 _MAX_ITERATIONS = 100
 

@@ -13,7 +13,7 @@ a ray truly crosses. Mesh BVHs are eight wide (`core.kernels.bvh_wide`); their b
 float32 corners of float32 vertices, padded one float32 step, and tested in float32.
 """
 
-from ..jit import inlined_kernel, kernel
+from ..jit.decorators import inlined_kernel, kernel
 from .csg import csg_closest, csg_transmittance
 from .mesh_trace import mesh_closest, mesh_crossings, mesh_surface_crossings
 from .shadow_log import SHADOW_VARIES, analytic_varying, mesh_varying

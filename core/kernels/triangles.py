@@ -15,7 +15,7 @@ hit, so the test needs no count. Measured against triangles stored one a row: th
 for nearest hits, 10% more shadow rays per second.
 """
 
-from ..jit import inlined_kernel, ir_inlined_kernel, kernel
+from ..jit.decorators import inlined_kernel, ir_inlined_kernel, kernel
 from .shapes import NO_HIT
 
 LEAF_WIDTH = 4  # triangles of a block, tested at once by `intersect_leaf`; no leaf holds more

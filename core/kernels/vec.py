@@ -4,7 +4,7 @@ import math
 
 import numba
 
-from ..jit import kernel
+from ..jit.decorators import kernel
 
 
 @kernel

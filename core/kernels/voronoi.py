@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-from ..jit import kernel
+from ..jit.decorators import kernel
 from .noise import hash_uint3, hash_uint4
 
 # The numbers of core.model.shader's VORONOI_HASHES, VORONOI_FEATURES and VORONOI_METRICS

@@ -31,7 +31,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from blender_addon.packaging.build_extension import build  # noqa: E402
-from core.jit import CPU_TARGET  # noqa: E402
+from core.jit.decorators import CPU_TARGET  # noqa: E402
 from tests.benchmarks.final_scene_data import final_scene  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -44,7 +44,7 @@ FIRST_PIXEL = """
 import time
 start = time.perf_counter()
 import dataclasses, pickle, sys
-from core.kernel_warmup import kernels_ready, warm_kernels
+from core.jit.warmup import kernels_ready, warm_kernels
 from core.driver import render
 if not kernels_ready():
     warm_kernels()
@@ -72,8 +72,8 @@ for name, path in (("bl_ext", []), ("bl_ext.user_default", []),
     package = types.ModuleType(name)
     package.__path__ = path
     sys.modules[name] = package
-warmup = importlib.import_module("{INSTALLED}.kernel_warmup")
-shipped = importlib.import_module("{INSTALLED}.kernel_cache").shipped_kernels()
+warmup = importlib.import_module("{INSTALLED}.jit.warmup")
+shipped = importlib.import_module("{INSTALLED}.jit.cache_folder").shipped_kernels()
 found = sorted(p.name for p in shipped.glob("warm-*.ok")) if shipped.is_dir() else []
 print(f"shipped {{shipped.name if shipped.is_dir() else 'none'}} {{','.join(found) or '-'}} "
       f"wanted {{warmup.MARKER}}")
@@ -87,7 +87,7 @@ class Installed(pickle.Unpickler):
         return super().find_class(module, name)
 """ + FIRST_PIXEL.split("from core.driver import render", 1)[1].replace(
     'pickle.load(open(sys.argv[1], "rb"))', 'Installed(open(sys.argv[1], "rb")).load()'
-).replace("from core.kernel_warmup import kernels_ready, warm_kernels\n", "")
+).replace("from core.jit.warmup import kernels_ready, warm_kernels\n", "")
 
 SCENE_SOURCE = """
 import pickle, sys

@@ -13,7 +13,7 @@ import pytest
 from PIL import Image
 
 from blender_addon.packaging.build_extension import build
-from core.jit import CPU_TARGET
+from core.jit.decorators import CPU_TARGET
 from tests.blender.conftest import ROOT, SAMPLE
 
 pytestmark = pytest.mark.bpy

@@ -61,11 +61,11 @@ def stand_in_warmup(tmp_path, monkeypatch, body):
     """A WarmupProcess running `body` as its child, in place of the shared warm-up, as on a
     machine whose kernel cache is empty."""
     core = sys.modules["whitted.core"]
-    monkeypatch.setattr(core.warmup_process, "kernels_ready", lambda: False)
+    monkeypatch.setattr(core.jit.warmup_process, "kernels_ready", lambda: False)
     script = tmp_path / "warmup.sh"
     script.write_text("#!/bin/sh\n" + body)
     script.chmod(script.stat().st_mode | stat.S_IXUSR)
-    return core.warmup_process.WarmupProcess([str(script)])
+    return core.jit.warmup_process.WarmupProcess([str(script)])
 
 
 def rendered_metadata(bpy, scene, path):
@@ -135,8 +135,8 @@ def test_a_slow_cache_check_is_no_compile(sample_scene, bpy_with_whitted, tmp_pa
     # shipped kernels) took 0.2 s; the summary called it a "+0 s first-use compile" (the
     # fresh-clone run's extension test)
     core = sys.modules["whitted.core"]
-    monkeypatch.setattr(core.warmup_process, "kernels_ready", lambda: True)
-    warmup = core.warmup_process.WarmupProcess(["false"])
+    monkeypatch.setattr(core.jit.warmup_process, "kernels_ready", lambda: True)
+    warmup = core.jit.warmup_process.WarmupProcess(["false"])
     real_start = warmup.start
     monkeypatch.setattr(warmup, "start", lambda: (time.sleep(0.3), real_start()))
     monkeypatch.setattr(final_render(), "shared_warmup", lambda: warmup)

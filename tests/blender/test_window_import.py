@@ -53,7 +53,7 @@ def when_warm():
     # kernel warm-up the add-on starts leave its timers little time on two cores: wait for
     # the warm-up, then count the ticks of 2 s with nothing imported, the baseline
     import sys
-    warmup = sys.modules["whitted.core"].warmup_process.shared_warmup()
+    warmup = sys.modules["whitted.core"].jit.warmup_process.shared_warmup()
     if warmup.status().state == "running":
         return 0.25, when_warm
     seen["calm from"], seen["baseline"] = time.monotonic(), 0

@@ -1,4 +1,4 @@
-"""A damaged kernel cache heals itself (core.kernel_cache): in fresh processes sharing one
+"""A damaged kernel cache heals itself (core.jit.cache_folder): in fresh processes sharing one
 cache folder, a kernel is cached, its files are cut short, zeroed or garbled, and the next
 process must say so in one line, rebuild the cache and return the right answer; the one after
 must load the rebuilt cache cleanly."""
@@ -13,11 +13,11 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from core.kernel_cache import load_or_rebuild
+from core.jit.cache_folder import load_or_rebuild
 
 ROOT = Path(__file__).resolve().parents[2]
 CHILD = (
-    "from core.kernel_cache import load_or_rebuild\n"
+    "from core.jit.cache_folder import load_or_rebuild\n"
     "from tests.support.cache_probe import doubled\n"
     "value, rebuilt = load_or_rebuild(lambda: doubled(21.0))\n"
     "print(value, rebuilt)\n"
@@ -131,7 +131,7 @@ def test_every_cached_function_heals_the_compile_steps_included(
     the render kernel alone missed: `EOFError: Ran out of input` from every render) and
     those they call. The render must still come out right, saying so once, and the next
     load cleanly."""
-    from core.jit import kernel_cache_dir
+    from core.jit.cache_folder import kernel_cache_dir
 
     folder, clean = rendered_with_the_shared_cache
     copy = tmp_path / "cache" / kernel_cache_dir().name

@@ -1,4 +1,4 @@
-"""Kernel caches that move (core.portable_cache, core.kernel_cache): a cache filled where
+"""Kernel caches that move (core.jit.relocatable, core.jit.cache_folder): a cache filled where
 `core` lies in one folder loads, without compiling, where a copy of `core` with new file
 times lies in another; kernels compile for the portable x86-64-v3 level on CPUs that have
 it (or for the CPU the user names); the extension's shipped kernels are copied into the
@@ -14,8 +14,8 @@ import time
 import pytest
 
 import core
-from core import kernel_cache, kernel_warmup, portable_cache
-from core.portable_cache import PORTABLE_LEVELS, host_portable_level
+from core.jit import cache_folder, relocatable, warmup
+from core.jit.relocatable import PORTABLE_LEVELS, host_portable_level
 
 CORE = os.path.dirname(core.__file__)
 ROOT = os.path.dirname(CORE)
@@ -23,7 +23,8 @@ ROOT = os.path.dirname(CORE)
 # Compiles (or loads) one small kernel and says which, and where its cache files went
 CALL_A_KERNEL = r"""
 import json, numba
-from core.jit import CPU_TARGET, kernel_cache_dir
+from core.jit.cache_folder import kernel_cache_dir
+from core.jit.decorators import CPU_TARGET
 from core.kernels.vec import dot
 assert dot((1.0, 2.0, 3.0), (4.0, 5.0, 6.0)) == 32.0
 from numba.core.registry import cpu_target
@@ -76,8 +77,8 @@ def test_kernels_compile_for_the_portable_level_or_the_cpu_the_user_names(tmp_pa
 def shipped(tmp_path, monkeypatch):
     """A stand-in for the extension's kernel_cache folder, and an empty user cache."""
     monkeypatch.setenv("WHITTED_CACHE_DIR", str(tmp_path / "user_cache"))
-    monkeypatch.setattr(kernel_cache, "SHIPPED_KERNELS", tmp_path / "extension" / "kernel_cache")
-    folder = kernel_cache.shipped_kernels()
+    monkeypatch.setattr(cache_folder, "SHIPPED_KERNELS", tmp_path / "extension" / "kernel_cache")
+    folder = cache_folder.shipped_kernels()
     (folder / "core" / "kernels").mkdir(parents=True)
     (folder / "core" / "kernels" / "trace.closest_hit-12.py311.nbi").write_bytes(b"index")
     (folder / "core" / "kernels" / "trace.closest_hit-12.py311.1.nbc").write_bytes(b"code" * 99)
@@ -85,22 +86,22 @@ def shipped(tmp_path, monkeypatch):
 
 
 def test_shipped_kernels_for_this_target_are_copied_once(shipped, capsys):
-    (shipped / kernel_warmup.MARKER).write_text("built\n")
-    assert kernel_warmup.kernels_ready()
-    user = kernel_warmup.kernel_cache_dir()
+    (shipped / warmup.MARKER).write_text("built\n")
+    assert warmup.kernels_ready()
+    user = warmup.kernel_cache_dir()
     for path in shipped.rglob("*"):
         if path.is_file():
             assert (user / path.relative_to(shipped)).read_bytes() == path.read_bytes()
     assert "copied the extension's compiled kernels" in capsys.readouterr().err
     assert not list(user.rglob("*.partial"))
-    assert kernel_warmup.kernels_ready()
+    assert warmup.kernels_ready()
     assert "copied" not in capsys.readouterr().err  # once: the user's folder is complete now
 
 
 def test_shipped_kernels_for_another_target_are_left_alone(shipped):
     (shipped / "warm-some-other-cpu.ok").write_text("built\n")
-    assert not kernel_warmup.kernels_ready()
-    assert not kernel_warmup.kernel_cache_dir().exists()
+    assert not warmup.kernels_ready()
+    assert not warmup.kernel_cache_dir().exists()
 
 
 @pytest.mark.parametrize(
@@ -113,15 +114,15 @@ def test_shipped_kernels_for_another_target_are_left_alone(shipped):
 )
 def test_a_cpu_gets_the_highest_level_it_has_in_full(monkeypatch, has, level):
     features = {name: name in has for name in PORTABLE_LEVELS["x86-64-v4"]}
-    monkeypatch.setattr(portable_cache.llvm, "get_host_cpu_features", lambda: features)
-    monkeypatch.setattr(portable_cache.platform, "machine", lambda: "x86_64")
-    assert portable_cache.host_portable_level() == level
+    monkeypatch.setattr(relocatable.llvm, "get_host_cpu_features", lambda: features)
+    monkeypatch.setattr(relocatable.platform, "machine", lambda: "x86_64")
+    assert relocatable.host_portable_level() == level
 
 
 def test_cache_folders_unused_for_a_month_are_pruned_and_no_others(tmp_path, monkeypatch):
     monkeypatch.setenv("WHITTED_CACHE_DIR", str(tmp_path))
-    current = kernel_warmup.kernel_cache_dir()
-    month = 86400 * kernel_cache.STALE_DAYS
+    current = warmup.kernel_cache_dir()
+    month = 86400 * cache_folder.STALE_DAYS
     folders = {
         "current": current,
         "stale": tmp_path / "whitted-0.0.9-numba-0.60.0-py311-0123456789ab",
@@ -133,11 +134,11 @@ def test_cache_folders_unused_for_a_month_are_pruned_and_no_others(tmp_path, mon
         (folder / "core" / "x.nbi").write_bytes(b"index")
     for name in ("current", "stale", "not ours"):
         os.utime(folders[name], (0, time.time() - month - 60))
-    removed = kernel_cache.prune_stale()
+    removed = cache_folder.prune_stale()
     assert removed == [folders["stale"]]
     assert [name for name, f in folders.items() if f.exists()] == ["current", "in use", "not ours"]
     # a render marks its folder used
-    kernel_cache.note_use()
+    cache_folder.note_use()
     assert time.time() - current.stat().st_mtime < 60
 
 

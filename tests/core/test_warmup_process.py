@@ -1,5 +1,5 @@
 """The warm-up process as the add-on watches it, with stand-in children (shell scripts that
-print what `python -m core.kernel_warmup` prints, or fail): progress lines become its
+print what `python -m core.jit.warmup` prints, or fail): progress lines become its
 status, a cancelled wait returns at once while the child goes on, a failed or foreign child
 is reported as failed with its last words. The real warm-up's compile is tested in
 test_kernel_signature."""
@@ -15,10 +15,10 @@ from pathlib import Path
 import pytest
 
 import core
-from core import kernel_warmup
-from core.child_process import PROGRAM, program_arguments
-from core.jit import kernel_cache_dir
-from core.warmup_process import WarmupProcess
+from core.jit import warmup as kernel_warmup
+from core.jit.cache_folder import kernel_cache_dir
+from core.jit.child_process import PROGRAM, program_arguments
+from core.jit.warmup_process import WarmupProcess
 
 OWN_CORE = kernel_warmup.own_core()
 ROOT = Path(core.__file__).resolve().parent.parent
@@ -128,7 +128,7 @@ def test_a_second_warmup_waits_for_the_first_and_then_compiles_nothing():
     with open(folder / kernel_warmup.LOCK, "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
         second = subprocess.Popen(
-            [sys.executable, "-m", "core.kernel_warmup"], cwd=ROOT, env=dict(os.environ),
+            [sys.executable, "-m", "core.jit.warmup"], cwd=ROOT, env=dict(os.environ),
             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
         )  # fmt: skip
         # what it imported, where its cache is, and then that it waits
@@ -154,7 +154,7 @@ def test_the_child_imports_core_under_the_parents_name_without_running_its_paren
     (folder / kernel_warmup.MARKER).write_text("compiled\n")
     env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
     run = subprocess.run(
-        [sys.executable, "-c", PROGRAM, *program_arguments("kernel_warmup", name, staged)],
+        [sys.executable, "-c", PROGRAM, *program_arguments("jit.warmup", name, staged)],
         cwd=tmp_path, env=env, capture_output=True, text=True, timeout=120,
     )  # fmt: skip
     assert run.returncode == 0, run.stdout + run.stderr

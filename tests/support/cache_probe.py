@@ -1,7 +1,7 @@
 """A tiny cached kernel for the kernel-cache tests: numba caches only functions defined in a
 file, and this one compiles in a second."""
 
-from core.jit import kernel
+from core.jit.decorators import kernel
 
 
 @kernel

@@ -61,7 +61,7 @@ def f12():
 
 
 def tick():
-    if sys.modules["whitted.core"].warmup_process.shared_warmup().status().state == "running":
+    if sys.modules["whitted.core"].jit.warmup_process.shared_warmup().status().state == "running":
         return 0.25
     job = state["job"]
     if job is not None:

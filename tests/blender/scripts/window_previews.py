@@ -33,7 +33,7 @@ state = {"material": None, "since": 0.0}
 
 
 def tick():
-    if sys.modules["whitted.core"].warmup_process.shared_warmup().status().state == "running":
+    if sys.modules["whitted.core"].jit.warmup_process.shared_warmup().status().state == "running":
         return 0.25
     material = state["material"]
     if material is not None:

@@ -35,7 +35,7 @@ def finished():
 
 
 def when_warm():
-    if sys.modules["whitted.core"].warmup_process.shared_warmup().status().state == "running":
+    if sys.modules["whitted.core"].jit.warmup_process.shared_warmup().status().state == "running":
         return 0.25, when_warm
     space = area().spaces.active
     space.overlay.show_overlays = False  # the ball's outline would move with it

@@ -10,7 +10,7 @@ import pytest
 
 from core import AreaLight, Material, Mesh, PointLight, Scene, Sphere, Texture, TriangleMesh
 from core.compile import pack_scene
-from core.jit import kernel
+from core.jit.decorators import kernel
 from core.kernels.borrow import borrowed
 from core.kernels.workspace import new_workspace
 from core.model import RenderSettings

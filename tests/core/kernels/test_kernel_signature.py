@@ -48,8 +48,8 @@ WARM_AND_COUNT = r"""
 import importlib, pkgutil, re
 import numba
 import core.kernels
-from core import kernel_warmup
-kernel_warmup.main()
+from core.jit import warmup
+warmup.main()
 for info in pkgutil.iter_modules(core.kernels.__path__):
     module = importlib.import_module(f"core.kernels.{info.name}")
     for name, value in vars(module).items():

@@ -1,7 +1,7 @@
 """Compile every kernel a render needs before a render asks, in steps that report progress.
 
 A cold compile takes tens of seconds. Blender must not wait on it with a frozen window, so
-the add-on runs this module as a program in a process of its own (`core.warmup_process`),
+the add-on runs this module as a program in a process of its own (`core.jit.warmup_process`),
 which fills the shared kernel cache and prints one progress line a step; the render then
 only loads the cache. The command line runs the same steps in-process.
 
@@ -27,12 +27,18 @@ from pathlib import Path
 
 import numpy as np
 
-from .jit import CPU_TARGET, kernel_cache_dir
-from .kernel_cache import STALE_DAYS, copy_shipped_kernels, prune_stale
+from .cache_folder import (
+    CORE_PACKAGE,
+    STALE_DAYS,
+    copy_shipped_kernels,
+    kernel_cache_dir,
+    prune_stale,
+)
+from .decorators import CPU_TARGET
 
 PROGRESS_PREFIX = "Whitted: compiling kernels: "
 READY_PREFIX = "Whitted: kernels ready"
-# One for each CPU target: a cache folder can hold the kernels of several (core.portable_cache)
+# One for each CPU target: a cache folder can hold the kernels of several (core.jit.relocatable)
 MARKER = f"warm-{CPU_TARGET}.ok"
 LOCK = "warm.lock"
 CACHE_LINE = "Whitted: kernel cache "
@@ -40,7 +46,7 @@ CACHE_LINE = "Whitted: kernel cache "
 
 def warmup_scene():
     """A small scene with one of everything a packed scene can hold."""
-    from . import (
+    from .. import (
         AreaLight,
         Box,
         Csg,
@@ -91,12 +97,12 @@ def warmup_scene():
 
 def warmup_steps() -> list[tuple[str, Callable[[], None]]]:
     """(what it compiles, how) for each step, in order."""
-    from . import RenderSettings
-    from .compile import compile_scene
-    from .driver import prepare_kernels
-    from .kernels.light_pyramid import TRAVERSE_ALL
-    from .kernels.trace import closest_hit, transmittance
-    from .kernels.workspace import new_workspace
+    from .. import RenderSettings
+    from ..compile import compile_scene
+    from ..driver import prepare_kernels
+    from ..kernels.light_pyramid import TRAVERSE_ALL
+    from ..kernels.trace import closest_hit, transmittance
+    from ..kernels.workspace import new_workspace
 
     packed = []
     stacks = new_workspace(0).stacks
@@ -199,8 +205,8 @@ def _warm_kernels(report: Callable[[str], None]) -> float:
 
 def own_core() -> str:
     """This package's import name and folder: a warm-up fills the cache of another process
-    only if it compiled the same package under the same name (core.jit)."""
-    return f"{__package__} at {Path(__file__).resolve().parent}"
+    only if it compiled the same package under the same name (core.jit.cache_folder)."""
+    return f"{CORE_PACKAGE} at {Path(__file__).resolve().parent.parent}"
 
 
 def marker_path() -> Path:

@@ -1,24 +1,62 @@
-"""The kernel cache's folders: the extension's shipped kernels copied in, old versions'
-folders pruned. A damaged cache file heals as numba loads it (core.cache_healing).
+"""The kernel cache's folders: this version's named, the extension's shipped kernels copied
+in, old versions' folders pruned. A damaged cache file heals as numba loads it
+(core.jit.healing).
 
-The extension ships its kernels compiled (`make addon`; core.portable_cache says how one
+The folder's name holds the package, numba and Python versions and a hash of the kernels'
+source (and of the package's import name): numba checks only a cached function's own file
+for changes, not the files of the functions it calls, so without the hash an edit to one
+kernel module could leave stale machine code inlined in another. Tests, benchmarks and
+Blender subprocesses share the folder through WHITTED_CACHE_DIR.
+
+The extension ships its kernels compiled (`make addon`; core.jit.relocatable says how one
 cache serves other folders and machines): the first look for a complete cache copies them
 into the user's cache folder, so a new install renders without compiling.
 
-Every kernel edit or upgrade starts a new cache folder (its name holds the versions and a
-hash of the kernel sources), so old ones are removed once unused for a while.
+Every kernel edit or upgrade starts a new cache folder, so old ones are removed once unused
+for a while.
 """
 
 import contextlib
+import hashlib
 import os
 import shutil
 import sys
 import time
 from pathlib import Path
 
-from . import cache_healing
-from .jit import kernel_cache_dir
-from .portable_cache import PACKAGE_ROOT
+import numba
+
+from ..version import VERSION
+from . import healing
+from .relocatable import CORE, PACKAGE_ROOT
+
+# The import name of the `core` this package belongs to (`core` in a checkout,
+# `bl_ext.user_default.whitted.core` in the extension)
+CORE_PACKAGE = __package__.rpartition(".")[0]
+
+
+def kernel_source_hash(package: str = CORE_PACKAGE) -> str:
+    # The package's import name too: numba's cache records the module each kernel came from
+    # and imports it by that name on loading, so kernels compiled as `core` (a checkout) do
+    # not load as an add-on's `bl_ext.user_default.whitted.core`, nor the other way round
+    digest = hashlib.sha1(package.encode())
+    # how kernels are compiled (decorators.py) and found and stamped (relocatable.py) too;
+    # and vocabulary.py, whose codes the kernels compile in as constants
+    here = Path(__file__).parent
+    sources = [here / "decorators.py", here / "relocatable.py", CORE / "vocabulary.py",
+               *(CORE / "kernels").glob("*.py")]  # fmt: skip
+    for path in sorted(sources):
+        digest.update(path.name.encode() + path.read_bytes())
+    return digest.hexdigest()[:12]
+
+
+def kernel_cache_dir(package: str = CORE_PACKAGE) -> Path:
+    """This version's cache folder, for this package imported under the name given."""
+    base = os.environ.get("WHITTED_CACHE_DIR") or Path.home() / ".cache" / "whitted"
+    python = f"py{sys.version_info[0]}{sys.version_info[1]}"
+    tag = f"whitted-{VERSION}-numba-{numba.__version__}-{python}-{kernel_source_hash(package)}"
+    return Path(base) / tag
+
 
 # Where the extension's zip holds its compiled kernels: beside `core`, one folder a version
 SHIPPED_KERNELS = PACKAGE_ROOT / "kernel_cache"
@@ -29,8 +67,8 @@ STALE_DAYS = 30
 def load_or_rebuild(get_kernels):
     """get_kernels() (which compiles the kernels or loads them from the cache). Returns (its
     result, whether a damaged cached kernel was compiled again meanwhile)."""
-    healed_before = len(cache_healing.healed)
-    return get_kernels(), len(cache_healing.healed) > healed_before
+    healed_before = len(healing.healed)
+    return get_kernels(), len(healing.healed) > healed_before
 
 
 def shipped_kernels() -> Path:

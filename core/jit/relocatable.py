@@ -29,9 +29,9 @@ import llvmlite.binding as llvm
 import numba
 from numba.core.caching import CacheImpl, UserProvidedCacheLocator
 
-# This package's folder, and the one that holds it: cache folders are named by paths below
-# that (`core/kernels`), whatever the package is imported as
-CORE = Path(__file__).resolve().parent
+# The `core` folder this package is in, and the one that holds it: cache folders are named
+# by paths below that (`core/kernels`), whatever the package is imported as
+CORE = Path(__file__).resolve().parent.parent
 PACKAGE_ROOT = CORE.parent
 
 # What each level requires, in LLVM's names for the host's features (lower levels included)

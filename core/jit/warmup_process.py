@@ -1,10 +1,10 @@
-"""The kernel warm-up (`core.kernel_warmup`) in a process of its own, watched from this one.
+"""The kernel warm-up (`core.jit.warmup`) in a process of its own, watched from this one.
 
 numba compiles mostly in Python, holding the GIL: compiled on a thread of Blender's process it
 would starve Blender's own Python (its panels, its handlers) for the whole compile. In a child
 process it costs Blender nothing; the child prints one line a step, read here by a thread that
 does nothing else, and this process only reads `status()` now and then. The child runs this
-process's Python and imports this `core` under its name here (`core.child_process`), so that
+process's Python and imports this `core` under its name here (`core.jit.child_process`), so that
 it compiles into the same cache; it names the `core` it imported: a different one is a
 failure.
 
@@ -23,7 +23,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from . import child_process
-from .kernel_warmup import (
+from .warmup import (
     PROGRESS_PREFIX,
     READY_PREFIX,
     kernels_ready,
@@ -37,12 +37,12 @@ class WarmupStatus:
     state: str  # "idle", "running", "ready" or "failed"
     text: str  # the last progress line, or why it failed
     seconds: float  # since the warm-up started
-    fraction: float = 0.0  # how far it is, 0 to 1 (kernel_warmup.progress_fraction)
+    fraction: float = 0.0  # how far it is, 0 to 1 (warmup.progress_fraction)
 
 
 class WarmupProcess:
     def __init__(self, command: list[str] | None = None):
-        self.command = command  # None: core.child_process's, decided when it starts
+        self.command = command  # None: core.jit.child_process's, decided when it starts
         self._lock = threading.Lock()
         self._process: subprocess.Popen | None = None
         self._state = "ready" if kernels_ready() else "idle"
@@ -60,7 +60,7 @@ class WarmupProcess:
             if kernels_ready():
                 self._state = "ready"
                 return
-            command = self.command or child_process.command("kernel_warmup")
+            command = self.command or child_process.command("jit.warmup")
             self._output = []
             self._started = time.perf_counter()
             try:

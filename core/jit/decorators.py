@@ -1,54 +1,21 @@
-"""How every kernel is compiled: cached, GIL-free, and into a cache folder per version.
+"""How every kernel is compiled: cached, GIL-free, and into a cache folder per version
+(`core.jit.cache_folder` names it).
 
 numba reads `config.CACHE_DIR` when a function is decorated, so this module must be imported
-(it is, by `core.kernels`) before any kernel module. The folder's name holds the package,
-numba and Python versions and a hash of the kernels' source (and of the package's import
-name): numba checks only a cached function's own file for changes, not the files of the
-functions it calls, so without the hash an edit to one kernel module could leave stale
-machine code inlined in another. Tests,
-benchmarks and Blender subprocesses share the folder through WHITTED_CACHE_DIR.
+(it is, by `core.kernels`) before any kernel module.
 """
-
-import hashlib
-import os
-import sys
-from pathlib import Path
 
 import numba
 from numba.core import types
 
-from .cache_healing import heal_damaged_loads
-from .portable_cache import choose_cpu_target, use_relocatable_cache_folders
-from .version import VERSION
-
-
-def kernel_source_hash(package: str = __package__) -> str:
-    here = Path(__file__).parent
-    # The package's import name too: numba's cache records the module each kernel came from
-    # and imports it by that name on loading, so kernels compiled as `core` (a checkout) do
-    # not load as an add-on's `bl_ext.user_default.whitted.core`, nor the other way round
-    digest = hashlib.sha1(package.encode())
-    # portable_cache.py too: it decides how cached kernels are found and stamped; and
-    # vocabulary.py, whose codes the kernels compile in as constants
-    sources = [here / "jit.py", here / "portable_cache.py", here / "vocabulary.py",
-               *(here / "kernels").glob("*.py")]  # fmt: skip
-    for path in sorted(sources):
-        digest.update(path.name.encode() + path.read_bytes())
-    return digest.hexdigest()[:12]
-
-
-def kernel_cache_dir(package: str = __package__) -> Path:
-    """This version's cache folder, for this package imported under the name given."""
-    base = os.environ.get("WHITTED_CACHE_DIR") or Path.home() / ".cache" / "whitted"
-    python = f"py{sys.version_info[0]}{sys.version_info[1]}"
-    tag = f"whitted-{VERSION}-numba-{numba.__version__}-{python}-{kernel_source_hash(package)}"
-    return Path(base) / tag
-
+from .cache_folder import kernel_cache_dir
+from .healing import heal_damaged_loads
+from .relocatable import choose_cpu_target, use_relocatable_cache_folders
 
 numba.config.CACHE_DIR = str(kernel_cache_dir())
 # A damaged cache file of any kernel is removed and that kernel compiled again, not raised
 heal_damaged_loads(kernel_cache_dir())
-# The cache can be moved to another folder and another machine (core.portable_cache): the
+# The cache can be moved to another folder and another machine (core.jit.relocatable): the
 # extension ships it filled
 use_relocatable_cache_folders()
 CPU_TARGET = choose_cpu_target()

@@ -1,5 +1,5 @@
-"""Running one of this package's modules in a child process: the kernel warm-up
-(`core.kernel_warmup`) and scene scripts (`core.cs488.script_process`).
+"""Running one of core's modules in a child process: the kernel warm-up
+(`core.jit.warmup`) and scene scripts (`core.cs488.script_process`).
 
 The child must run this process's own Python with its module path and import this very
 `core` under this process's name for it (in Blender an add-on's subpackage,
@@ -50,15 +50,15 @@ def use_launcher(prefix: list[str] | None) -> None:
 
 
 def program_arguments(module: str, name: str | None = None, folder: Path | None = None):
-    """PROGRAM's arguments for `module` of this package (or of the package `name` in
+    """PROGRAM's arguments for `module` of this `core` (or of the package `name` in
     `folder`, a copy staged elsewhere)."""
-    name = name or __package__
-    folder = folder or Path(__file__).resolve().parent
+    name = name or __package__.rpartition(".")[0]  # the `core` this package is in
+    folder = folder or Path(__file__).resolve().parent.parent
     return [MARKER, module, name, str(folder)]
 
 
 def command(module: str, *arguments: str) -> list[str]:
-    """The command line running `python -m <this package>.<module> arguments...`."""
+    """The command line running `python -m <this core>.<module> arguments...`."""
     prefix = _launcher or [sys.executable, "-c", PROGRAM]
     return [*prefix, *program_arguments(module), *arguments]
 

@@ -1,0 +1,16 @@
+"""How Whitted's numba kernels are compiled, cached, shipped and warmed, in one place.
+
+- `decorators`: the three ways a kernel is compiled (`kernel`, `inlined_kernel`,
+  `ir_inlined_kernel`) and numba's settings; imported (by `core.kernels`) before any kernel.
+- `cache_folder`: the cache folder of this version and package, the extension's shipped
+  kernels copied into it, old versions' folders pruned.
+- `relocatable`: one cache serving any folder `core` is unpacked in and any x86-64 CPU of a
+  feature level, so the extension can ship it.
+- `healing`: a damaged cache file removed and its kernel compiled again, as numba loads it.
+- `warmup`: compiling every kernel once, ahead of the first render (`python -m` runs it).
+- `warmup_process`: the warm-up in a process of its own, watched from Blender's.
+- `child_process`: how a child Python imports this very `core` (the warm-up; Lua scripts).
+
+Nothing here imports numba on the package's import: a Lua script's child process uses
+`child_process` alone and pays no numba import.
+"""
