@@ -62,9 +62,10 @@ def threads() -> int:
     return len(os.sched_getaffinity(0))
 
 
-def povray(pov: Path, settings, out: Path) -> tuple[float, float]:
-    """Render with POV-Ray: (wall seconds of the process, its trace time)."""
-    command = povray_command(pov, out, settings, threads())
+def povray(pov: Path, settings, out: Path, **options) -> tuple[float, float]:
+    """Render with POV-Ray: (wall seconds of the process, its trace time); options go to
+    povray_command (anti-aliasing, file format)."""
+    command = povray_command(pov, out, settings, threads(), **options)
     start = time.perf_counter()
     done = subprocess.run(command, cwd=pov.parent, capture_output=True, text=True)
     seconds = time.perf_counter() - start

@@ -20,6 +20,7 @@ Transparency (glass) and light falloff other than none are not written: they rai
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -208,18 +209,56 @@ def camera_block(camera: core.Camera, width: int, height: int) -> str:
     )
 
 
-def light_block(light, shadow_samples: int, area_illumination: bool) -> str:
+@dataclass(frozen=True)
+class AreaSampling:
+    """How POV-Ray samples an area light, as its users set it: a `grid` of points (nu, nv),
+    `jitter`ed or not, and `adaptive` n (None: off) — POV-Ray then casts (2^n + 1)^2 rays
+    first and subdivides the grid only where they disagree (the grid's sides are best
+    2^m + 1)."""
+
+    grid: tuple[int, int]
+    jitter: bool = True
+    adaptive: int | None = None
+
+    def keywords(self) -> str:
+        adaptive = f" adaptive {self.adaptive}" if self.adaptive is not None else ""
+        return f"{self.grid[0]}, {self.grid[1]}{adaptive}{' jitter' if self.jitter else ''}"
+
+
+@dataclass(frozen=True)
+class Antialiasing:
+    """POV-Ray's anti-aliasing options: `method` 1 (a pixel supersampled on a depth x depth
+    grid where it differs from its neighbours by more than `threshold`; 0 supersamples every
+    pixel) or 2 (corners, subdivided recursively up to `depth` where they differ), or 0
+    (one ray a pixel); camera-ray jitter off unless asked for, so each setting draws one
+    picture."""
+
+    method: int
+    threshold: float = 0.0
+    depth: int = 3
+    jitter: bool = False
+
+    def options(self) -> list[str]:
+        if self.method == 0:
+            return ["-A"]
+        jitter = "+J" if self.jitter else "-J"
+        return [f"+A{float(self.threshold)!r}", f"+AM{self.method}", f"+R{self.depth}", jitter]
+
+
+def light_block(
+    light, shadow_samples: int, area_illumination: bool, area: AreaSampling | None = None
+) -> str:
     if not np.allclose(getattr(light, "attenuation", (1.0, 0.0, 0.0)), (1.0, 0.0, 0.0)):
         raise ValueError(f"light '{light.name}': only attenuation (1, 0, 0) is written")
     colour = f"color rgb {vector(light.intensity)}"
     if isinstance(light, core.PointLight):
         return f"light_source {{ {vector(light.position)} {colour} }}"
     if isinstance(light, core.AreaLight):
-        nu, nv = light_grid(shadow_samples)
+        area = area or AreaSampling(light_grid(shadow_samples))
         illumination = " area_illumination on" if area_illumination else ""
         return (
             f"light_source {{ {vector(light.centre)} {colour} area_light "
-            f"{vector(light.edge_u)}, {vector(light.edge_v)}, {nu}, {nv} jitter{illumination} }}"
+            f"{vector(light.edge_u)}, {vector(light.edge_v)}, {area.keywords()}{illumination} }}"
         )
     if isinstance(light, core.DirectionalLight):
         toward = -np.asarray(light.direction, float)
@@ -232,8 +271,10 @@ def write_pov(
     settings: core.RenderSettings,
     folder: Path,
     area_illumination: bool = False,
+    area: AreaSampling | None = None,
 ) -> Path:
-    """Write `scene.pov` (and its textures) into `folder`; returns its path."""
+    """Write `scene.pov` (and its textures) into `folder`; returns its path. Area lights are
+    sampled as `area` says, or on a jittered grid of settings.shadow_samples points."""
     folder.mkdir(parents=True, exist_ok=True)
     writer = PovWriter(folder)
     objects = [writer.shape(shape, scene.ambient) for shape in scene.shapes]
@@ -243,20 +284,32 @@ def write_pov(
         f"max_trace_level {settings.max_depth + 1} adc_bailout {ADC_BAILOUT:.9g} }}",
         f"background {{ rgb {vector(scene.background)} }}",
         camera_block(scene.camera, settings.width, settings.height),
-        *(light_block(light, settings.shadow_samples, area_illumination) for light in scene.lights),
+        *(
+            light_block(light, settings.shadow_samples, area_illumination, area)
+            for light in scene.lights
+        ),
     ]
     path = folder / "scene.pov"
     path.write_text("\n".join([*header, *writer.lines, *objects]) + "\n")
     return path
 
 
-def povray_command(pov: Path, out: Path, settings: core.RenderSettings, threads: int) -> list:
+def povray_command(
+    pov: Path,
+    out: Path,
+    settings: core.RenderSettings,
+    threads: int,
+    antialiasing: Antialiasing | None = None,
+    file_format: str = "N8",
+) -> list:
     """POV-Ray's command line at Whitted's settings: n x n camera rays on a grid in every
-    pixel (threshold 0, no jitter), `threads` render threads, no display."""
+    pixel (threshold 0, no jitter) unless `antialiasing` says otherwise, `threads` render
+    threads, no display, the file format given (POV-Ray's +F letter and bits: PNG of 8 bits a
+    channel, or "P16", a PPM of 16)."""
     n = settings.pixel_samples
-    antialias = ["+A0.0", "+AM1", f"+R{n}", "-J"] if n > 1 else ["-A"]
+    antialiasing = antialiasing or Antialiasing(method=1 if n > 1 else 0, depth=n)
     return [
-        "povray", f"+I{pov.name}", f"+O{out}", "+FN", f"+W{settings.width}",
-        f"+H{settings.height}", f"+WT{threads}", *antialias, "-D", "-P", "+V",
+        "povray", f"+I{pov.name}", f"+O{out}", f"+F{file_format}", f"+W{settings.width}",
+        f"+H{settings.height}", f"+WT{threads}", *antialiasing.options(), "-D", "-P", "+V",
         "File_Gamma=1.0",
     ]  # fmt: skip
