@@ -103,7 +103,8 @@ def test_adaptive_sampling_beats_the_fixed_grid_at_equal_cost_and_stitches(
                 affordable.append((error(fixed.image, converged), str(grid)))
         assert affordable, f"{where}: no fixed grid casts as few rays"
         best = min(affordable)
-        assert adaptive_error <= best[0], (
+        # A tie within rounding is no loss: where nothing needs refining both draw alike
+        assert adaptive_error <= best[0] + 1e-6, (
             f"{where}: {adaptive_error:.5f} ({adaptive.stats.rays_cast} rays) against the fixed "
             f"{best[1]}: {best[0]:.5f}"
         )
