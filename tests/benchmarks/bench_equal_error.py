@@ -29,6 +29,7 @@ Whitted through `blender -b … -E WHITTED -f 1` (the command a farm runs), POV-
   equal_error_target_N_rmse                  the targets
   equal_error_whitted_N / _povray_N          each renderer's chosen setting for target N
   equal_error_ratio_N                        Whitted's process time over POV-Ray's, median
+  equal_error_render_ratio_N                 the same for render (trace) time alone
   final_scene_equal_error_povray_ratio       the median of the three ratios (of those
                                              both reach: equal_error_unreached_N says)
 and writes results/equal_error.png (error against time, both renderers, their fronts, the
@@ -310,8 +311,11 @@ def main():
             chosen.append((k + 1, whitted, pov))
         chart(rows, targets, [(w, p) for _, w, p in chosen])
         ratios = whole_processes(scene, base, [(w, p) for _, w, p in chosen], folder)
-    for (k, _, _), ratio in zip(chosen, ratios, strict=True):
+    for (k, whitted, pov), ratio in zip(chosen, ratios, strict=True):
         print(f"equal_error_ratio_{k}: {ratio:.2f}")
+        # The same at render time alone (the sweep's: Whitted's in this process, POV-Ray's
+        # trace time): at small sizes the processes' start-up weighs on the ratio above
+        print(f"equal_error_render_ratio_{k}: {whitted[2] / pov[2]:.2f}")
     print(f"final_scene_equal_error_povray_ratio: {statistics.median(ratios):.2f}")
 
 
