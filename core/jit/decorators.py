@@ -9,6 +9,7 @@ import numba
 from numba.core import types
 
 from .cache_folder import kernel_cache_dir
+from .deferred import defer_callee_compiles, optimised_alone  # noqa: F401 (kernels take it here)
 from .healing import heal_damaged_loads
 from .relocatable import choose_cpu_target, use_relocatable_cache_folders
 
@@ -19,6 +20,9 @@ heal_damaged_loads(kernel_cache_dir())
 # extension ships it filled
 use_relocatable_cache_folders()
 CPU_TARGET = choose_cpu_target()
+# A kernel called by kernels is optimised and made into machine code once, in the kernel
+# Python calls (core.jit.deferred): half the cold compile
+DEFERRED_CALLEES = defer_callee_compiles()
 
 # The four-wide BVH's box tests are written as four straight-line copies for LLVM's SLP
 # vectorizer to merge into vector instructions (core.kernels.bvh_wide): 1.6x the rays per

@@ -8,8 +8,10 @@ only loads the cache. The command line runs the same steps in-process.
 Each step compiles one group of kernels for a scene that holds one of every kind of thing
 (shapes, a mesh, CSG, a texture, both kinds of light). Since every scene packs into the same
 array types (`core.compile.kernel_ready`), kernels compiled for it serve every scene; the
-kernels the render kernel calls are compiled first, each on its own, so that the steps show
-where a compile is, and the render kernel finds them done.
+largest kernels the render kernel calls are compiled first, each on its own, so that the
+steps show where a compile is, and the render kernel finds them done. They are compiled as
+the render kernel's callees (`core.jit.deferred`): optimised and made into machine code once,
+within it, since no render calls them from Python.
 
 A marker file in the cache folder says that all steps finished there, so the add-on starts
 no process when the cache is complete.
@@ -35,6 +37,7 @@ from .cache_folder import (
     prune_stale,
 )
 from .decorators import CPU_TARGET
+from .deferred import compile_as_callee
 
 PROGRESS_PREFIX = "Whitted: compiling kernels: "
 READY_PREFIX = "Whitted: kernels ready"
@@ -111,10 +114,19 @@ def warmup_steps() -> list[tuple[str, Callable[[], None]]]:
     def pack():
         packed.append(compile_scene(warmup_scene(), RenderSettings(8, 8)).packed)
 
+    def geometry():
+        return packed[0].geometry
+
     return [
         ("scene packing", pack),
-        ("nearest hits", lambda: closest_hit(packed[0].geometry, o, d, math.inf, stacks)),
-        ("shadow rays", lambda: transmittance(packed[0].geometry, o, d, 9.0, stacks, TRAVERSE_ALL)),
+        (
+            "nearest hits",
+            lambda: compile_as_callee(closest_hit, geometry(), o, d, math.inf, stacks),
+        ),
+        (
+            "shadow rays",
+            lambda: compile_as_callee(transmittance, geometry(), o, d, 9.0, stacks, TRAVERSE_ALL),
+        ),
         ("render kernel", lambda: prepare_kernels(packed[0])),
     ]
 
@@ -124,12 +136,12 @@ def progress_line(step: int, steps: int, label: str) -> str:
 
 
 # Each step's share of a cold warm-up and the whole's length, as measured on the development
-# machine (132-147 s, four warm-ups: packing 15 %, nearest hits 9 %, shadow rays 8 %, the
-# render kernel 68 %), so that a progress bar moves evenly rather than by quarters; adaptive
-# sampling's kernels (issue 42) brought the whole to 175 s
-STEP_SHARES = {"scene packing": 0.15, "nearest hits": 0.09, "shadow rays": 0.08,
-               "render kernel": 0.68}  # fmt: skip
-TYPICAL_WARMUP_S = 175.0
+# machine, so that a progress bar moves evenly rather than by quarters: 91-96 s since callees'
+# compiles are deferred (core.jit.deferred; 2026-12-05: packing 13 %, nearest hits 8 %,
+# shadow rays 5 %, the render kernel 74 %; it was 141-175 s before)
+STEP_SHARES = {"scene packing": 0.13, "nearest hits": 0.08, "shadow rays": 0.05,
+               "render kernel": 0.74}  # fmt: skip
+TYPICAL_WARMUP_S = 95.0
 _PROGRESS = re.compile(r"(\d+) of (\d+) \((.*)\)$")
 
 

@@ -13,7 +13,7 @@ a ray truly crosses. Mesh BVHs are eight wide (`core.kernels.bvh_wide`); their b
 float32 corners of float32 vertices, padded one float32 step, and tested in float32.
 """
 
-from ..jit.decorators import inlined_kernel, kernel
+from ..jit.decorators import inlined_kernel, kernel, optimised_alone
 from .csg import csg_closest, csg_transmittance
 from .mesh_trace import mesh_closest, mesh_crossings, mesh_surface_crossings
 from .shadow_log import SHADOW_VARIES, analytic_varying, mesh_varying
@@ -66,6 +66,7 @@ def pop_nearer(stack, stack_t, top, t_max):
     return -1, 0
 
 
+@optimised_alone
 @inlined_kernel
 def closest_hit(geo, o, d, t_max, stacks):
     """Nearest hit along o + t d with 0 < t < t_max: (shape, t, part, b1, b2).
@@ -181,6 +182,7 @@ def shape_transmittance(geo, shape, o, d, t_max, stacks):
     return tau**crossings
 
 
+@optimised_alone
 @inlined_kernel
 def transmittance(geo, o, d, t_max, stacks, listed):
     """The fraction of light that passes along o + t d, 0 < t < t_max (shadow rays).

@@ -128,8 +128,9 @@ def test_every_cached_function_heals_the_compile_steps_included(
 ):
     """Every kernel's files but the render kernel's are damaged (its 3-minute compile is the
     probe's test above): the compile step's kernels (the BVH builder, which the healing of
-    the render kernel alone missed: `EOFError: Ran out of input` from every render) and
-    those they call. The render must still come out right, saying so once, and the next
+    the render kernel alone missed: `EOFError: Ran out of input` from every render); the
+    kernels they call have no files of their own, their code being inside their callers'
+    (core.jit.deferred). The render must still come out right, saying so once, and the next
     load cleanly."""
     from core.jit.cache_folder import kernel_cache_dir
 
@@ -137,7 +138,8 @@ def test_every_cached_function_heals_the_compile_steps_included(
     copy = tmp_path / "cache" / kernel_cache_dir().name
     shutil.copytree(kernel_cache_dir(), copy)
     damaged = [p for p in copy.rglob(files) if not p.name.startswith("render_tile.render_tile-")]
-    assert len(damaged) > 100
+    assert any(p.name.startswith("bvh_build.build_bvh-") for p in damaged), damaged
+    assert len(damaged) >= 10, damaged
     for path in damaged:
         if how == "empty":
             path.write_bytes(b"")
