@@ -16,6 +16,8 @@ import numpy as np
 import pytest
 from PIL import Image
 
+from core.jit.warmup import STEP_SHARES
+
 pytestmark = pytest.mark.bpy
 
 
@@ -117,7 +119,9 @@ def test_the_first_use_compile_drives_the_progress_bar_and_is_kept_out_of_the_re
     first_tile = next(i for i, (kind, text) in enumerate(seen) if "Tile" in str(text)) - 1
     progress = [value for kind, value in seen[:first_tile] if kind == "progress"]
     assert len(progress) >= 3 and progress == sorted(progress), progress
-    assert progress[0] < 0.2 and progress[-1] > 0.3, progress
+    # It starts near 0 and reaches the last step's start (the shares of the steps before it)
+    before_last = sum(list(STEP_SHARES.values())[:3])
+    assert progress[0] < 0.2 and progress[-1] >= before_last - 1e-6, progress
     headers = [text for kind, text in seen[:first_tile] if kind == "stats"]
     shown = re.compile(
         r"Whitted \| Compiling kernels \(first use on this machine, not render time\): \d+ %, \d+ s"
