@@ -28,7 +28,9 @@ A callee whose compile was deferred has no entry point Python could call: if Pyt
 it later, it is compiled again in full (its own callees' deferred libraries serve again).
 
 Only compiles that start in this `core` are deferred (another add-on's numba is left as
-numba makes it). `WHITTED_FULL_CALLEE_COMPILES=1` turns it off, for comparison and for a
+numba makes it). A `core` imported under a second name in the same process (the tests'
+`core` beside Blender's `whitted.core`) shares the first one's hooks, scope, marks and
+compile stack. `WHITTED_FULL_CALLEE_COMPILES=1` turns it off, for comparison and for a
 numba whose internals differ from the ones this was written against (0.62 and 0.68); such a
 numba gets numba's own way, with a warning.
 """
@@ -133,11 +135,12 @@ def defer_callee_compiles() -> bool:
         return False
     from numba.core import codegen
 
-    global _OPTIMISED_ALONE
+    global _OPTIMISED_ALONE, _COMPILES, _PACKAGES
     installed = getattr(codegen.CPUCodeLibrary.finalize, "whitted_deferred", None)
-    if installed is not None:  # another `core` installed it: share its scope and marks
-        packages, _OPTIMISED_ALONE = installed
-        packages.add(CORE_PACKAGE)
+    if installed is not None:
+        # Another `core` installed it: share its scope, marks and compile stack, so that
+        # this one's `compile_as_callee` pushes where the installed hooks look
+        _PACKAGES, _OPTIMISED_ALONE, _COMPILES = installed
         _PACKAGES.add(CORE_PACKAGE)
         return True
     try:
@@ -210,7 +213,7 @@ def _install(packages: set[str]) -> None:
             self._optimize_final_module()
         self._finalized = True
 
-    deferred_finalize.whitted_deferred = (packages, _OPTIMISED_ALONE)
+    deferred_finalize.whitted_deferred = (packages, _OPTIMISED_ALONE, _COMPILES)
 
     def add_callable_overload(self, cres):
         if isinstance(cres.entry_point, DeferredEntry):

@@ -6,6 +6,7 @@ and the convex shapes' intervals, whose callees run three deep)."""
 
 import json
 import os
+import shutil
 import subprocess
 import sys
 
@@ -101,3 +102,30 @@ def test_deferred_callees_get_no_machine_code_of_their_own_and_change_no_bit(tmp
 
     # numba functions outside Whitted's core are compiled the usual way
     assert facts["outside_core"] == 3.0 and not facts["outside_core_deferred"]
+
+
+# A second `core`, imported as twin.core after the first installed the hooks (as Blender's
+# whitted.core beside the tests' core): its warm-up's `compile_as_callee` defers as well
+TWIN = r"""
+import json, sys
+sys.path.insert(0, sys.argv[1])
+import core.kernels.shapes  # the first `core`: installs the deferral
+from twin.core.jit import deferred
+from twin.core.kernels.torus import torus_roots
+deferred.compile_as_callee(torus_roots, (0.0, -5.0, 0.1), (0.0, 1.0, 0.0), 1.0, 0.25)
+print(json.dumps(deferred.is_deferred(torus_roots, torus_roots.signatures[0])))
+"""
+
+
+def test_a_second_core_in_the_process_defers_its_callees_too(tmp_path):
+    twin = tmp_path / "twin"
+    shutil.copytree(os.path.join(ROOT, "core"), twin / "core",
+                    ignore=shutil.ignore_patterns("__pycache__"))  # fmt: skip
+    (twin / "__init__.py").write_text("")
+    run = subprocess.run(
+        [sys.executable, "-c", TWIN, str(tmp_path)],
+        env={**os.environ, "WHITTED_CACHE_DIR": str(tmp_path / "cache")},
+        cwd=ROOT, capture_output=True, text=True, timeout=600,
+    )  # fmt: skip
+    assert run.returncode == 0, run.stderr[-3000:]
+    assert json.loads(run.stdout.splitlines()[-1]) is True
