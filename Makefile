@@ -113,7 +113,9 @@ TIMED := tests/support/timed_step $(TEST_TIMES)
 # pytest is done); lane B, printed after lane A, the plain-Python kernels and the versions
 # with a Python or numba of their own (a cache folder of their own, core.jit.cache_folder).
 # The bpy environments are made at once too (downloads mostly), after the rest of the set-up
-# (whose apt-get installs must not run together).
+# (whose apt-get installs must not run together). Lane B runs as a job of its own (set -m):
+# a job a shell starts with `&` otherwise ignores Ctrl-C, and so would every test process in
+# it (and Ctrl-C of `make test` stops it by the trap).
 LANE_A_BPY := 4.2
 LANE_B_BPY := $(filter-out $(LANE_A_BPY),$(BPY_VERSIONS))
 LANE_B_LOG := $(BUILD)/test_lane_b.log
@@ -122,7 +124,8 @@ test:
 	@$(TIMED) setup sh -c '$(MAKE) --no-print-directory setup && $(MAKE) --no-print-directory -j3 $(BPY_VENVS)'
 	@$(TIMED) lint $(MAKE) --no-print-directory lint
 	@echo "Lane B (plain Python; bpy $(LANE_B_BPY)) runs beside lane A; its output follows it"
-	@$(MAKE) --no-print-directory test-lane-b >$(LANE_B_LOG) 2>&1 & lane_b=$$!; \
+	@set -m; $(MAKE) --no-print-directory test-lane-b >$(LANE_B_LOG) 2>&1 & lane_b=$$!; \
+	  trap 'kill -- -$$lane_b 2>/dev/null' INT TERM; \
 	  $(MAKE) --no-print-directory test-lane-a; a=$$?; \
 	  wait $$lane_b; b=$$?; \
 	  echo "== Lane B's output (exit $$b)"; cat $(LANE_B_LOG); \

@@ -17,6 +17,7 @@ from core.cs488 import load_script
 from core.image_io import to_bytes
 from tests.core.cs488.test_scenes import SCENES
 from tests.support.exr import read_exr
+from tests.support.terminal import ctrl_c_as_in_a_terminal
 
 ROOT = SCENES.parent.parent
 
@@ -114,6 +115,7 @@ def test_ctrl_c_stops_the_render_and_writes_nothing(scenes):
         stderr=subprocess.PIPE,
         text=True,
         env={**os.environ, "PYTHONPATH": str(ROOT)},
+        preexec_fn=ctrl_c_as_in_a_terminal,
     )
     assert process.stdout.readline().startswith("Calling A4_Render(")
     time.sleep(2.0)

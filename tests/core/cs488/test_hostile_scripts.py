@@ -16,6 +16,7 @@ import pytest
 from core.cs488.script_process import GRACE_S
 from tests.support import ROOT
 from tests.support.hostile import NORMAL, RENDER, run
+from tests.support.terminal import ctrl_c_as_in_a_terminal
 
 
 def deep_chain(levels: int) -> str:
@@ -211,6 +212,7 @@ def test_ctrl_c_stops_a_script_that_no_hook_can_interrupt(tmp_path):
     process = subprocess.Popen(
         [sys.executable, "-m", "core", "render", "scene.lua"], cwd=tmp_path,
         env={**os.environ, "PYTHONPATH": str(ROOT)}, stderr=subprocess.PIPE, text=True,
+        preexec_fn=ctrl_c_as_in_a_terminal,
     )  # fmt: skip
     time.sleep(3.0)  # the child is in its finalizer by now
     children = _children_of(process.pid)
