@@ -15,7 +15,8 @@ if not _addon_link.exists():
 
 
 def pytest_collection_modifyitems(items):
-    """Tests marked `first` run before all others, in their order: a cold compile of the
-    add-on's kernels that, in a new checkout, leaves its cache as the shared one, before any
-    other test compiles them again (tests/blender/test_blender34_cli.py)."""
+    """Tests marked `first` run before all others, in their order: cold compiles that, in a
+    new checkout, leave their caches as the shared one's, before any other test compiles the
+    same kernels again (the add-on's in tests/blender/test_blender34_cli.py, core's in
+    tests/core/kernels/test_kernel_signature.py; tests/support/seed_cache.py)."""
     items.sort(key=lambda item: item.get_closest_marker("first") is None)

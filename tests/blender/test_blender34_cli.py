@@ -4,7 +4,6 @@ import os
 import re
 import shutil
 import subprocess
-import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -15,6 +14,7 @@ from tests.blender.conftest import ROOT, SAMPLE
 from tests.support.blender34 import blender_34
 from tests.support.blender_reference import expected_pixels, sample_grid
 from tests.support.exr import read_exr
+from tests.support.seed_cache import seed_shared_cache
 
 pytestmark = pytest.mark.blender34
 
@@ -52,22 +52,6 @@ def test_a_first_render_on_a_new_machine_prints_the_kernel_compile_steps(tmp_pat
     assert render_s < 0.2 * int(compiled.group(1)), kept
     assert kept["Whitted"].startswith(f"{render_s:.2f} s |"), kept
     seed_shared_cache(tmp_path / "cache", shared)
-
-
-def seed_shared_cache(filled, shared):
-    """Copy each version folder of the kernel cache `filled` into the shared cache where
-    that has none of the name (written under a temporary name, then renamed: whole or not
-    at all)."""
-    shared.mkdir(parents=True, exist_ok=True)
-    for folder in filled.iterdir():
-        target = shared / folder.name
-        if folder.is_dir() and not target.exists():
-            staging = Path(tempfile.mkdtemp(prefix=f".{folder.name}-", dir=shared))
-            shutil.copytree(folder, staging, dirs_exist_ok=True)
-            try:
-                staging.rename(target)
-            except OSError:  # another process seeded it meanwhile
-                shutil.rmtree(staging, ignore_errors=True)
 
 
 def test_headless_command_renders_the_sample(sample_scene, tmp_path):

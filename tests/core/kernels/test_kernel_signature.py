@@ -16,6 +16,7 @@ from core import (
 )
 from core.compile import compile_scene
 from tests.support.scenes import one_of_each_kind as scenes
+from tests.support.seed_cache import seed_shared_cache
 
 ROOT = Path(__file__).resolve().parents[3]
 
@@ -72,11 +73,14 @@ compiled = str(compiled).replace(" ", "")
 """
 
 
+@pytest.mark.first
 def test_the_warmup_compiles_what_every_scene_needs_once(tmp_path):
     """The kernel warm-up, in a new process with a new kernel cache, compiles each kernel
     once (a second signature is a second compile); then each scene, rendered in a new
     process of its own, only loads from that cache. (A cold compile of its own: the shared
-    test cache may hold every variant already, and then a second signature would go unseen.)"""
+    test cache may hold every variant already, and then a second signature would go unseen.
+    It runs first of all the tests, and in a new checkout its cache becomes the shared one's
+    folder for `core`: the tests after it compile none of the warm-up's kernels again.)"""
     env = {**os.environ, "WHITTED_CACHE_DIR": str(tmp_path)}
     warm = subprocess.run(
         [sys.executable, "-c", WARM_AND_COUNT], cwd=ROOT, env=env, capture_output=True, text=True
@@ -106,3 +110,4 @@ def test_the_warmup_compiles_what_every_scene_needs_once(tmp_path):
     # Not the render kernel alone: no kernel of any module compiled anything (packing
     # kernels, and callees whose compiles are deferred into their callers, core.jit.deferred)
     assert sources == ["[] cache"] * len(sources), dict(zip(scenes(), sources, strict=True))
+    seed_shared_cache(tmp_path, Path(os.environ["WHITTED_CACHE_DIR"]))
