@@ -132,6 +132,7 @@ def build_venv(version: BpyVersion) -> None:
 def run_tests(version: BpyVersion) -> int:
     print(f"== Blender {version.blender} (bpy in {version.venv.relative_to(ROOT)})", flush=True)
     command = [str(version.interpreter), "-m", "pytest", "-p", "no:cacheprovider", "-q"]
+    command += ["--durations=8"]  # where its first compiles show
     return subprocess.run([*command, *version.tests], cwd=ROOT).returncode
 
 
