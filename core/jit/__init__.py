@@ -2,6 +2,9 @@
 
 - `decorators`: the three ways a kernel is compiled (`kernel`, `inlined_kernel`,
   `ir_inlined_kernel`) and numba's settings; imported (by `core.kernels`) before any kernel.
+- `never_inlined`: the kernels kept a call of their own (LLVM's `noinline`), so that the
+  render kernel holds one copy of the shadow-ray search, not five.
+- `deferred`: a callee's compile finished once, inside the kernel Python calls.
 - `cache_folder`: the cache folder of this version and package, the extension's shipped
   kernels copied into it, old versions' folders pruned.
 - `relocatable`: one cache serving any folder `core` is unpacked in and any x86-64 CPU of a

@@ -40,11 +40,11 @@ def kernel_source_hash(package: str = CORE_PACKAGE) -> str:
     # and imports it by that name on loading, so kernels compiled as `core` (a checkout) do
     # not load as an add-on's `bl_ext.user_default.whitted.core`, nor the other way round
     digest = hashlib.sha1(package.encode())
-    # how kernels are compiled (decorators.py) and found and stamped (relocatable.py) too;
-    # and vocabulary.py, whose codes the kernels compile in as constants
+    # how kernels are compiled (decorators.py, never_inlined.py) and found and stamped
+    # (relocatable.py) too; and vocabulary.py, whose codes the kernels compile in as constants
     here = Path(__file__).parent
-    sources = [here / "decorators.py", here / "relocatable.py", CORE / "vocabulary.py",
-               *(CORE / "kernels").glob("*.py")]  # fmt: skip
+    sources = [here / "decorators.py", here / "never_inlined.py", here / "relocatable.py",
+               CORE / "vocabulary.py", *(CORE / "kernels").glob("*.py")]  # fmt: skip
     for path in sorted(sources):
         digest.update(path.name.encode() + path.read_bytes())
     return digest.hexdigest()[:12]

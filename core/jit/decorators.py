@@ -11,6 +11,7 @@ from numba.core import types
 from .cache_folder import kernel_cache_dir
 from .deferred import defer_callee_compiles, optimised_alone  # noqa: F401 (kernels take it here)
 from .healing import heal_damaged_loads
+from .never_inlined import never_inlined  # noqa: F401 (kernels take it here)
 from .relocatable import choose_cpu_target, use_relocatable_cache_folders
 
 numba.config.CACHE_DIR = str(kernel_cache_dir())
@@ -32,19 +33,34 @@ DEFERRED_CALLEES = defer_callee_compiles()
 numba.config.SLP_VECTORIZE = 1
 
 
+def _plain(argument_type):
+    """A callee's argument type as its compiled copy takes it: a constant as a plain value,
+    a signed integer narrower than 64 bits as int64."""
+    plain = types.unliteral(argument_type)
+    if isinstance(plain, types.Integer) and plain.signed and plain.bitwidth < 64:
+        return types.int64
+    return plain
+
+
 def _one_signature_for_constants(dispatcher):
     """Type calls from other kernels with constants as plain values. numba types a constant
     argument (`row(a, 0)`, `f(x, -1)`, a counter that starts at 0) as a Literal of its own and
     compiles the callee once more for it; measured on the render kernel, such copies of
     the shadow-ray kernel alone added 34 s to a cold compile. None of our kernels needs a
-    constant to be known at compile time, so one compiled copy serves all callers."""
+    constant to be known at compile time, so one compiled copy serves all callers.
+
+    Likewise an index read from an int32 array (a shape's row, a material's number) and one
+    counted in a loop (int64) made two copies of the callee: the shader program's twice
+    (2 s of a cold compile), the mesh search's, the shadow log's and a dozen smaller ones.
+    A signed integer is passed as int64 (numba's own integer arithmetic is int64 whatever
+    the operands' width, so no result changes)."""
     if numba.config.DISABLE_JIT:
         return dispatcher  # the plain Python function: nothing is typed
     get_call_template = dispatcher.get_call_template
 
     def unliteral_call_template(args, kws):
-        args = tuple(types.unliteral(a) for a in args)
-        kws = {name: types.unliteral(a) for name, a in kws.items()}
+        args = tuple(_plain(a) for a in args)
+        kws = {name: _plain(a) for name, a in kws.items()}
         return get_call_template(args, kws)
 
     dispatcher.get_call_template = unliteral_call_template
@@ -68,6 +84,11 @@ def kernel(function):
 # callees with it, which was two thirds of a cold compile (100 of 150 s, measured with
 # NUMBA_CHROME_TRACE); LLVM inlines the callee compiled once. The final scene renders 1.8x
 # faster so compiled.
+# numba passes `forceinline` on to the callees a kernel's compile compiles (an option it
+# "inherits if not set"), so a plain `kernel` first compiled from an inlined one is inlined
+# too, and nearly every kernel of the render kernel's tree is: the tree is one function of
+# 30 000 instructions. A kernel that must stay a call is marked `never_inlined`
+# (core.jit.never_inlined).
 _compile_inlined = numba.njit(cache=True, nogil=True, error_model="numpy", forceinline=True)
 
 

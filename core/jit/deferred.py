@@ -21,8 +21,9 @@ process, interleaved).
 Optimising the whole tree only at its top is not always cheaper: the nearest-hit and
 shadow-ray searches, optimised only inside the render kernel, made its optimisation take
 121 s against 25 s when they arrive optimised. Those two are `optimised_alone`: their
-deferred compile still optimises them (no machine code). With them the warm-up takes 91 s
-(it took 141-165 s); marking five more large callees saved nothing.
+deferred compile still optimises them (no machine code). With them the warm-up took 91 s
+(it took 141-165 s); marking five more large callees saved nothing. (It takes 64-77 s now
+that the shadow-ray search is no longer inlined five times: core.jit.never_inlined.)
 
 A callee whose compile was deferred has no entry point Python could call: if Python calls
 it later, it is compiled again in full (its own callees' deferred libraries serve again).

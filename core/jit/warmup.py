@@ -136,12 +136,13 @@ def progress_line(step: int, steps: int, label: str) -> str:
 
 
 # Each step's share of a cold warm-up and the whole's length, as measured on the development
-# machine, so that a progress bar moves evenly rather than by quarters: 91-96 s since callees'
-# compiles are deferred (core.jit.deferred; 2026-12-05: packing 13 %, nearest hits 8 %,
-# shadow rays 5 %, the render kernel 74 %; it was 141-175 s before)
-STEP_SHARES = {"scene packing": 0.13, "nearest hits": 0.08, "shadow rays": 0.05,
-               "render kernel": 0.74}  # fmt: skip
-TYPICAL_WARMUP_S = 95.0
+# machine, so that a progress bar moves evenly rather than by quarters: 64-77 s since the
+# shadow-ray search is a call of its own (core.jit.never_inlined; 2026-12-06: packing 20 %,
+# nearest hits 12 %, shadow rays 7 %, the render kernel 61 %; 91-96 s before, 141-175 s
+# before callees' compiles were deferred)
+STEP_SHARES = {"scene packing": 0.20, "nearest hits": 0.12, "shadow rays": 0.07,
+               "render kernel": 0.61}  # fmt: skip
+TYPICAL_WARMUP_S = 70.0
 _PROGRESS = re.compile(r"(\d+) of (\d+) \((.*)\)$")
 
 

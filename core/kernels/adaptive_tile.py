@@ -61,8 +61,12 @@ def keep_corner(corners, row, column, colour, alpha, record, passes):
 
 @inlined_kernel
 def next_corner_row(corners):
-    """The bottom edge of the pixel row just done becomes the top edge of the next."""
-    corners[TOP, :, :] = corners[BOTTOM, :, :]
+    """The bottom edge of the pixel row just done becomes the top edge of the next. Copied
+    element by element: a slice assignment compiles numba's shape-mismatch error, whose
+    message formatting (strings from integers) took 1.2 s of a cold compile."""
+    for i in range(corners.shape[1]):
+        for k in range(corners.shape[2]):
+            corners[TOP, i, k] = corners[BOTTOM, i, k]
 
 
 @inlined_kernel

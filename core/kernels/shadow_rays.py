@@ -19,7 +19,7 @@ replay (the varying surfaces answered) decides as the first pass did and casts, 
 back, the same rays in the same order.
 """
 
-from ..jit.decorators import inlined_kernel, ir_inlined_kernel, kernel
+from ..jit.decorators import inlined_kernel, ir_inlined_kernel, kernel, never_inlined
 from .borrow import borrowed
 from .options import EMITTER_SPHERE, EMITTER_SUN_CONE
 from .shadow_log import PROBES, STATE_CROSSINGS, STATE_RAY, STATE_REPLAY
@@ -59,6 +59,7 @@ def _is_cone(kind):
     return kind == EMITTER_SPHERE or kind == EMITTER_SUN_CONE  # noqa: SIM109 (numba's ints)
 
 
+@never_inlined
 @kernel
 def shadow_visibility(geo, stacks, listed, origin, n, first, end):
     """Transmittance along rows first..end-1 of stacks.light_targets (unit direction,

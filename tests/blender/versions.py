@@ -10,7 +10,8 @@ PYTHON313.
 `make test` runs the whole suite in the project's `.venv` (bpy 5.0, Blender 3.4's binary),
 then, for each other version, every test that imports `bpy` (tests/blender, marked `bpy`), in
 that version's environment; in 5.2's (numpy 2, Python 3.13) the core's tests too, and in 4.5's
-(numba 0.62.1) those of the kernel cache and of the deferred compiles, which patch numba.
+(numba 0.62.1) those of the kernel cache, of the deferred compiles and of the kept calls,
+which patch numba.
 
     python -m tests.blender.versions venv 5.2    build the environment of one version
     python -m tests.blender.versions test 5.2    run its tests
@@ -54,13 +55,14 @@ IN_PROJECT_VENV = "5.0"
 ONCE = ("-m", "not blender34", "--ignore=tests/blender/test_platform_zips.py")
 CORE_TOO = (*ONCE, "tests")  # the Blender tests and the core's
 # The Blender tests, those of the kernel cache, whose stamps numba 0.62 makes otherwise,
-# and those of the deferred compiles, which change numba's internals
+# and those of the deferred compiles and the kept calls, which change numba's internals
 CACHE_TOO = (
     *ONCE,
     "tests/blender",
     "tests/core/test_portable_cache.py",
     "tests/core/test_warmup_process.py",
     "tests/core/test_deferred_compile.py",
+    "tests/core/test_call_boundaries.py",
 )
 BPY_VERSIONS = (
     BpyVersion("4.2", "3.11", ("bpy==4.2.23", "numpy==1.26.4")),
