@@ -41,6 +41,7 @@ def test_material_previews_render_with_whitted(display, tmp_path):
     run = run_window_script(display, DRIVER, out)
     assert out.is_file(), run.stdout[-3000:] + run.stderr[-3000:]
     seen = json.loads(out.read_text())
+    assert "error" not in seen, seen.get("error")
     previews = {name: np.array(rows) for name, rows in seen["materials"].items()}
     assert sorted(previews) == ["Blue Wall", "Checker", "Glass", "Pink", "Red Wall"]
     assert seen["previews rendered by Whitted"] >= len(previews)
@@ -90,6 +91,7 @@ def test_a_saturated_materials_preview_looks_as_it_renders(display, tmp_path):
     run = run_window_script(display, COLOURS, out)
     assert out.is_file(), run.stdout[-3000:] + run.stderr[-3000:]
     seen = json.loads(out.read_text())
+    assert "error" not in seen, seen.get("error")
     assert seen["previews rendered by Whitted"] >= 3  # Cycles made the others
     for name in ("Red", "Pink", "Teal"):
         whitted = np.array(seen["thumbnails"]["WHITTED"][name])

@@ -14,6 +14,7 @@ import time
 import bpy
 
 from tests.support.preview_pixels import rgb_rows
+from tests.support.window_timer import register_step
 
 OUT = sys.argv[sys.argv.index("--") + 1]
 TIMEOUT_S = 90
@@ -89,4 +90,4 @@ def tick():
     return 0.25
 
 
-bpy.app.timers.register(tick, first_interval=2.0)
+register_step(tick, OUT)

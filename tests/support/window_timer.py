@@ -1,0 +1,25 @@
+"""A timer in Blender's window that, when its step raises, says so and quits.
+
+Blender prints a timer's traceback and drops the timer, and its window stays open: a test
+driving the window would wait for its subprocess's timeout (300 s) and learn nothing. Here
+the traceback goes to the test's output file (as {"error": ...}) and Blender quits."""
+
+import json
+import traceback
+
+import bpy
+
+
+def register_step(step, out_path: str, first_interval: float = 2.0) -> None:
+    """Run step() as a timer (its return value is the next interval, or None to stop)."""
+
+    def guarded():
+        try:
+            return step()
+        except Exception:
+            with open(out_path, "w") as f:
+                json.dump({"error": traceback.format_exc()}, f)
+            bpy.ops.wm.quit_blender()
+            return None
+
+    bpy.app.timers.register(guarded, first_interval=first_interval)
