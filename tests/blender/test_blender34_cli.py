@@ -23,7 +23,7 @@ pytestmark = pytest.mark.blender34
 def test_a_first_render_on_a_new_machine_prints_the_kernel_compile_steps(tmp_path, monkeypatch):
     """With an empty kernel cache the render waits for the warm-up process, printing each
     step as it starts, and then loads every kernel from the cache the warm-up filled. (A
-    cold compile of its own, about a minute and a half. It runs first of all the tests, so
+    cold compile of its own, about a minute. It runs first of all the tests, so
     that in a new checkout, where the shared cache has no folder for the add-on's kernels
     yet, the one it filled becomes that folder: the add-on's tests after it, in Blender 3.4
     and the bpy module of the same Python and numba, compile none of the warm-up's again.)"""

@@ -8,7 +8,7 @@ from pathlib import Path
 def seed_shared_cache(filled: Path, shared: Path) -> None:
     """Copy the kernel cache `filled` into the shared cache `shared`, each file that the
     shared one has not got, so that the tests after it load what it compiled rather than
-    compile it again (in a new checkout: a minute and a half each). The shared folder may
+    compile it again (in a new checkout: about a minute each). The shared folder may
     exist already, with no kernels or a few (importing `core` makes it), whose files are
     kept. Each file is written under a temporary name and then renamed, the warm-up's
     marker last: a reader sees a whole file or none, and the marker only with the kernels."""
