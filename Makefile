@@ -152,7 +152,7 @@ test-lane-b:
 PYTHON_KERNEL_TESTS := tests/core/kernels/test_shapes.py tests/core/kernels/test_sphere_intersection.py \
   tests/core/kernels/test_slabs.py tests/core/kernels/test_csg.py \
   tests/core/kernels/test_shadow_culling.py tests/core/kernels/test_stability.py \
-  tests/core/kernels/test_borrow.py tests/core/test_render_accuracy.py tests/core/test_lighting.py \
+  tests/core/test_render_accuracy.py tests/core/test_lighting.py \
   tests/core/test_driver.py tests/core/model/test_validation.py
 test-python: setup
 	NUMBA_DISABLE_JIT=1 $(VENV)/bin/python -m pytest -q -p no:cacheprovider \

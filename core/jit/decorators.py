@@ -6,7 +6,7 @@ numba reads `config.CACHE_DIR` when a function is decorated, so this module must
 """
 
 import numba
-from numba.core import types
+from numba.core import errors, types
 
 from .cache_folder import kernel_cache_dir
 from .deferred import defer_callee_compiles, optimised_alone  # noqa: F401 (kernels take it here)
@@ -42,6 +42,27 @@ def _plain(argument_type):
     return plain
 
 
+def _holds_array(t) -> bool:
+    if isinstance(t, types.Array):
+        return True
+    return isinstance(t, types.BaseTuple) and any(_holds_array(e) for e in t.types)
+
+
+def _refuse_returned_arrays(dispatcher) -> None:
+    """A kernel compiled without reference counting must not hand an array to a kernel: a
+    caller that counts references (an `allocating_kernel`) would release the array it got,
+    though it was never counted for it, and free memory that is still in use (a crash, seen
+    in a trial). numba itself refuses only a new array or a view; this also refuses an
+    argument handed back. Python's calls are safe (numba returns the object passed in)."""
+    for signature in dispatcher.nopython_signatures:
+        if _holds_array(signature.return_type):
+            raise errors.TypingError(
+                f"kernel {dispatcher.py_func.__qualname__} returns an array "
+                f"({signature.return_type}) to a kernel: kernels without reference counting "
+                "write into arrays their callers pass, and return numbers"
+            )
+
+
 def _one_signature_for_constants(dispatcher):
     """Type calls from other kernels with constants as plain values. numba types a constant
     argument (`row(a, 0)`, `f(x, -1)`, a counter that starts at 0) as a Literal of its own and
@@ -58,10 +79,15 @@ def _one_signature_for_constants(dispatcher):
         return dispatcher  # the plain Python function: nothing is typed
     get_call_template = dispatcher.get_call_template
 
+    counts_references = dispatcher.targetoptions.get("_nrt", True)
+
     def unliteral_call_template(args, kws):
         args = tuple(_plain(a) for a in args)
         kws = {name: _plain(a) for name, a in kws.items()}
-        return get_call_template(args, kws)
+        template = get_call_template(args, kws)
+        if not counts_references:
+            _refuse_returned_arrays(dispatcher)
+        return template
 
     dispatcher.get_call_template = unliteral_call_template
     return dispatcher
@@ -69,7 +95,15 @@ def _one_signature_for_constants(dispatcher):
 
 # error_model="numpy": division by zero gives inf/nan like numpy instead of a Python exception
 # check on every division; the kernels guard their own divisions.
-_compile = numba.njit(cache=True, nogil=True, error_model="numpy")
+# _nrt=False: no reference counting. A kernel works in arrays its caller made (the packed
+# scene, the workspace) and allocates none, so numba's counting of array references did
+# nothing but cost: an increment and a decrement lowered at every array argument, view and
+# tuple field, then LLVM removing most of them again. Without it a cold compile took 70 s ->
+# 53 s (the render kernel 39 -> 28 s), the pictures bit for bit the same. A kernel that
+# allocates (np.empty, an array expression, a slice copied onto a slice) now fails to
+# compile ("No implementation of function ... zeros", "NRT required but not enabled"): the
+# kernels that build the packed scene allocate, and are `allocating_kernel`s.
+_compile = numba.njit(cache=True, nogil=True, error_model="numpy", _nrt=False)
 
 
 def kernel(function):
@@ -89,7 +123,9 @@ def kernel(function):
 # too, and nearly every kernel of the render kernel's tree is: the tree is one function of
 # 30 000 instructions. A kernel that must stay a call is marked `never_inlined`
 # (core.jit.never_inlined).
-_compile_inlined = numba.njit(cache=True, nogil=True, error_model="numpy", forceinline=True)
+_compile_inlined = numba.njit(
+    cache=True, nogil=True, error_model="numpy", _nrt=False, forceinline=True
+)
 
 
 def inlined_kernel(function):
@@ -103,4 +139,14 @@ def inlined_kernel(function):
 # mesh shadow rays per second than inlined by numba). Only small bodies: numba types an
 # inlined body again at every call site and every call inside it (inlining the box test's
 # eight calls too added 20 s to a cold compile).
-ir_inlined_kernel = numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+ir_inlined_kernel = numba.njit(
+    cache=True, nogil=True, error_model="numpy", _nrt=False, inline="always"
+)
+
+
+# The kernels that build the packed scene from Python, once a scene (the BVH builder, its
+# collapse to eight-wide nodes, the fold of constant materials): they allocate the arrays
+# they return, so numba counts their references. Their callees are plain kernels, which
+# may read and write the arrays these pass them but must not return one (a test checks
+# that no kernel without reference counting returns an array).
+allocating_kernel = numba.njit(cache=True, nogil=True, error_model="numpy")

@@ -97,6 +97,7 @@ def corner_mean(corners, i, ws, passes, frame, axis):
         b += slot[2]
         a += slot[CORNER_ALPHA]
         if passes:
-            ws.record[:] = slot[CORNER_RECORD:]
+            for k in range(ws.record.shape[0]):  # no slice copy: it compiles an allocation
+                ws.record[k] = slot[CORNER_RECORD + k]
             accumulate(ws.accum, ws.crypto_ids, ws.record, s, frame, axis)
     return r, g, b, a

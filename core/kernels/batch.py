@@ -7,7 +7,6 @@ the packed scene's `geometry` group (and its `surfaces` group for normals).
 """
 
 from ..jit.decorators import kernel
-from .borrow import borrowed
 from .light_pyramid import TRAVERSE_ALL
 from .surface import surface_at
 from .trace import closest_hit, transmittance
@@ -16,7 +15,6 @@ from .trace import closest_hit, transmittance
 @kernel
 def closest_hits(geo, origins, directions, t_max, out_t, out_shape, out_part, stacks):
     """Nearest hit of each ray: out_t (NO_HIT on a miss), out_shape (-1), out_part."""
-    geo, stacks = borrowed(geo), borrowed(stacks)
     for i in range(origins.shape[0]):
         o = (origins[i, 0], origins[i, 1], origins[i, 2])
         d = (directions[i, 0], directions[i, 1], directions[i, 2])
@@ -30,7 +28,6 @@ def closest_hits(geo, origins, directions, t_max, out_t, out_shape, out_part, st
 def closest_normals(geo, surf, origins, directions, t_max, out_t, out_shape, out_normal, stacks):
     """`closest_hits` with the shading normal at each hit (unit, outward; zero on a miss):
     what the renderer shades with, interpolated across smooth mesh faces."""
-    geo, surf, stacks = borrowed(geo), borrowed(surf), borrowed(stacks)
     for i in range(origins.shape[0]):
         o = (origins[i, 0], origins[i, 1], origins[i, 2])
         d = (directions[i, 0], directions[i, 1], directions[i, 2])
@@ -50,7 +47,6 @@ def shadow_rays(geo, origins, directions, t_max, out_light, stacks):
     """Transmittance of each segment origin + t direction, 0 < t < t_max[i], by the
     constant shares: a surface whose share varies over it (`core.kernels.shadow_log`)
     counts 1 here; `core.kernels.shadow_crossing.light_along` answers it too."""
-    geo, stacks = borrowed(geo), borrowed(stacks)
     for i in range(origins.shape[0]):
         o = (origins[i, 0], origins[i, 1], origins[i, 2])
         d = (directions[i, 0], directions[i, 1], directions[i, 2])

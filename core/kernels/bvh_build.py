@@ -22,7 +22,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..jit.decorators import inlined_kernel, kernel
+from ..jit.decorators import allocating_kernel, inlined_kernel, kernel
 
 # Measured on the million-triangle benchmark mesh against 16 bins, interleaved: 2% more rays
 # per second (primary, incoherent and shadow alike) for a build 20% longer (0.65 -> 0.78 s);
@@ -181,7 +181,7 @@ def _sah_partition(prims, order, start, end, node, bins, max_leaf, traversal_cos
     return left
 
 
-@kernel
+@allocating_kernel
 def build_bvh(prim_lo, prim_hi, max_leaf, traversal_cost):
     """Build over boxes prim_lo/prim_hi (p, 3). Leaves hold at most max_leaf primitives
     unless their centroids coincide; traversal_cost is the cost of visiting an inner node

@@ -21,7 +21,7 @@ fills 6.1, with 58 000 nodes instead of 87 000, and traces 5-7% more rays per se
 
 import numpy as np
 
-from ..jit.decorators import kernel
+from ..jit.decorators import allocating_kernel, kernel
 from .bvh_wide import LEAF_COUNT_BITS, WIDTH
 
 # How a binary node m covers its subtree with at most j children, choice[m, j]:
@@ -36,7 +36,7 @@ def _half_area(lo, hi, m):
     return dx * dy + dy * dz + dz * dx
 
 
-@kernel
+@allocating_kernel
 def collapse_choices(lo, hi, info):
     """choice (n, WIDTH + 1) int8 as above, and split (n,) int8: how an inner node that is a
     wide node shares its WIDTH slots between its two children. Children come after their
@@ -95,7 +95,7 @@ def _children_of(node, info, choice, split, children, pending_node, pending_j):
     return filled
 
 
-@kernel
+@allocating_kernel
 def collapse_to_wide(lo, hi, info):
     """The eight-wide tree of the binary tree (lo, hi (n, 3) float32 boxes, info (n, 2) from
     `build_bvh`). Returns (boxes, links) with node 0 the root and nodes numbered breadth

@@ -16,7 +16,6 @@ without angle) gets one, whatever the render's shadow samples.
 import math
 
 from ..jit.decorators import kernel
-from .borrow import borrowed
 from .layout import (
     EMITS_DIFFUSE,
     EMITS_FROM_SURFACE,
@@ -115,8 +114,6 @@ def emitted_colour(frame, lights, geo, stacks, point, phong, key, event, split):
     """The colour the lights in Blender's units give a `ShadingPoint` of a surface with
     `Phong` terms (the module's formula). `key` and `event` select the random numbers; with
     `split` (core.kernels.shading.local_colour's) stacks.terms gets the light falling too."""
-    frame, lights = borrowed(frame), borrowed(lights)
-    geo, stacks = borrowed(geo), borrowed(stacks)
     targets, visibility, terms = stacks.light_targets, stacks.visibility, stacks.terms
     origin, n, to_viewer = point.origin, point.normal, point.to_viewer
     kd, ks, shininess = phong

@@ -21,7 +21,6 @@ bright sun is found by most rays. Only diffuse light is gathered: highlights com
 import math
 
 from ..jit.decorators import kernel
-from .borrow import borrowed
 from .layout import ENVIRONMENT_IMAGE, ENVIRONMENT_NONE, ENVIRONMENT_UNIFORM
 from .light_pyramid import TRAVERSE_ALL
 from .light_samples import in_frame, square_point
@@ -142,8 +141,6 @@ def sample_image(lights, a, b):
 def environment_light(frame, lights, geo, stacks, point, kd, key, event, split):
     """The environment's diffuse light at a `ShadingPoint` of a surface of diffuse colour
     kd (the module's formula). With `split`, stacks.terms gets the light falling too."""
-    frame, lights = borrowed(frame), borrowed(lights)
-    geo, stacks = borrowed(geo), borrowed(stacks)
     kind = frame.options[OPTION_ENVIRONMENT]
     samples = frame.options[OPTION_ENVIRONMENT_SAMPLES]
     if kind == ENVIRONMENT_NONE or samples == 0:

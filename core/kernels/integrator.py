@@ -26,7 +26,6 @@ seen_through_glass) is passed as if absent: the ray goes on from its far side.
 import math
 
 from ..jit.decorators import inlined_kernel, kernel
-from .borrow import borrowed
 from .emitters import emitted_colour
 from .emitters_seen import emitters_seen
 from .environment import environment_light, environment_seen
@@ -143,7 +142,6 @@ def _leave_surface(rays, top, here, sample, samples, spread, key, event, o, d, w
     surface (`spread`: by a microfacet normal drawn from its lobe, core.kernels.glossy; else
     by the shading normal, one sample). A call of its own: in the integrator's body its loop
     cost the render kernel's cold compile 11 s more (183 s against 172)."""
-    rays = borrowed(rays)
     share = 1.0 / samples
     m, cos_m = n_shading, cos_i
     if spread:

@@ -19,7 +19,6 @@ from .adaptive_tile import (
     keep_corner,
     next_corner_row,
 )
-from .borrow import borrowed
 from .camera import camera_ray, ray_through
 from .integrator import trace_ray
 from .options import OPTION_PASSES, OPTION_PIXEL_SAMPLES, OPTION_SEED
@@ -35,12 +34,10 @@ def render_tile(ps, image_width, image_height, x0, y0, width, height, out, ws):
     Frame.pass_offset lays them out) with pixels x0.. and y0.. of the image.
 
     Pixels depend only on their image coordinates, never on the tile, so any tiling of the
-    image gives the same picture. The entry point the driver calls: it borrows its arrays
-    for the tile's duration (see core.kernels.borrow), so no reference counting runs below.
+    image gives the same picture. The entry point the driver calls.
     Once ws.cancel[0] is set (by the driver, from another thread) it returns at the next
     pixel, leaving the rest of `out` as it was: a cancel is obeyed within one pixel's rays.
     """
-    ps, ws, out = borrowed(ps), borrowed(ws), borrowed(out)
     cancel = ws.cancel
     frame = ps.frame
     n = frame.options[OPTION_PIXEL_SAMPLES]

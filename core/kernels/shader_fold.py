@@ -3,7 +3,7 @@ as numbers, so that the material table holds it and the kernels run nothing per 
 
 import numpy as np
 
-from ..jit.decorators import kernel
+from ..jit.decorators import allocating_kernel, kernel
 from .shader_program import LOBE_COUNT, SHADER_STACK, run_program
 from .surface_terms import terms_from_lobes
 
@@ -16,7 +16,7 @@ def _three(o, first, v):
     o[first], o[first + 1], o[first + 2] = v[0], v[1], v[2]
 
 
-@kernel
+@allocating_kernel
 def fold_surfaces(mats, rows, out):
     """Run the programs of material `rows` at a hit that reads nothing, writing each Surface
     to a row of `out` (FOLDED_COLUMNS: kd, ks, shininess, reflectivity, transparency, outer

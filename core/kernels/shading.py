@@ -21,7 +21,6 @@ import math
 from typing import NamedTuple
 
 from ..jit.decorators import inlined_kernel, kernel
-from .borrow import borrowed
 from .light_pyramid import TRAVERSE_ALL, build_pyramid, pyramid_candidates
 from .light_samples import square_point
 from .options import (
@@ -140,7 +139,6 @@ def _phong_lit(light_dir, radiance, visible, point, phong):
 def light_candidates(geo, stacks, origin, area):
     """List in stacks.candidates the shapes that may stand between `origin` and the area
     light; returns their count or TRAVERSE_ALL. Finds the cached occluder in the list."""
-    geo, stacks = borrowed(geo), borrowed(stacks)
     build_pyramid(stacks.pyramid, origin, area.centre, area.edge_u, area.edge_v)
     count = pyramid_candidates(geo, stacks.pyramid, stacks.candidates, stacks.top)
     occluder = stacks.occluder
@@ -166,8 +164,6 @@ def local_colour(frame, lights, geo, stacks, point, phong, key, event, split):
 
     Each light aims its points into stacks.light_targets, `shadow_visibility` casts their
     shadow rays, and only then are the Phong terms summed, in a loop with no call in it."""
-    frame, lights = borrowed(frame), borrowed(lights)
-    geo, stacks = borrowed(geo), borrowed(stacks)
     targets, visibility, terms = stacks.light_targets, stacks.visibility, stacks.terms
     origin, n = point.origin, point.normal
     if split:

@@ -3,7 +3,6 @@
 integrator, the one place that program is compiled in."""
 
 from ..jit.decorators import inlined_kernel, kernel
-from .borrow import borrowed
 from .light_pyramid import TRAVERSE_ALL
 from .shader_program import run_program
 from .shadow_log import STATE_CROSSINGS, STATE_RAY, STATE_REPLAY, begin_point
@@ -34,7 +33,6 @@ def crossing_share(geo, surf, mats, ws, shape, part, b1, b2, o, d, t):
 def answer_crossings(geo, surf, mats, ws):
     """Multiply each listed crossing's share into its shadow ray's logged visibility, and
     set the log to be replayed. False when nothing was listed: the point is lit already."""
-    geo, surf, mats, ws = borrowed(geo), borrowed(surf), borrowed(mats), borrowed(ws)
     stacks = ws.stacks
     state, log = stacks.shadow_state, stacks.shadow_log
     f, i = stacks.varying_f, stacks.varying_i
@@ -61,7 +59,6 @@ def light_along(ps, ws, o, d, t_max):
     """What one shadow ray o + t d, 0 < t < t_max, lets through by the full rule: its
     transmittance with the crossings of varying surfaces answered (for tests and tools;
     `core.kernels.batch.shadow_rays` answers the constant shares alone)."""
-    ps, ws = borrowed(ps), borrowed(ws)
     geo, surf, mats = ps.geometry, ps.surfaces, ps.materials
     stacks = ws.stacks
     begin_point(stacks.shadow_state)

@@ -20,7 +20,6 @@ back, the same rays in the same order.
 """
 
 from ..jit.decorators import inlined_kernel, ir_inlined_kernel, kernel, never_inlined
-from .borrow import borrowed
 from .options import EMITTER_SPHERE, EMITTER_SUN_CONE
 from .shadow_log import PROBES, STATE_CROSSINGS, STATE_RAY, STATE_REPLAY
 from .trace import transmittance
@@ -71,7 +70,6 @@ def shadow_visibility(geo, stacks, listed, origin, n, first, end):
     A call of its own, apart from the shading that uses its results: with a shadow ray's
     call inside the loop over samples, the loop kept its values in memory across the call,
     and shading an unobstructed sample cost 2.3 times as much (210 ns against 91)."""
-    geo, stacks = borrowed(geo), borrowed(stacks)
     targets, visibility = stacks.light_targets, stacks.visibility
     state, log = stacks.shadow_state, stacks.shadow_log
     replay = state[STATE_REPLAY] != 0
@@ -110,7 +108,6 @@ def light_visibility(geo, stacks, listed, origin, n, count, adaptive):
     again with each function compiled, and a function between the lights and
     `shadow_visibility` (even one LLVM inlines) added a copy of the shadow-ray code to the
     cold compile (+130 s, then +70 s)."""
-    stacks = borrowed(stacks)
     visibility, state, log = stacks.visibility, stacks.shadow_state, stacks.shadow_log
     probing = adaptive and count >= MIN_ADAPTIVE_SAMPLES and listed != 0
     first, end = (count, count + PROBES) if probing else (0, count)
