@@ -250,12 +250,14 @@ def _render_one(packed: PackedScene, settings: RenderSettings, tile: Tile, stop:
     whose varying crossings did not fit, ray counts)."""
     _, pass_channels = layout(settings.passes, settings.crypto_levels)
     pixels = np.empty((tile.height, tile.width, 4 + pass_channels), np.float32)
-    # Cryptomatte keeps each camera ray's ids until its pixel is done
+    # Cryptomatte keeps each camera ray's ids until its pixel is done; a pixel of adaptive
+    # anti-aliasing whose samples agree counts its corners once and its centre four times
     crypto = any(name in CRYPTO_PASSES for name in settings.passes)
+    adaptive = settings.adaptive_threshold > 0
+    crypto_rays = max(settings.pixel_samples**2, 8 if adaptive else 1) if crypto else 1
     workspace = new_workspace(
         settings.max_depth, max(settings.shadow_samples, settings.environment_samples), stop,
-        settings.pixel_samples**2 if crypto else 1, settings.glossy_samples,
-        tile.width + 1 if settings.adaptive_threshold > 0 else 1,
+        crypto_rays, settings.glossy_samples, tile.width + 1 if adaptive else 1,
     )  # fmt: skip
     render_tile(packed, settings.width, settings.height, tile.x, tile.y, tile.width,
                 tile.height, pixels, workspace)  # fmt: skip

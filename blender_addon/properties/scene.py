@@ -43,17 +43,18 @@ class WhittedSceneSettings(bpy.types.PropertyGroup):
     use_adaptive_pixels: BoolProperty(
         name="Adaptive Anti-Aliasing",
         description=(
-            "Trace one ray at each pixel corner first, and a pixel's own rays only where its "
-            "corners differ by more than the threshold: flat areas cost one ray a pixel, "
-            "edges all of them. May miss detail smaller than a pixel between its corners"
+            "Trace one ray at each pixel corner and one at its centre first, and a pixel's "
+            "own rays only where these differ by more than the threshold: flat areas cost "
+            "two rays a pixel, edges all of them. May miss detail smaller than a pixel "
+            "that none of the five meets"
         ),
         default=False,
     )
     adaptive_threshold: FloatProperty(
         name="Adaptive Threshold",
         description=(
-            "How far a pixel's corners may differ (in each colour, compressed as x / (1 + x), "
-            "and in alpha) before it gets its own rays: lower is finer and slower"
+            "How far a pixel's corners and centre may differ (in each colour, compressed as "
+            "x / (1 + x), and in alpha) before it gets its own rays: lower is finer and slower"
         ),
         min=0.0001,
         max=1.0,

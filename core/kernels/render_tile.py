@@ -1,8 +1,8 @@
 """The per-tile megakernel: camera rays for a rectangle of pixels, traced and averaged.
 
 Each pixel averages its n x n camera rays (core.kernels.camera says where they go), or with
-adaptive anti-aliasing first traces the pixel corners no neighbour has traced and takes the
-mean of its four corners where they agree (core.kernels.adaptive_tile).
+adaptive anti-aliasing first traces the pixel corners no neighbour has traced and the
+pixel's centre, and weighs them where they agree (core.kernels.adaptive_tile).
 
 A pixel's rays, corners and samples alike, go through one loop with one call of
 `trace_ray`: the ray tracer is inlined where it is called, and each more call site would
@@ -11,6 +11,7 @@ be optimised again by LLVM (two more made the cold compile 3x as long).
 
 from ..jit.decorators import kernel
 from .adaptive_tile import (
+    CENTRE_SAMPLE,
     CORNER_SAMPLE,
     corner_mean,
     corner_of,
@@ -58,24 +59,32 @@ def render_tile(ps, image_width, image_height, x0, y0, width, height, out, ws):
             r = g = b = a = 0.0
             if passes:
                 start_pixel(ws.accum)
-            # Rays 0..first-1: the corners this pixel traces (adaptive); then its samples,
-            # unless the corners agree
-            first = corners_to_trace(i, j) if adaptive else 0
+            # Rays 0..first-1 (adaptive): the corners this pixel traces, then its centre;
+            # then its samples, unless the corners and the centre agree
+            first = corners_to_trace(i, j) + 1 if adaptive else 0
             end = first if adaptive else samples
             s = 0
+            cr = cg = cb = ca = 0.0  # the centre's colour and alpha
             while s < end:
-                if s < first:
+                if s < first - 1:
                     cx, cy, column, row = corner_of(s, i, j)
                     key = sample_key(seed, x0 + cx, y0 + cy, CORNER_SAMPLE)
                     u, v = uniform2(key, PURPOSE_LENS, 0, 0)
                     o, d = ray_through(frame, image_width, image_height, float(x0 + cx),
                                        float(y0 + cy), u, v)  # fmt: skip
+                elif s < first:
+                    key = sample_key(seed, px, py, CENTRE_SAMPLE)
+                    u, v = uniform2(key, PURPOSE_LENS, 0, 0)
+                    o, d = ray_through(frame, image_width, image_height, px + 0.5, py + 0.5,
+                                       u, v)  # fmt: skip
                 else:
                     key = sample_key(seed, px, py, s - first)
                     o, d = camera_ray(frame, image_width, image_height, px, py, s - first, key)
                 colour, alpha = trace_ray(ps, o, d, key, ws)
-                if s < first:
+                if s < first - 1:
                     keep_corner(corners, row, column, colour, alpha, ws.record, passes)
+                elif s < first:
+                    cr, cg, cb, ca = colour[0], colour[1], colour[2], alpha
                 else:
                     r += colour[0]
                     g += colour[1]
@@ -84,12 +93,17 @@ def render_tile(ps, image_width, image_height, x0, y0, width, height, out, ws):
                     if passes:
                         accumulate(ws.accum, ws.crypto_ids, ws.record, s - first, frame, axis)
                 s += 1
-                if adaptive and s == first and corners_differ(corners, i, threshold):
-                    end = first + samples  # the corners disagree: the pixel's own rays
+                if adaptive and s == first:
+                    if corners_differ(corners, i, (cr, cg, cb, ca), threshold):
+                        end = first + samples  # they disagree: the pixel's own rays
+                    elif passes:  # they agree: the centre's record counts four times
+                        for k in range(4):
+                            accumulate(ws.accum, ws.crypto_ids, ws.record, 4 + k, frame, axis)
             count = end - first
-            if count == 0:  # the corners agreed: their mean
+            if count == 0:  # they agreed: half the centre, an eighth each corner
                 r, g, b, a = corner_mean(corners, i, ws, passes, frame, axis)
-                count = 4
+                r, g, b, a = r + 4.0 * cr, g + 4.0 * cg, b + 4.0 * cb, a + 4.0 * ca
+                count = 8
             # Linear light has no upper bound, the float32 image has: saturate, never inf
             out[j, i, 0] = min(r / count, FLOAT32_MAX)
             out[j, i, 1] = min(g / count, FLOAT32_MAX)

@@ -52,9 +52,10 @@ class RenderSettings:
     adaptive_threshold -- adaptive anti-aliasing, from 2 x 2 pixel_samples up: 0 gives every
                         pixel its n x n camera rays (the exact, report's way); t > 0 traces
                         one ray at each pixel corner (shared by the four pixels that meet
-                        there) and gives a pixel its n x n rays only where its corners
-                        differ by more than t (in R, G, B after x / (1 + x), or alpha),
-                        otherwise their mean (core.kernels.adaptive_tile); 0 to 1
+                        there) and one at each pixel's centre, and gives a pixel its n x n
+                        rays only where these differ by more than t (in R, G, B after
+                        x / (1 + x), or alpha), otherwise half the centre and an eighth
+                        each corner (core.kernels.adaptive_tile); 0 to 1
     adaptive_shadows -- adaptive soft shadows: nine probe rays to each area light first (eight
                         around its outline and its centre), its samples' rays only where
                         the probes disagree; fully lit and fully shadowed points then cost

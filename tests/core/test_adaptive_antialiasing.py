@@ -1,9 +1,10 @@
 """Adaptive anti-aliasing (RenderSettings.adaptive_threshold, core.kernels.adaptive_tile):
-one ray at each pixel corner, a pixel's n x n rays only where its corners disagree.
+one ray at each pixel corner and one at each pixel's centre, a pixel's n x n rays only
+where they disagree.
 
 Against the truth: a flat white disk on black seen straight on, whose pixels are the
 share of each pixel the disk covers (computed here by a 256 x 256 quadrature per pixel).
-Pixels wholly inside or outside the disk are exact from their corners alone; pixels on its
+Pixels wholly inside or outside the disk are exact from their corners and centre; pixels on its
 edge are the fixed grid's, bit for bit; the whole picture is no further from the truth
 than the fixed grid's, for a fraction of the camera rays. Any tiling and border give the
 same pixels, and the passes and Cryptomatte follow the same rays.
@@ -50,29 +51,32 @@ def test_flat_pixels_are_exact_and_edge_pixels_are_the_grids_for_a_third_of_the_
     inside, outside = truth == 1.0, truth == 0.0
     assert inside.sum() > 200 and outside.sum() > 200
     edge = ~(inside | outside)
-    # Corners of a pixel wholly in or out of the disk agree: the pixel is exact
+    # Corners and centre of a pixel wholly in or out of the disk agree: the pixel is exact
     assert (fast[inside] == 1.0).all() and (fast[outside] == 0.0).all()
     np.testing.assert_array_equal(adaptive.image[..., 3][inside], 1.0)
     # A pixel the edge crosses has corners on both sides (the disk is wide): its 3 x 3 rays
     np.testing.assert_array_equal(fast[edge], grid[edge])
-    # So no further from the truth than the grid, and far fewer camera rays: one a pixel
-    # (its corners, shared) and nine more on the edge
+    # So no further from the truth than the grid, and far fewer camera rays: two a pixel
+    # (its corners, shared, and its centre) and nine more on the edge
     fast_error = np.sqrt(np.mean((fast - truth) ** 2))
     grid_error = np.sqrt(np.mean((grid - truth) ** 2))
     assert fast_error <= grid_error, (fast_error, grid_error)
-    expected_rays = (SIZE + 1) ** 2 + 9 * edge.sum()
+    expected_rays = (SIZE + 1) ** 2 + SIZE**2 + 9 * edge.sum()
     assert abs(adaptive.stats.rays_traced - expected_rays) <= 9 * 8  # a tangent edge or two
-    assert adaptive.stats.rays_traced < 0.35 * fixed.stats.rays_traced
+    assert adaptive.stats.rays_traced < 0.45 * fixed.stats.rays_traced
 
 
 def test_a_threshold_of_one_never_refines_and_differences_below_it_do_not_either():
-    # Corners differ by at most x / (1 + x) = 1/2 in colour and 1 in alpha: a threshold of 1
-    # refines nothing, so every pixel is the mean of its four corners
+    # Samples differ by at most x / (1 + x) = 1/2 in colour and 1 in alpha: a threshold of 1
+    # refines nothing, so every pixel weighs its four corners and its centre
     coarse = rendered(1.0, tile_size=SIZE)  # one tile: every corner traced once
-    assert coarse.stats.rays_traced == (SIZE + 1) ** 2
+    assert coarse.stats.rays_traced == (SIZE + 1) ** 2 + SIZE**2
     values = coarse.image[..., 0].astype(float)
-    # a corner mean: a multiple of 1/4
-    np.testing.assert_array_equal(values * 4.0, np.round(values * 4.0))
+    # an eighth each corner and half the centre, each 0 or 1 here: a multiple of 1/8
+    np.testing.assert_array_equal(values * 8.0, np.round(values * 8.0))
+    # and the centre counts for half: on the edge some pixel is no multiple of 1/4, which
+    # four corners alone would give
+    assert (values * 4.0 != np.round(values * 4.0)).any()
 
 
 def test_any_tiling_and_border_gives_the_same_pixels():
