@@ -5,6 +5,7 @@
 - `never_inlined`: the kernels kept a call of their own (LLVM's `noinline`), so that the
   render kernel holds one copy of the shadow-ray search, not five.
 - `deferred`: a callee's compile finished once, inside the kernel Python calls.
+- `flag_values`: numba's compile options read in one step when typing compares them.
 - `cache_folder`: the cache folder of this version and package, the extension's shipped
   kernels copied into it, old versions' folders pruned.
 - `relocatable`: one cache serving any folder `core` is unpacked in and any x86-64 CPU of a

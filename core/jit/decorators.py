@@ -10,6 +10,7 @@ from numba.core import errors, types
 
 from .cache_folder import kernel_cache_dir
 from .deferred import defer_callee_compiles, optimised_alone  # noqa: F401 (kernels take it here)
+from .flag_values import read_options_at_once
 from .healing import heal_damaged_loads
 from .never_inlined import never_inlined  # noqa: F401 (kernels take it here)
 from .relocatable import choose_cpu_target, use_relocatable_cache_folders
@@ -24,6 +25,9 @@ CPU_TARGET = choose_cpu_target()
 # A kernel called by kernels is optimised and made into machine code once, in the kernel
 # Python calls (core.jit.deferred): half the cold compile
 DEFERRED_CALLEES = defer_callee_compiles()
+# numba's compile options read in one step where typing hashes and compares them
+# (core.jit.flag_values): a tenth of a cold compile
+FAST_OPTIONS = read_options_at_once()
 
 # The four-wide BVH's box tests are written as four straight-line copies for LLVM's SLP
 # vectorizer to merge into vector instructions (core.kernels.bvh_wide): 1.6x the rays per

@@ -63,6 +63,8 @@ CACHE_TOO = (
     "tests/core/test_warmup_process.py",
     "tests/core/test_deferred_compile.py",
     "tests/core/test_call_boundaries.py",
+    "tests/core/test_reference_counting.py",
+    "tests/core/test_flag_values.py",
 )
 BPY_VERSIONS = (
     BpyVersion("4.2", "3.11", ("bpy==4.2.23", "numpy==1.26.4")),
