@@ -136,13 +136,14 @@ def progress_line(step: int, steps: int, label: str) -> str:
 
 
 # Each step's share of a cold warm-up and the whole's length, as measured on the development
-# machine, so that a progress bar moves evenly rather than by quarters: 64-77 s since the
-# shadow-ray search is a call of its own (core.jit.never_inlined; 2026-12-06: packing 20 %,
-# nearest hits 12 %, shadow rays 7 %, the render kernel 61 %; 91-96 s before, 141-175 s
-# before callees' compiles were deferred)
-STEP_SHARES = {"scene packing": 0.20, "nearest hits": 0.12, "shadow rays": 0.07,
-               "render kernel": 0.61}  # fmt: skip
-TYPICAL_WARMUP_S = 70.0
+# machine, so that a progress bar moves evenly rather than by quarters: 44-48 s since the
+# kernels count no references and numba's options are read at once (2026-12-06: packing
+# 26 %, nearest hits 12 %, shadow rays 7 %, the render kernel 55 %; 64-77 s before, 91-96 s
+# before the shadow-ray search was a call of its own, 141-175 s before callees' compiles
+# were deferred)
+STEP_SHARES = {"scene packing": 0.26, "nearest hits": 0.12, "shadow rays": 0.07,
+               "render kernel": 0.55}  # fmt: skip
+TYPICAL_WARMUP_S = 47.0
 _PROGRESS = re.compile(r"(\d+) of (\d+) \((.*)\)$")
 
 
