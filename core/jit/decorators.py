@@ -102,8 +102,8 @@ def _one_signature_for_constants(dispatcher):
 # _nrt=False: no reference counting. A kernel works in arrays its caller made (the packed
 # scene, the workspace) and allocates none, so numba's counting of array references did
 # nothing but cost: an increment and a decrement lowered at every array argument, view and
-# tuple field, then LLVM removing most of them again. Without it a cold compile took 70 s ->
-# 53 s (the render kernel 39 -> 28 s), the pictures bit for bit the same. A kernel that
+# tuple field, then LLVM removing most of them again. Without it a cold compile took 65 s ->
+# 57 s (interleaved, median of 3), the pictures bit for bit the same. A kernel that
 # allocates (np.empty, an array expression, a slice copied onto a slice) now fails to
 # compile ("No implementation of function ... zeros", "NRT required but not enabled"): the
 # kernels that build the packed scene allocate, and are `allocating_kernel`s.

@@ -78,7 +78,7 @@ def next_corner_row(corners):
 
 
 @inlined_kernel
-def corners_differ(corners, i, centre, threshold):
+def samples_differ(corners, i, centre, threshold):
     """True where the colours (compressed by x / (1 + x)) or alphas of pixel i's four
     corners and its centre (r, g, b, alpha) differ by more than the threshold."""
     for k in range(4):

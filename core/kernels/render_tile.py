@@ -15,10 +15,10 @@ from .adaptive_tile import (
     CORNER_SAMPLE,
     corner_mean,
     corner_of,
-    corners_differ,
     corners_to_trace,
     keep_corner,
     next_corner_row,
+    samples_differ,
 )
 from .camera import camera_ray, ray_through
 from .integrator import trace_ray
@@ -94,7 +94,7 @@ def render_tile(ps, image_width, image_height, x0, y0, width, height, out, ws):
                         accumulate(ws.accum, ws.crypto_ids, ws.record, s - first, frame, axis)
                 s += 1
                 if adaptive and s == first:
-                    if corners_differ(corners, i, (cr, cg, cb, ca), threshold):
+                    if samples_differ(corners, i, (cr, cg, cb, ca), threshold):
                         end = first + samples  # they disagree: the pixel's own rays
                     elif passes:  # they agree: the centre's record counts four times
                         for k in range(4):

@@ -4,14 +4,7 @@ kernel Python calls, even when its callers are inlined kernels (numba passes a c
 `forceinline` on to its callees); marking it leaves every other kernel's options as they
 were; and a callee called with an int32 and with an int64 is compiled once."""
 
-import json
-import os
-import subprocess
-import sys
-
-import core
-
-ROOT = os.path.dirname(os.path.dirname(core.__file__))
+from tests.support.kernel_script import run_kernel_script
 
 # Kernels of the script's own, in a new cache folder: an entry point calls an inlined kernel
 # that calls a marked search twice and a plain callee; the entry calls the plain callee too,
@@ -59,15 +52,7 @@ print(json.dumps({
 
 
 def test_a_never_inlined_kernel_stays_a_private_call_and_callees_compile_once(tmp_path):
-    script = tmp_path / "boundary_kernels.py"  # a file: numba caches kernels by their file
-    script.write_text(KERNELS)
-    run = subprocess.run(
-        [sys.executable, str(script)],
-        env={**os.environ, "WHITTED_CACHE_DIR": str(tmp_path / "cache"), "PYTHONPATH": ROOT},
-        cwd=ROOT, capture_output=True, text=True, timeout=600,
-    )  # fmt: skip
-    assert run.returncode == 0, run.stderr[-3000:]
-    facts = json.loads(run.stdout.splitlines()[-1])
+    facts = run_kernel_script(tmp_path, "boundary_kernels.py", KERNELS)
     a = [float(x) for x in range(10)]
     expected = sum(x * x for x in a[3:]) + sum(x * x for x in a[4:]) + 2 * a[3] + 2 * a[0]
     assert facts["value"] == expected

@@ -5,18 +5,12 @@ hands an array back to a kernel is refused at compile time, naming it (an alloca
 would free memory it does not own: a crash); and plain kernels' code holds no counting."""
 
 import importlib
-import json
-import os
 import pkgutil
-import subprocess
-import sys
 
 import numba
 
-import core
 import core.kernels
-
-ROOT = os.path.dirname(os.path.dirname(core.__file__))
+from tests.support.kernel_script import run_kernel_script
 
 # The script's own kernels, in a new cache folder (numba caches kernels by their file)
 KERNELS = r"""
@@ -74,15 +68,7 @@ print(json.dumps(facts))
 
 
 def test_kernels_do_not_count_references_and_cannot_allocate(tmp_path):
-    script = tmp_path / "counting_kernels.py"
-    script.write_text(KERNELS)
-    run = subprocess.run(
-        [sys.executable, str(script)],
-        env={**os.environ, "WHITTED_CACHE_DIR": str(tmp_path / "cache"), "PYTHONPATH": ROOT},
-        cwd=ROOT, capture_output=True, text=True, timeout=600,
-    )  # fmt: skip
-    assert run.returncode == 0, run.stderr[-3000:]
-    facts = json.loads(run.stdout.splitlines()[-1])
+    facts = run_kernel_script(tmp_path, "counting_kernels.py", KERNELS)
     assert "No implementation of function Function(<built-in function zeros>)" in (
         facts["allocates"] or ""
     ), facts["allocates"]
