@@ -34,6 +34,13 @@ def _limit_this_process(limits: ScriptLimits) -> None:
     for name, soft, hard in (("RLIMIT_CPU", cpu, cpu + CPU_SPARE_S), ("RLIMIT_CORE", 0, 0)):
         with contextlib.suppress(ValueError, OSError, AttributeError, OverflowError):
             resource.setrlimit(getattr(resource, name), (soft, hard))
+    # numpy's matrix products go to OpenBLAS, which maps its work buffer at its first product
+    # and, refused by the address-space limit, retries the mapping without end (seen: a
+    # 16 MiB limit spun in the kernel until the time limit ran out). So it maps it now,
+    # within what the process holds before the limit
+    import numpy as np
+
+    np.ones((4, 4)) @ np.ones((4, 4))
     try:
         with open("/proc/self/statm") as statm:  # Linux: the address space, in pages
             held = int(statm.read().split()[0]) * os.sysconf("SC_PAGE_SIZE")
