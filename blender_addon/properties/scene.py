@@ -75,7 +75,12 @@ class WhittedSceneSettings(bpy.types.PropertyGroup):
         name="Shadow Pattern",
         description="Where on an area light the shadow rays go",
         items=[
-            ("STRATIFIED", "Stratified", "One ray in each of equal cells of the light: less noise"),
+            (
+                "STRATIFIED",
+                "Stratified",
+                "One ray in each of equal cells of the light, the cells shared out among the "
+                "pixel's camera rays: less noise",
+            ),
             ("UNIFORM", "Uniform", "Independent random points: the most noise, for comparison"),
             ("HALTON", "Halton", "Low-discrepancy points, randomly shifted per shading point"),
         ],
@@ -90,8 +95,9 @@ class WhittedSceneSettings(bpy.types.PropertyGroup):
     shadow_samples: IntProperty(
         name="Soft Shadow Samples",
         description=(
-            "Shadow rays per area light per shading point, stratified over the light; render "
-            "time grows in proportion, noise falls as its square root"
+            "Shadow rays per area light per shading point, stratified over the light together "
+            "with the pixel's other camera rays; render time grows in proportion, noise falls "
+            "as its square root"
         ),
         min=1,
         soft_max=256,

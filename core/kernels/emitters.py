@@ -27,7 +27,7 @@ from .layout import (
 from .light_mesh import SHORT_OF_SURFACE, mesh_sample
 from .light_panel import panel_sample
 from .light_pyramid import TRAVERSE_ALL
-from .light_samples import square_point
+from .light_samples import light_spread, square_point
 from .light_sphere import facing_disk_sample, sphere_sample, spot_mask
 from .light_sun import sun_sample
 from .options import (
@@ -128,6 +128,7 @@ def emitted_colour(frame, lights, geo, stacks, point, phong, key, event, split):
         shift = (0.0, 0.0)
         if pattern == SHADOW_HALTON:
             shift = uniform2(key, PURPOSE_LIGHT_SHIFT, stream, 0)
+        spread = light_spread(stacks.light_strata, pattern, count, stream)
         # an emissive surface's samples lie on it: the shadow rays stop just short
         short = 1.0 - SHORT_OF_SURFACE if lights.emitter_flags[light] & EMITS_FROM_SURFACE else 1.0
         kind = lights.emitter_kind[light]
@@ -135,7 +136,7 @@ def emitted_colour(frame, lights, geo, stacks, point, phong, key, event, split):
         # The samples, then the probes (one call of emitter_sample: each call site is code)
         for j in range(count + PROBES if probing else count):
             if j < count:
-                a, b = square_point(pattern, count, j, key, stream, shift)
+                a, b = square_point(pattern, count, j, key, stream, shift, spread)
             else:
                 a, b = probe_square(kind, j - count)
             direction, t, weight = emitter_sample(lights, light, origin, n, a, b)

@@ -23,7 +23,7 @@ import math
 from ..jit.decorators import kernel
 from .layout import ENVIRONMENT_IMAGE, ENVIRONMENT_NONE, ENVIRONMENT_UNIFORM
 from .light_pyramid import TRAVERSE_ALL
-from .light_samples import in_frame, square_point
+from .light_samples import in_frame, light_spread, square_point
 from .options import (
     HIDDEN_FROM_CAMERA,
     HIDDEN_FROM_DIFFUSE,
@@ -154,9 +154,10 @@ def environment_light(frame, lights, geo, stacks, point, kd, key, event, split):
     shift = (0.0, 0.0)
     if pattern == SHADOW_HALTON:
         shift = uniform2(key, PURPOSE_LIGHT_SHIFT, stream, 0)
+    spread = light_spread(stacks.light_strata, pattern, samples, stream)
     by_image = kind == ENVIRONMENT_IMAGE and lights.env_size[2] == 1
     for j in range(samples):
-        a, b = square_point(pattern, samples, j, key, stream, shift)
+        a, b = square_point(pattern, samples, j, key, stream, shift, spread)
         if by_image:
             d, density = sample_image(lights, a, b)
         else:

@@ -9,9 +9,11 @@ sphere's cone of directions or a sun's.
 
 import math
 
+import numpy as np
+
 from ..jit.decorators import inlined_kernel, kernel
 from .options import SHADOW_HALTON, SHADOW_STRATIFIED
-from .rng import PURPOSE_LIGHT, uniform2
+from .rng import PURPOSE_LIGHT, chain, mix, uniform2
 from .vec import add, scale
 
 
@@ -42,16 +44,62 @@ def stratified_cell(j, count):
     return (j - r * columns) / in_row, y0, 1.0 / in_row, height
 
 
+# Slots of Stacks.light_strata: where the camera sample being traced stands in its pixel's
+# random order of its n x n samples, n (0: the sample is not one of a pixel's grid), and the
+# pixel's key
+STRATA_PLACE, STRATA_SIDE, STRATA_KEY = 0, 1, 2
+STRATA_SLOTS = 3
+
+
 @inlined_kernel
-def square_point(pattern, samples, j, key, stream, shift):
+def light_spread(strata, pattern, samples, stream):
+    """Where on a light this camera sample's one shadow ray goes, when each of its pixel's
+    n x n camera samples casts one (see `square_point`): (column, row, n) of its cell of an
+    n x n division of the light; n 0 when the pattern is not stratified, the camera sample
+    is no pixel's grid or it casts more than one ray. The cell is the sample's place in its
+    pixel's random order, turned by an offset of the light's and the bounce's own
+    (`stream`), so that each light sees the pixel's samples in another order. Worked out
+    once per light, the order once per camera ray: a random permutation per light point
+    cost the final scene 15% of its render time."""
+    side = int(strata[STRATA_SIDE])
+    if pattern != SHADOW_STRATIFIED or side < 2 or samples != 1:
+        return 0, 0, 0
+    count = side * side
+    # The hash's top 32 bits scaled to 0..count-1 (count is at most 1024^2): no division
+    h = mix(chain(strata[STRATA_KEY], stream)) >> np.uint64(32)
+    cell = int(strata[STRATA_PLACE]) + int((h * np.uint64(count)) >> np.uint64(32))
+    if cell >= count:
+        cell -= count
+    return cell % side, cell // side, side
+
+
+@inlined_kernel
+def square_point(pattern, samples, j, key, stream, shift, spread):
     """Point j of `samples` in the unit square, in the shadow `pattern`; `shift` is the
-    shading point's Halton offset, `key` and `stream` select the random numbers."""
+    shading point's Halton offset, `key` and `stream` select the random numbers.
+
+    Stratified, point j lies in cell j of `samples` equal cells; and where each of a pixel's
+    n x n camera samples casts one ray, they share out n x n cells of the light (`spread`,
+    from `light_spread`), each its own, in a random order of the pixel's, so that its place
+    in the pixel and its place on the light are not correlated: the pixel's mean sees the
+    light stratified n x n times as finely, at no more rays (Cook, Porter and Carpenter's
+    distributed ray tracing gives each of a pixel's rays its own part of the light). On the
+    final scene at one shadow ray a camera ray, RMSE against the converged picture 0.00477
+    -> 0.00434 at 3 x 3 camera rays, 0.00182 -> 0.00148 at 6 x 6
+    (tests/benchmarks/bench_equal_error). With more rays a camera ray, their cells stay
+    each camera ray's own: dividing each cell among the pixel's samples made each camera
+    ray's points a near-lattice, and sharing bands of cells out made them stripes; either
+    raised the teapot's soft-shadow error (2 x 2 camera rays, 4 to 25 shadow rays) by
+    1.2-1.9x (tests/blender/test_adaptive_samples)."""
     if pattern == SHADOW_HALTON:
         a = (radical_inverse(j + 1, 2) + shift[0]) % 1.0
         b = (radical_inverse(j + 1, 3) + shift[1]) % 1.0
     else:
         a, b = uniform2(key, PURPOSE_LIGHT, stream, j)
     if pattern == SHADOW_STRATIFIED:
+        column, row, side = spread
+        if side > 0:
+            return (column + a) / side, (row + b) / side
         x0, y0, w, h = stratified_cell(j, samples)
         a, b = x0 + a * w, y0 + b * h
     return a, b

@@ -22,9 +22,10 @@ from .adaptive_tile import (
 )
 from .camera import camera_ray, ray_through
 from .integrator import trace_ray
+from .light_samples import STRATA_KEY, STRATA_PLACE, STRATA_SIDE
 from .options import OPTION_PASSES, OPTION_PIXEL_SAMPLES, OPTION_SEED
 from .pass_record import accumulate, start_pixel, view_axis, write_passes
-from .rng import PURPOSE_LENS, sample_key, uniform2
+from .rng import PURPOSE_LENS, PURPOSE_LIGHT, chain, permuted, sample_key, uniform2
 
 FLOAT32_MAX = 3.4028234663852886e38
 
@@ -49,6 +50,7 @@ def render_tile(ps, image_width, image_height, x0, y0, width, height, out, ws):
     threshold = frame.sampling[0]
     adaptive = threshold > 0.0 and n > 1
     corners = ws.corners
+    strata = ws.stacks.light_strata
     for j in range(height):
         if adaptive and j > 0:
             next_corner_row(corners)
@@ -59,6 +61,8 @@ def render_tile(ps, image_width, image_height, x0, y0, width, height, out, ws):
             r = g = b = a = 0.0
             if passes:
                 start_pixel(ws.accum)
+            # The pixel's key for sharing out the stratified lights' cells among its samples
+            strata[STRATA_KEY] = chain(sample_key(seed, px, py, samples), PURPOSE_LIGHT)
             # Rays 0..first-1 (adaptive): the corners this pixel traces, then its centre;
             # then its samples, unless the corners and the centre agree
             first = corners_to_trace(i, j) + 1 if adaptive else 0
@@ -66,6 +70,11 @@ def render_tile(ps, image_width, image_height, x0, y0, width, height, out, ws):
             s = 0
             cr = cg = cb = ca = 0.0  # the centre's colour and alpha
             while s < end:
+                # Corners and centres are no pixel's grid: their lights are sampled alone
+                strata[STRATA_SIDE] = 0
+                if s >= first and n > 1:
+                    strata[STRATA_SIDE] = n
+                    strata[STRATA_PLACE] = permuted(s - first, samples, strata[STRATA_KEY])
                 if s < first - 1:
                     cx, cy, column, row = corner_of(s, i, j)
                     key = sample_key(seed, x0 + cx, y0 + cy, CORNER_SAMPLE)

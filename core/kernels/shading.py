@@ -22,7 +22,7 @@ from typing import NamedTuple
 
 from ..jit.decorators import inlined_kernel, kernel
 from .light_pyramid import TRAVERSE_ALL, build_pyramid, pyramid_candidates
-from .light_samples import square_point
+from .light_samples import light_spread, square_point
 from .options import (
     OPTION_SHADOW_ADAPTIVE,
     OPTION_SHADOW_CULLING,
@@ -200,9 +200,10 @@ def local_colour(frame, lights, geo, stacks, point, phong, key, event, split):
         shift = (0.0, 0.0)
         if pattern == SHADOW_HALTON:
             shift = uniform2(key, PURPOSE_LIGHT_SHIFT, stream, 0)
+        spread = light_spread(stacks.light_strata, pattern, samples, stream)
         for j in range(samples + PROBES if adaptive else samples):  # the samples, the probes
             if j < samples:
-                a, b = square_point(pattern, samples, j, key, stream, shift)
+                a, b = square_point(pattern, samples, j, key, stream, shift, spread)
             else:
                 a, b = probe_square(-1, j - samples)
             _aim(targets, j, _square_to_light(area, a, b), origin)

@@ -9,6 +9,7 @@ from .bvh_build import MAX_TREE_DEPTH
 from .bvh_wide import WIDTH
 from .csg import CROSSING_CAPACITY, SPAN_CAPACITY
 from .light_pyramid import MAX_CANDIDATES, PYRAMID_ROWS
+from .light_samples import STRATA_SLOTS
 from .pass_record import ACC_COUNT, REC_COUNT, TERM_ROWS
 from .shader_program import LOBE_COUNT, SHADER_STACK
 from .shadow_log import PROBES, SHADOW_LOG_SIZE, SHADOW_STATE_SLOTS, VARYING_CAPACITY
@@ -73,6 +74,9 @@ class Stacks(NamedTuple):
     shadow_log: np.ndarray  # float64 (SHADOW_LOG_SIZE,): each ray's visibility
     varying_f: np.ndarray  # float64 (VARYING_CAPACITY, 9): t, b1, b2, the ray's o and d
     varying_i: np.ndarray  # int64 (VARYING_CAPACITY, 3): shape row, part, the ray's number
+    # uint64 (STRATA_SLOTS,): the camera sample's place among its pixel's, over which the
+    # stratified lights' cells are shared out (core.kernels.light_samples.square_point)
+    light_strata: np.ndarray
 
 
 class RayStack(NamedTuple):
@@ -150,6 +154,7 @@ def new_workspace(
             np.zeros(SHADOW_LOG_SIZE),
             np.zeros((VARYING_CAPACITY, 9)),
             np.zeros((VARYING_CAPACITY, 3), np.int64),
+            np.zeros(STRATA_SLOTS, np.uint64),
         ),
         RayStack(
             np.empty((rays, 3)),

@@ -112,8 +112,8 @@ def whitted_sweep() -> list[WhittedSetting]:
     fixed = [WhittedSetting(n, s) for n in (1, 2, 3, 4, 5, 6, 7) for s in (1, 4, 9, 16, 40)]
     adaptive_aa = [
         WhittedSetting(n, s, threshold=t)
-        for n in (3, 4, 6)
-        for s in (4, 16, 40)
+        for n in (3, 4, 5, 6, 7)
+        for s in (1, 4, 16, 40)
         for t in (0.01, 0.03)
     ]
     adaptive_shadows = [

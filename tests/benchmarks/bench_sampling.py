@@ -236,17 +236,23 @@ def irradiance_reference(p):
 def floor_reference(per_side=1):
     """Reference per pixel: the mean over the pixel's per_side^2 grid points (the camera rays
     of the "grid" pattern); NaN where any of them sees the occluder, not the floor."""
-    d = pixel_rays(per_side)
+    rows, columns = np.divmod(np.arange(SIZE * SIZE), SIZE)
+    return floor_reference_at(per_side, rows, columns).reshape(SIZE, SIZE)
+
+
+def floor_reference_at(per_side, rows, columns):
+    """`floor_reference` at the pixels (rows[i], columns[i]) alone."""
+    d = pixel_rays(per_side)[rows, columns]
     eye = np.array([0.0, 0.0, EYE_HEIGHT])
     with np.errstate(divide="ignore", invalid="ignore"):
         t1 = (OCCLUDER_CENTRE - OCCLUDER_HALF - eye) / d
         t2 = (OCCLUDER_CENTRE + OCCLUDER_HALF - eye) / d
     blocked = np.nanmax(np.minimum(t1, t2), axis=-1) <= np.nanmin(np.maximum(t1, t2), axis=-1)
     blocked = blocked.any(axis=-1)
-    reference = np.full((SIZE, SIZE), np.nan)
+    reference = np.full(len(d), np.nan)
     floor_points = eye + d * (EYE_HEIGHT / -d[..., 2])[..., None]
-    for row, col in zip(*np.nonzero(~blocked), strict=True):
-        reference[row, col] = np.mean([irradiance_reference(p) for p in floor_points[row, col]])
+    for i in np.nonzero(~blocked)[0]:
+        reference[i] = np.mean([irradiance_reference(p) for p in floor_points[i]])
     return reference
 
 
