@@ -78,8 +78,8 @@ class WhittedSceneSettings(bpy.types.PropertyGroup):
             (
                 "STRATIFIED",
                 "Stratified",
-                "One ray in each of equal cells of the light, the cells shared out among the "
-                "pixel's camera rays: less noise",
+                "One ray in each of equal cells of the light (at 1 shadow sample, one cell for "
+                "each of the pixel's camera rays): less noise",
             ),
             ("UNIFORM", "Uniform", "Independent random points: the most noise, for comparison"),
             ("HALTON", "Halton", "Low-discrepancy points, randomly shifted per shading point"),
@@ -95,9 +95,9 @@ class WhittedSceneSettings(bpy.types.PropertyGroup):
     shadow_samples: IntProperty(
         name="Soft Shadow Samples",
         description=(
-            "Shadow rays per area light per shading point, stratified over the light together "
-            "with the pixel's other camera rays; render time grows in proportion, noise falls "
-            "as its square root"
+            "Shadow rays per area light per shading point, stratified over the light (at 1, "
+            "over the pixel's camera rays together); render time grows in proportion, noise "
+            "falls as its square root"
         ),
         min=1,
         soft_max=256,

@@ -47,10 +47,9 @@ class RenderSettings:
                         independent random points in the pixel
     shadow_samples   -- shadow rays per area light per shading point, 1 to 65536
     shadow_sampling  -- "stratified": one sample in each of as many equal-area cells of the
-                        light, the cells shared out among a pixel's n x n camera rays (n x n
-                        x shadow_samples cells, each camera ray taking its own, in a random
-                        order per pixel); "uniform": independent random points (the
-                        report's way);
+                        light (at 1 shadow sample, a pixel's n x n camera rays share out
+                        n x n cells, each its own, in a random order per pixel); "uniform":
+                        independent random points (the report's way);
                         "halton": the Halton sequence, shifted at random per shading point
     adaptive_threshold -- adaptive anti-aliasing, from 2 x 2 pixel_samples up: 0 gives every
                         pixel its n x n camera rays (the exact, report's way); t > 0 traces

@@ -107,7 +107,6 @@ def test_adaptive_sampling_beats_the_fixed_grid_at_equal_cost_and_stitches(
             fixed = core.render(scene, small(settings, **shared, **grid))
             if fixed.stats.rays_cast <= adaptive.stats.rays_cast:
                 affordable.append((error(fixed.image, converged), str(grid)))
-        print("PROBE", where, adaptive_error, adaptive.stats.rays_cast, sorted(affordable))  # PROBE
         assert affordable, f"{where}: no fixed grid casts as few rays"
         best = min(affordable)
         # A tie within rounding is no loss: where nothing needs refining both draw alike
