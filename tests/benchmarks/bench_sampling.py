@@ -171,6 +171,11 @@ def _cos_to(points, p):
     return v[..., 2] / np.linalg.norm(v, axis=-1)
 
 
+def _cross2(a, b):
+    """The z of the cross product of two 2-D vectors (numpy 2 refuses 2-D np.cross)."""
+    return a[0] * b[1] - a[1] * b[0]
+
+
 def _convex_hull(points):
     """Counter-clockwise hull of 2-D points (monotone chain)."""
     pts = sorted(map(tuple, points))
@@ -178,8 +183,8 @@ def _convex_hull(points):
     def half(seq):
         out = []
         for q in seq:
-            while len(out) >= 2 and np.cross(np.subtract(out[-1], out[-2]),
-                                             np.subtract(q, out[-2])) <= 0:  # fmt: skip
+            while len(out) >= 2 and _cross2(np.subtract(out[-1], out[-2]),
+                                            np.subtract(q, out[-2])) <= 0:  # fmt: skip
                 out.pop()
             out.append(q)
         return out
@@ -226,7 +231,7 @@ def irradiance_reference(p):
     hidden = 0.0
     for i in range(1, len(polygon) - 1):
         v0, v1, v2 = polygon[0], polygon[i], polygon[i + 1]
-        area2 = abs(np.cross(v1 - v0, v2 - v0))
+        area2 = abs(_cross2(v1 - v0, v2 - v0))
         xy = v0 + np.outer(ta - tb, v1 - v0) + np.outer(tb, v2 - v0)
         q = np.column_stack([xy, np.full(len(xy), LIGHT_CENTRE[2])])
         hidden += area2 * np.sum(tw * _cos_to(q, p))
