@@ -31,6 +31,14 @@ SHADOW_UNIFORM, SHADOW_STRATIFIED, SHADOW_HALTON = 0, 1, 2
 SHADOW_PATTERNS = {"uniform": SHADOW_UNIFORM, "stratified": SHADOW_STRATIFIED,
                    "halton": SHADOW_HALTON}  # fmt: skip
 
+# What a shadow ray does at a refracting surface (glass, Principled Transmission, Refraction
+# BSDF): passes it unbent, dimmed by its transparency (the report's rule, a classic ray
+# tracer's cheap approximation), or is blocked, as physics has it and Cycles draws it (light
+# crosses a refracting surface only along refracted paths: caustics). Transparent BSDF and
+# Alpha let shadow rays through under either rule
+GLASS_SHADOWS_ATTENUATED, GLASS_SHADOWS_BLOCKED = 0, 1
+GLASS_SHADOWS = {"attenuated": GLASS_SHADOWS_ATTENUATED, "blocked": GLASS_SHADOWS_BLOCKED}
+
 # How camera rays leave the camera: from the eye through the image plane, or parallel to the
 # view from every point of the image plane
 PROJECTION_PERSPECTIVE, PROJECTION_ORTHOGRAPHIC = 0, 1

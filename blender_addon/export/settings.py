@@ -38,6 +38,7 @@ def convert(scene) -> core.RenderSettings:
         environment_samples=settings.environment_samples,
         glossy_samples=settings.glossy_samples,
         seed=settings.seed,
+        glass_shadows=settings.glass_shadows.lower(),
         transparent=render.film_transparent,
     )
 

@@ -170,6 +170,8 @@ def _configure(scene, call) -> None:
     whitted.shadow_sampling = settings.shadow_sampling.upper()
     whitted.adaptive_shadows = settings.adaptive_shadows
     whitted.seed = settings.seed
+    # the report's rule, so the imported scene renders as the script does
+    whitted.glass_shadows = settings.glass_shadows.upper()
     world = bpy.data.worlds.new(f"{call.output.stem} ambient")
     give_nodes(world)
     background = next(n for n in world.node_tree.nodes if n.type == "BACKGROUND")

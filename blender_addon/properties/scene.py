@@ -29,6 +29,28 @@ class WhittedSceneSettings(bpy.types.PropertyGroup):
         max=64,
         default=5,
     )
+    glass_shadows: EnumProperty(
+        name="Glass Shadows",
+        description="What light does at glass and other refracting surfaces on its way to a "
+        "lit point",
+        items=[
+            (
+                "BLOCKED",
+                "Blocked",
+                "Refracting surfaces (Glass and Refraction BSDFs, Principled Transmission) "
+                "block direct light, as in Cycles: a glass ball casts a full shadow. "
+                "Transparent BSDF and Alpha still let light through",
+            ),
+            (
+                "ATTENUATED",
+                "Attenuated",
+                "Shadow rays pass refracting surfaces unbent, dimmed by their transmission: "
+                "the classic ray tracer's approximation, lighter than physics (a glass ball's "
+                "shadow is pale, with no focused light in it)",
+            ),
+        ],
+        default="BLOCKED",
+    )
     pixel_samples: IntProperty(
         name="Anti-Aliasing",
         description=(

@@ -72,7 +72,9 @@ class WHITTED_PT_light_paths(_RenderPanel, bpy.types.Panel):
     bl_label = "Light Paths"
 
     def draw(self, context):
-        self.split_layout().prop(context.scene.whitted, "max_depth", text="Bounces")
+        layout = self.split_layout()
+        layout.prop(context.scene.whitted, "max_depth", text="Bounces")
+        layout.prop(context.scene.whitted, "glass_shadows")
 
 
 class WHITTED_PT_film(_RenderPanel, bpy.types.Panel):

@@ -15,7 +15,9 @@ One module a table, called in this order, each for a reason:
 6. `meshes`: each `TriangleMesh` once, with its BVH (the shape table needs their bounds);
 7. `shapes`: the shape table and the top-level BVH (`Geometry`);
 8. `surfaces`: per row, its material; per triangle, its normals and UVs;
-9. `lights`.
+9. `lights`;
+10. `caustics`: photons traced through all of the above (core.compile.caustics), into the
+   lights' photon arrays.
 Every array has a fixed dtype and rank whatever the scene, so the kernels compile once and
 load from the cache for every scene after. Scenes without some feature get empty arrays, and
 the kernels do no work for it.
@@ -28,8 +30,10 @@ from typing import NamedTuple
 import numpy as np
 
 from ..kernels.layout import PackedScene
+from ..kernels.options import OPTION_GLASS_SHADOWS
 from ..memory_estimate import check_fits, estimate
 from ..model import RenderSettings, Scene
+from .caustics import CausticReport, add_caustics
 from .csg import owner_rows, pack_csg
 from .frame import pack_frame
 from .glowing import glowing_shapes
@@ -49,6 +53,7 @@ class CompiledScene(NamedTuple):
     warnings: list[str]
     triangles: int  # triangles packed, each mesh counted once
     mesh_bytes: int  # bytes of all mesh arrays (BVH nodes, corners, normals, UVs)
+    caustics: CausticReport | None = None  # the photon pass, if any was traced
 
 
 def pack_scene(scene: Scene, settings: RenderSettings) -> PackedScene:
@@ -71,7 +76,8 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
     meshes, mesh_of = pack_meshes(shapes)
     graph_of_row = {material_of[id(s.material)]: s.material.surface for s in shapes}
     graphs = [graph_of_row.get(k) for k in range(len(materials.transparency))]
-    lets_through = shadow_shares(materials, graphs)
+    refraction_passes = settings.glass_shadows == "attenuated"
+    lets_through = shadow_shares(materials, graphs, refraction_passes)
     shadow_share = [lets_through[material_of[id(s.material)]] for s in shapes]
     geometry = pack_geometry(scene.shapes, shapes, world_from_object, csg, tree_of_row,
                              meshes, mesh_of, shadow_share)  # fmt: skip
@@ -80,28 +86,39 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
     glowing = glowing_shapes(scene.shapes, materials, material_of)
     lights = pack_lights(scene.lights, scene.environment, glowing)
     packed = kernel_ready(PackedScene(frame, geometry, surfaces, materials, lights))
-    warnings = [
-        f"mesh '{name}': dropped {count} degenerate (zero-area) triangle"
-        + ("s" if count != 1 else "")
-        for name, count in meshes.dropped.items()
-    ] + glowing.warnings
+    packed, caustic_warnings, caustics = add_caustics(packed, settings)
+    packed = kernel_ready(packed)
+    warnings = (
+        [
+            f"mesh '{name}': dropped {count} degenerate (zero-area) triangle"
+            + ("s" if count != 1 else "")
+            for name, count in meshes.dropped.items()
+        ]
+        + glowing.warnings
+        + caustic_warnings
+    )
     mesh_bytes = sum(
         getattr(group, name).nbytes
         for group in (geometry, surfaces)
         for name in MESH_FIELDS
         if name in group._fields
     )
-    return CompiledScene(packed, warnings, meshes.counts["tris"], mesh_bytes)
+    return CompiledScene(packed, warnings, meshes.counts["tris"], mesh_bytes, caustics)
 
 
 def with_frame(compiled: CompiledScene, scene: Scene, settings: RenderSettings) -> CompiledScene:
     """`compiled` seen through `scene`'s camera at `settings`' size and sampling: only the
     frame (step 2) is packed again, the geometry, materials and lights are shared. What the
     viewport does when the view moves, and for each of its coarse-to-fine passes. `scene`
-    must hold what `compiled` was compiled from, but for its camera."""
+    must hold what `compiled` was compiled from, but for its camera, and `settings` its
+    glass-shadow rule."""
     scene.camera.validate()
     settings.validate()
-    frame = kernel_ready(PackedScene(pack_frame(scene, settings), *compiled.packed[1:]))[0]
+    frame = pack_frame(scene, settings)
+    if frame.options[OPTION_GLASS_SHADOWS] != compiled.packed.frame.options[OPTION_GLASS_SHADOWS]:
+        # the shapes' shadow shares were packed under the compiled rule
+        raise ValueError("with_frame: settings.glass_shadows differs from the compiled scene's")
+    frame = kernel_ready(PackedScene(frame, *compiled.packed[1:]))[0]
     return compiled._replace(packed=compiled.packed._replace(frame=frame))
 
 

@@ -18,6 +18,7 @@ from ..kernels.options import (
     OPTION_ENVIRONMENT_CLOSEST,
     OPTION_ENVIRONMENT_HIDDEN,
     OPTION_ENVIRONMENT_SAMPLES,
+    OPTION_GLASS_SHADOWS,
     OPTION_GLOSSY_SAMPLES,
     OPTION_MAX_DEPTH,
     OPTION_PASSES,
@@ -40,6 +41,7 @@ from ..kernels.options import (
 )
 from ..model import RenderSettings, Scene
 from ..passes import MIST_FALLOFFS, layout
+from ..vocabulary import GLASS_SHADOWS
 from .environment import environment_kind
 
 # Listing an area light's shapes costs about as much per shading point as tracing a few
@@ -94,6 +96,7 @@ def _options(scene: Scene, settings: RenderSettings) -> np.ndarray:
     options[OPTION_ENVIRONMENT] = environment_kind(environment)
     options[OPTION_ENVIRONMENT_SAMPLES] = settings.environment_samples
     options[OPTION_GLOSSY_SAMPLES] = settings.glossy_samples
+    options[OPTION_GLASS_SHADOWS] = GLASS_SHADOWS[settings.glass_shadows]
     options[OPTION_ENVIRONMENT_CLOSEST] = (
         environment is not None and environment.interpolation == "closest"
     )

@@ -53,6 +53,19 @@ def pack_lights(lights: list, environment=None, glowing=None) -> Lights:
         glow_triangles=concatenated(glowing.triangles if glowing else [], (0, 9), np.float64),
         glow_cdf=concatenated(glowing.cdfs if glowing else [], (0,), np.float64),
         **pack_environment(environment),
+        **no_photons(),
+    )
+
+
+def no_photons() -> dict:
+    """Lights' photon arrays holding none (core.compile.caustics fills them)."""
+    return dict(
+        photon_position=np.zeros((0, 3)),
+        photon_direction=np.zeros((0, 3)),
+        photon_power=np.zeros((0, 3)),
+        photon_radius=np.zeros(0),
+        photon_cells=np.zeros(0, np.int64),
+        photon_levels=np.zeros(0),
     )
 
 

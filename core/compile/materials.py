@@ -154,15 +154,19 @@ def _fold_constant_programs(table: Materials, programs: list) -> None:
         table.shader_range[k] = (-1, -1)
 
 
-def shadow_shares(table: Materials, surfaces: list) -> np.ndarray:
-    """What one crossing of each material's surface lets a shadow ray through: its
-    transparency plus the mean of what passes it straight, at most 1. A material whose
-    terms vary over the surface (a program run per hit; `surfaces[k]` is row k's graph)
-    is SHADOW_VARIES if its graph can let light through anywhere (its program is run at
-    each crossing, core.kernels.shadow_log), else 0: no light passes it."""
-    share = np.minimum(1.0, table.transparency + table.transparent.mean(axis=1))
+def shadow_shares(table: Materials, surfaces: list, refraction_passes: bool = True) -> np.ndarray:
+    """What one crossing of each material's surface lets a shadow ray through: what passes
+    it straight (the mean over RGB), plus its transparency when `refraction_passes` (the
+    "attenuated" glass-shadow rule; under "blocked" a refracting surface stops shadow rays),
+    at most 1. A material whose terms vary over the surface (a program run per hit;
+    `surfaces[k]` is row k's graph) is SHADOW_VARIES if its graph can let light through
+    anywhere under the rule (its program is run at each crossing, core.kernels.shadow_log),
+    else 0: no light passes it."""
+    refracted = table.transparency if refraction_passes else 0.0
+    share = np.minimum(1.0, refracted + table.transparent.mean(axis=1))
     for k in np.flatnonzero(table.shader_range[:, 0] >= 0):
-        share[k] = SHADOW_VARIES if passes_light(surfaces[k]) else 0.0
+        lets_through = passes_light(surfaces[k], refraction_passes)
+        share[k] = SHADOW_VARIES if lets_through else 0.0
     return share
 
 

@@ -26,6 +26,8 @@ seen_through_glass) is passed as if absent: the ray goes on from its far side.
 import math
 
 from ..jit.decorators import inlined_kernel, kernel
+from ..vocabulary import GLASS_SHADOWS_ATTENUATED
+from .caustics import caustic_irradiance
 from .emitters import emitted_colour
 from .emitters_seen import emitters_seen
 from .environment import environment_light, environment_seen
@@ -39,6 +41,7 @@ from .layout import (
 from .light_samples import stratified_cell
 from .options import (
     OPTION_ENVIRONMENT,
+    OPTION_GLASS_SHADOWS,
     OPTION_GLOSSY_SAMPLES,
     OPTION_MAX_DEPTH,
     OPTION_PASSES,
@@ -195,6 +198,7 @@ def trace_ray(ps, o, d, key, ws):
     recording = passes != 0
     split = (passes & PASSES_LIGHT_SPLIT) != 0
     with_uv = (passes & PASSES_UV) != 0
+    refraction_passes = frame.options[OPTION_GLASS_SHADOWS] == GLASS_SHADOWS_ATTENUATED
     if recording:
         clear(record, 0.0)
     colour = (0.0, 0.0, 0.0)
@@ -318,8 +322,12 @@ def trace_ray(ps, o, d, key, ws):
                     local = add(local, sky)
                 # shadow rays that crossed surfaces whose share varies: their shares, then
                 # the lights once more with the answered visibilities (core.kernels.shadow_log)
-                if not answer_crossings(geo, surf, mats, ws):
+                if not answer_crossings(geo, surf, mats, ws, refraction_passes):
                     break
+            if lights.photon_cells.shape[0] > 0:
+                # light brought by mirrors and glass (core.kernels.caustics)
+                caustic = caustic_irradiance(lights, p, n_geometric)
+                local = add(local, mul(kd, scale(caustic, 1.0 / math.pi)))
             seen = mul(w, scale(local, 1.0 - tau))
             colour = add(colour, seen)
             if first:

@@ -155,6 +155,16 @@ class Lights(NamedTuple):
     env_size: np.ndarray  # int64 (3,): width, height, 1 if env_transform is a rotation
     env_row_cdf: np.ndarray  # float64 (height + 1,): picks a row
     env_column_cdf: np.ndarray  # float64 (height, width + 1): picks a pixel of the row
+    # caustic photons (core.kernels.photons, core.compile.caustics), ordered by their
+    # bucket (core.kernels.caustics): where each was stored, its direction of travel, its
+    # power (W) and the radius of its disk; the first photon of each bucket (one past the
+    # last: the count); the levels' cell edges
+    photon_position: np.ndarray  # float64 (m, 3)
+    photon_direction: np.ndarray  # float64 (m, 3)
+    photon_power: np.ndarray  # float64 (m, 3)
+    photon_radius: np.ndarray  # float64 (m,)
+    photon_cells: np.ndarray  # int64 (2^b + 1,), or (0,) without photons
+    photon_levels: np.ndarray  # float64 (levels,)
 
 
 # EMITS_* bits of Lights.emitter_flags

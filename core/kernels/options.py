@@ -25,7 +25,9 @@ OPTION_GLOSSY_SAMPLES = 15
 # 1: adaptive soft shadows, an area light's probes deciding whether its samples' rays are
 # cast (core.kernels.shadow_rays)
 OPTION_SHADOW_ADAPTIVE = 16
-OPTION_COUNT = 17
+# one of GLASS_SHADOWS_* (core.vocabulary): whether a shadow ray passes a refracting surface
+OPTION_GLASS_SHADOWS = 17
+OPTION_COUNT = 18
 
 # OPTION_ENVIRONMENT_HIDDEN's bits (Blender's World > Settings > Ray Visibility, off)
 HIDDEN_FROM_CAMERA = 1

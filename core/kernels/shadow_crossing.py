@@ -3,7 +3,9 @@
 integrator, the one place that program is compiled in."""
 
 from ..jit.decorators import inlined_kernel, kernel
+from ..vocabulary import GLASS_SHADOWS_ATTENUATED
 from .light_pyramid import TRAVERSE_ALL
+from .options import OPTION_GLASS_SHADOWS
 from .shader_program import run_program
 from .shadow_log import STATE_CROSSINGS, STATE_RAY, STATE_REPLAY, begin_point
 from .surface import hit_frame, normal_rows, surface_at
@@ -12,11 +14,12 @@ from .trace import transmittance
 
 
 @inlined_kernel
-def crossing_share(geo, surf, mats, ws, shape, part, b1, b2, o, d, t):
+def crossing_share(geo, surf, mats, ws, shape, part, b1, b2, o, d, t, refraction_passes):
     """What shape row `shape`'s surface lets a shadow ray o + t d through where it crosses
     it (part, b1, b2 as a nearest hit gives them): the rule of a constant material's
-    share (`core.compile.materials.shadow_shares`), its transparency plus the mean of what
-    passes it straight, at most 1, with the terms its program gives there."""
+    share (`core.compile.materials.shadow_shares`), the mean of what passes it straight
+    plus, if `refraction_passes`, its transparency, at most 1, with the terms its program
+    gives there."""
     material = surf.shape_material[shape]
     p, _, n_shading, u, v = surface_at(geo, surf, shape, part, b1, b2, o, d, t, True)
     with_frame = mats.shader_frame[material] != 0
@@ -26,13 +29,15 @@ def crossing_share(geo, surf, mats, ws, shape, part, b1, b2, o, d, t):
     run_program(mats, material, ws.shader_stack, ws.lobes, hit, across, rows, (0.0, 1.0, 0.0))
     here = terms_from_lobes(ws.lobes)
     straight = (here.transparent[0] + here.transparent[1] + here.transparent[2]) / 3.0
-    return min(1.0, max(0.0, here.transparency + straight))
+    refracted = here.transparency if refraction_passes else 0.0
+    return min(1.0, max(0.0, refracted + straight))
 
 
 @inlined_kernel
-def answer_crossings(geo, surf, mats, ws):
+def answer_crossings(geo, surf, mats, ws, refraction_passes):
     """Multiply each listed crossing's share into its shadow ray's logged visibility, and
-    set the log to be replayed. False when nothing was listed: the point is lit already."""
+    set the log to be replayed. False when nothing was listed: the point is lit already.
+    `refraction_passes`: the glass-shadow rule (OPTION_GLASS_SHADOWS is "attenuated")."""
     stacks = ws.stacks
     state, log = stacks.shadow_state, stacks.shadow_log
     f, i = stacks.varying_f, stacks.varying_i
@@ -44,9 +49,8 @@ def answer_crossings(geo, surf, mats, ws):
         if log[g] == 0.0:
             continue  # an earlier crossing of the same ray blocked it
         o, d = (f[c, 3], f[c, 4], f[c, 5]), (f[c, 6], f[c, 7], f[c, 8])
-        share = crossing_share(
-            geo, surf, mats, ws, i[c, 0], i[c, 1], f[c, 1], f[c, 2], o, d, f[c, 0]
-        )
+        shape, part, b1, b2, t = i[c, 0], i[c, 1], f[c, 1], f[c, 2], f[c, 0]
+        share = crossing_share(geo, surf, mats, ws, shape, part, b1, b2, o, d, t, refraction_passes)
         log[g] *= share
     state[STATE_RAY] = 0
     state[STATE_CROSSINGS] = 0
@@ -60,10 +64,11 @@ def light_along(ps, ws, o, d, t_max):
     transmittance with the crossings of varying surfaces answered (for tests and tools;
     `core.kernels.batch.shadow_rays` answers the constant shares alone)."""
     geo, surf, mats = ps.geometry, ps.surfaces, ps.materials
+    refraction_passes = ps.frame.options[OPTION_GLASS_SHADOWS] == GLASS_SHADOWS_ATTENUATED
     stacks = ws.stacks
     begin_point(stacks.shadow_state)
     light = transmittance(geo, o, d, t_max, stacks, TRAVERSE_ALL)
     stacks.shadow_log[0] = light
     if light > 0.0:
-        answer_crossings(geo, surf, mats, ws)
+        answer_crossings(geo, surf, mats, ws, refraction_passes)
     return stacks.shadow_log[0]

@@ -187,10 +187,12 @@ def shape_transmittance(geo, shape, o, d, t_max, stacks):
 def transmittance(geo, o, d, t_max, stacks, listed):
     """The fraction of light that passes along o + t d, 0 < t < t_max (shadow rays).
 
-    The rule for transparent objects: each crossing of a surface whose material has
-    transparency tau multiplies the light by tau, without bending or Fresnel loss (a shadow
-    ray cannot follow refraction to the light). Opaque surfaces (tau = 0) block it outright,
-    and the search stops at the first of them, as an any-hit query.
+    The rule for transparent objects: each crossing of a surface multiplies the light by
+    its share (Geometry.shape_transparency, `core.compile.materials.shadow_shares`): what
+    passes it straight, plus, under the "attenuated" glass-shadow rule, its transparency tau,
+    without bending or Fresnel loss (a shadow ray cannot follow refraction to the light).
+    Surfaces of share 0 block it outright, and the search stops at the first of them, as an
+    any-hit query.
 
     Which shapes are tried: with listed < 0 (TRAVERSE_ALL), those whose boxes the top-level
     BVH finds along the ray; with listed >= 0, only the first `listed` shapes of

@@ -7,10 +7,16 @@ from dataclasses import dataclass
 from ..checks import check_choice, check_count, check_flag, check_number, machine_memory
 from ..errors import SceneError
 from ..passes import DEFAULT_CRYPTO_LEVELS, MAX_CRYPTO_LEVELS, MIST_FALLOFFS, channels, check_passes
-from ..vocabulary import PIXEL_PATTERNS, SHADOW_PATTERNS
+from ..vocabulary import GLASS_SHADOWS, PIXEL_PATTERNS, SHADOW_PATTERNS
 
 PIXEL_SAMPLINGS = tuple(PIXEL_PATTERNS)
 SHADOW_SAMPLINGS = tuple(SHADOW_PATTERNS)
+GLASS_SHADOW_RULES = tuple(GLASS_SHADOWS)
+CAUSTIC_KINDS = ("reflective", "refractive")
+# Photons traced for caustics by default, when asked for (core.compile.caustics), and at most
+# (88 bytes a stored photon, up to two stored a photon traced: 1.8 GB)
+DEFAULT_CAUSTIC_PHOTONS = 200_000
+MAX_CAUSTIC_PHOTONS = 10_000_000
 # The defaults a new render starts with, from the speed-against-accuracy charts
 # (tests/benchmarks: bench_sampling, bench_whole_scene): 3 x 3 grid camera rays cut the edge
 # scene's anti-aliasing error 7x for 9 rays, and past 4 shadow rays per shading point no
@@ -84,6 +90,21 @@ class RenderSettings:
     mist_start, mist_depth, mist_falloff -- the mist pass: 0 at mist_start from the camera,
                         1 at mist_start + mist_depth, the ramp raised to 2 ("QUADRATIC"), 1
                         ("LINEAR") or 1/2 ("INVERSE_QUADRATIC"), as Blender's World > Mist Pass
+    glass_shadows    -- what a shadow ray does at a refracting surface (a material's
+                        transparency: glass, Principled Transmission, Refraction BSDF):
+                        "attenuated" passes it unbent, the light dimmed by the transparency
+                        (the report's rule: a classic ray tracer's cheap approximation,
+                        lighter than physics: a glass ball's shadow is 1 - tau dark with no
+                        caustic); "blocked" stops it, as physics has it and Cycles draws it:
+                        light reaches what lies behind glass only along refracted paths.
+                        What passes a surface straight (Transparent BSDF, Alpha) lights what
+                        is behind under either rule. Blender scenes render "blocked"
+    caustics         -- light carried by mirrors ("reflective") and glass ("refractive") onto
+                        diffuse surfaces, traced as photons from the lights in Blender's
+                        units (core.compile.caustics); refractive caustics need
+                        glass_shadows "blocked". () traces none (the report's pictures)
+    caustic_photons  -- photons traced for caustics, shared among the lights and the
+                        mirrors and glass by the power each sends; 0 to 10 million
     shadow_culling   -- an area light's shadow rays test only the shapes in the pyramid from
                         the shading point to the light, from 8 shadow rays per light up
                         (below, it costs more than it saves): exact, the same pixels either
@@ -106,6 +127,9 @@ class RenderSettings:
     glossy_samples: int = 0
     seed: int = 0
     shadow_culling: bool = True
+    glass_shadows: str = "attenuated"
+    caustics: tuple[str, ...] = ()
+    caustic_photons: int = DEFAULT_CAUSTIC_PHOTONS
     transparent: bool = False
     passes: tuple[str, ...] = ()
     crypto_levels: int = DEFAULT_CRYPTO_LEVELS
@@ -132,6 +156,11 @@ class RenderSettings:
         check_choice(owner, "pixel_sampling", self.pixel_sampling, PIXEL_SAMPLINGS)
         check_choice(owner, "shadow_sampling", self.shadow_sampling, SHADOW_SAMPLINGS)
         check_flag(owner, "shadow_culling", self.shadow_culling)
+        check_choice(owner, "glass_shadows", self.glass_shadows, GLASS_SHADOW_RULES)
+        self.caustics = tuple(self.caustics)
+        for kind in self.caustics:
+            check_choice(owner, "caustics", kind, CAUSTIC_KINDS)
+        check_count(owner, "caustic_photons", self.caustic_photons, high=MAX_CAUSTIC_PHOTONS)
         check_flag(owner, "adaptive_shadows", self.adaptive_shadows)
         check_number(owner, "adaptive_threshold", self.adaptive_threshold, low=0.0, high=1.0)
         check_flag(owner, "transparent", self.transparent)

@@ -377,15 +377,19 @@ def emits(surface) -> bool:
     )
 
 
-def passes_light(surface) -> bool:
-    """Whether a graph can let light through its surface anywhere: a Transparent, Glass or
-    Refraction BSDF, or a Principled BSDF whose Alpha is linked or below 1 or whose
-    Transmission is linked or above 0, among its closures. A shadow ray may then pass it."""
+def passes_light(surface, refraction_passes: bool = True) -> bool:
+    """Whether a graph can let a shadow ray through its surface anywhere: a Transparent
+    BSDF, or a Principled BSDF whose Alpha is linked or below 1, among its closures; and,
+    when `refraction_passes` (the "attenuated" glass-shadow rule), a Glass or Refraction
+    BSDF, or a Principled BSDF whose Transmission is linked or above 0."""
+    refracting = ("glass", "refraction") if refraction_passes else ()
     for node in _closures(surface):
-        if node.kind in ("transparent", "glass", "refraction"):
+        if node.kind == "transparent" or node.kind in refracting:
             return True
         if node.kind == "principled":
             alpha = node.input("Alpha")
-            if isinstance(alpha, Link) or float(alpha) < 1.0 or _given(node, "Transmission", 0.0):
+            if isinstance(alpha, Link) or float(alpha) < 1.0:
+                return True
+            if refraction_passes and _given(node, "Transmission", 0.0):
                 return True
     return False

@@ -1,0 +1,263 @@
+"""Caustic photons: the light of the lights in Blender's units carried by mirrors and glass
+onto diffuse surfaces (paths light -> specular+ -> diffuse), which shadow rays cannot
+follow: a shadow ray goes straight to the light, so a glass ball's focus and a mirror's
+sun patch are missing from a Whitted picture without them.
+
+Where photons start (the "caster spheres"). Only light that meets a mirror or glass can
+become a caustic, so photons are aimed at the bounding spheres of the shapes whose material
+reflects or refracts (core.compile.caustics), not sprayed over the scene. A photon of
+(light l, sphere k) starts at a uniform point x of sphere k's surface (normal n) and samples
+light l from x exactly as a shading point does (`emitters.emitter_sample`): direction L,
+distance t and weight w, with the light's table radiance R (core.kernels.emitters: a
+shading point's irradiance is pi (n.L) R w on average). Every light ray that enters the
+convex sphere crosses its surface once, with n.L > 0 there, so the flux entering it is the
+integral of that irradiance over its area A = 4 pi rho^2: a photon carries
+
+    A pi R w (n.L) v / (N c)
+
+for N photons of its row, v the shadow ray's transmittance from x to the light (light that
+reached x through other glass comes as that glass's own photons), and c the number of caster
+spheres the light ray enters before its first hit (the same ray, sampled from each sphere
+it crosses, counts once in all). It then travels from x along -L.
+
+How it travels. At each hit the material's terms (its row of the table: reflectivity and
+mirror tint, transparency with the exact Fresnel reflectance, glass tints, what passes
+straight) give the reflected, refracted and straight-on weights the integrator gives a
+camera ray (core.kernels.integrator); one branch is chosen with probability of its mean
+weight (Russian roulette: the rest is absorbed), and the photon's power is divided by that
+probability, so the estimate stays unbiased. A photon that has reflected or refracted at
+least once is stored where it meets a surface with a diffuse part (its incident power,
+position and direction); the shading point multiplies in its own colour
+(core.kernels.caustics). Light that passes straight (Transparent BSDF, Alpha) is not a
+caustic: shadow rays see it. Node materials whose terms vary over the surface end a
+photon (counted: the compile warns, naming none of them here).
+
+Every number comes from the photon's own key (seed, row, index), so the photons are the
+same for any threads, tiles or farm split.
+"""
+
+import math
+
+import numpy as np
+
+from ..jit.decorators import kernel
+from .emitters import emitter_sample
+from .integrator import fresnel_dielectric, refract
+from .layout import EMITS_FROM_SURFACE
+from .light_mesh import SHORT_OF_SURFACE
+from .light_pyramid import TRAVERSE_ALL
+from .light_samples import in_frame
+from .options import EMITTER_MESH, EMITTER_SUN_CONE
+from .rng import PURPOSE_PHOTON, chain, uniform2
+from .shadow_log import begin_point
+from .surface import surface_at
+from .surface_terms import table_surface
+from .trace import closest_hit, spawn_point, transmittance
+from .vec import add, dot, mul, normalize, row, scale, sub
+
+# PhotonTally slots: what a photon pass counts, for the compile's report
+TALLY_EMITTED = 0  # photons that left a light towards a caster sphere, lit
+TALLY_STORED = 1  # photons stored on diffuse surfaces
+TALLY_DROPPED = 2  # stored photons beyond the arrays' room
+TALLY_PROGRAMMED = 3  # photons ended at a node material whose terms vary over the surface
+TALLY_SLOTS = 4
+
+# Branch switches (core.compile.caustics): which specular events may carry a photon
+REFLECTIVE, REFRACTIVE = 1, 2
+
+
+@kernel
+def sphere_point(centre_radius, k, a, b):
+    """(point, outward unit normal) of sphere row k of (n, 4) centre, radius at the
+    unit-square point (a, b), uniform in area."""
+    z = 1.0 - 2.0 * a
+    ring = math.sqrt(max(0.0, 1.0 - z * z))
+    phi = 2.0 * math.pi * b
+    n = (ring * math.cos(phi), ring * math.sin(phi), z)
+    rho = centre_radius[k, 3]
+    return (centre_radius[k, 0] + rho * n[0], centre_radius[k, 1] + rho * n[1],
+            centre_radius[k, 2] + rho * n[2]), n  # fmt: skip
+
+
+@kernel
+def spheres_entered(centre_radius, o, d, s_low, s_high):
+    """How many spheres the line o + s d (d unit) enters at an s in [s_low, s_high)."""
+    count = 0
+    for k in range(centre_radius.shape[0]):
+        c = (centre_radius[k, 0], centre_radius[k, 1], centre_radius[k, 2])
+        to_centre = sub(c, o)
+        along = dot(to_centre, d)
+        gap2 = dot(to_centre, to_centre) - along * along
+        rho = centre_radius[k, 3]
+        if gap2 >= rho * rho:
+            continue
+        entry = along - math.sqrt(rho * rho - gap2)
+        if s_low <= entry < s_high:
+            count += 1
+    return count
+
+
+@kernel
+def _mean(c):
+    return (c[0] + c[1] + c[2]) / 3.0
+
+
+@kernel
+def disk_point(centre_radius, k, axis, a, b):
+    """(point, outward unit normal, cos between them and `axis`) of sphere row k at the
+    unit-square point (a, b), uniform over the disk the sphere shows along `axis` (lifted
+    onto the hemisphere facing it): density cos / (pi rho^2) over the sphere's area."""
+    ring = math.sqrt(a)
+    phi = 2.0 * math.pi * b
+    x, y = ring * math.cos(phi), ring * math.sin(phi)
+    z = math.sqrt(max(0.0, 1.0 - a))
+    n = in_frame(axis, x, y, z)
+    rho = centre_radius[k, 3]
+    return (centre_radius[k, 0] + rho * n[0], centre_radius[k, 1] + rho * n[1],
+            centre_radius[k, 2] + rho * n[2]), n, z  # fmt: skip
+
+
+@kernel
+def photon_start(geo, lights, casters, light, k, key, photons, stacks):
+    """(start point, unit direction of travel, distance to the light, power) of one photon of
+    row (light, sphere k) of `photons` photons, before the share of the spheres its light
+    ray enters; power 0 when its light sample brings nothing there.
+
+    Where on the sphere: uniform over the disk it shows towards the light's centre (a sun's
+    direction), so that under a sun every photon carries the same power (uniform over the
+    sphere, a photon's power follows the cosine at its start: 12% noise more on a lit slab
+    at equal photons); an emissive surface's, uniform over the sphere. Either way the power
+    is divided by the start's density. A light nearer the sphere than its radius lights
+    points the disk does not reach: those are missed."""
+    a, b = uniform2(key, PURPOSE_PHOTON, 0, 0)
+    rho = casters[k, 3]
+    kind = lights.emitter_kind[light]
+    if kind == EMITTER_MESH:
+        x, n = sphere_point(casters, k, a, b)
+        density = 1.0 / (4.0 * math.pi * rho * rho)
+    else:
+        position = row(lights.emitter_position, light)
+        if kind < EMITTER_SUN_CONE:
+            position = normalize(sub(position, row(casters, k)))
+        x, n, cos_axis = disk_point(casters, k, position, a, b)
+        density = cos_axis / (math.pi * rho * rho)
+    a, b = uniform2(key, PURPOSE_PHOTON, 1, 0)
+    to_light, t, weight = emitter_sample(lights, light, x, n, a, b)
+    cos_n = dot(n, to_light)
+    if weight <= 0.0 or t == 0.0 or cos_n <= 0.0 or density <= 0.0:
+        return x, to_light, t, (0.0, 0.0, 0.0)
+    short = 1.0 - SHORT_OF_SURFACE if lights.emitter_flags[light] & EMITS_FROM_SURFACE else 1.0
+    begin_point(stacks.shadow_state)  # crossings of varying surfaces count as passing
+    visible = transmittance(geo, x, to_light, t * short, stacks, TRAVERSE_ALL)
+    power = math.pi * weight * cos_n * visible / (density * photons)
+    return x, scale(to_light, -1.0), t, scale(row(lights.emitter_radiance, light), power)
+
+
+@kernel
+def row_power(geo, lights, casters, plan, seed, stacks, out):
+    """The mean power (over RGB) each row (light, sphere, photons) of `plan` sends into its
+    sphere, estimated from `photons` photons, into `out`."""
+    for r in range(plan.shape[0]):
+        light, k, photons = plan[r, 0], plan[r, 1], plan[r, 2]
+        total = 0.0
+        for i in range(photons):
+            key = chain(chain(chain(np.uint64(0), seed), r), i)
+            _, _, _, power = photon_start(geo, lights, casters, light, k, key, photons, stacks)
+            total += _mean(power)
+        out[r] = total
+
+
+@kernel
+def trace_photons(geo, surf, mats, lights, casters, plan, seed, branches, max_bounces,
+                  out_position, out_direction, out_power, stacks, tally):  # fmt: skip
+    """Trace the photons of each row (light, caster sphere, photons) of `plan`, storing
+    those that reach a diffuse surface by way of a mirror or glass into the out_* arrays
+    (position, direction of travel, power), in order; returns how many were stored.
+    `branches`: REFLECTIVE | REFRACTIVE, the specular events a photon may take."""
+    stored = 0
+    for r in range(plan.shape[0]):
+        light, k, photons = plan[r, 0], plan[r, 1], plan[r, 2]
+        for i in range(photons):
+            key = chain(chain(chain(np.uint64(0), seed), r), i)
+            o, d, t_light, power = photon_start(geo, lights, casters, light, k, key, photons,
+                                                stacks)  # fmt: skip
+            if max(power[0], power[1], power[2]) <= 0.0:
+                continue
+            tally[TALLY_EMITTED] += 1
+            shape, t, part, b1, b2 = closest_hit(geo, o, d, math.inf, stacks)
+            # the light ray from the light to its first hit: each sphere it enters samples it
+            entered = spheres_entered(casters, o, d, -t_light, t if shape >= 0 else math.inf)
+            power = scale(power, 1.0 / max(entered, 1))
+            specular = False
+            for bounce in range(max_bounces + 1):
+                if shape < 0:
+                    break
+                material = surf.shape_material[shape]
+                if mats.shader_range[material, 0] >= 0:
+                    tally[TALLY_PROGRAMMED] += 1
+                    break
+                p, n_geometric, n_shading, _, _ = surface_at(geo, surf, shape, part, b1, b2, o,
+                                                             d, t, False)  # fmt: skip
+                here = table_surface(mats, material, row(mats.diffuse, material))
+                tau, rho = here.transparency, here.reflectivity
+                if specular and tau < 1.0 and (mats.texture[material] >= 0 or _mean(here.kd) > 0.0):
+                    if stored < out_power.shape[0]:
+                        for a in range(3):
+                            out_position[stored, a] = p[a]
+                            out_direction[stored, a] = d[a]
+                            out_power[stored, a] = power[a]
+                        stored += 1
+                        tally[TALLY_STORED] += 1
+                    else:
+                        tally[TALLY_DROPPED] += 1
+                entering = dot(d, n_geometric) < 0.0
+                if not entering:
+                    n_geometric = scale(n_geometric, -1.0)
+                    n_shading = scale(n_shading, -1.0)
+                cos_i = min(1.0, max(0.0, -dot(d, n_shading)))
+                reflect = (0.0, 0.0, 0.0)
+                through = (0.0, 0.0, 0.0)
+                bent = d
+                if branches & REFLECTIVE and rho > 0.0:
+                    toward_edge = (1.0 - cos_i) ** 5
+                    tint = add(
+                        here.mirror_normal,
+                        scale(sub(here.mirror_edge, here.mirror_normal), toward_edge),
+                    )
+                    reflect = scale(tint, (1.0 - tau) * rho)  # fmt: skip
+                if tau > 0.0:
+                    n1, n2 = ((here.outer_ior, here.inner_ior) if entering
+                              else (here.inner_ior, here.outer_ior))  # fmt: skip
+                    f, cos_t = fresnel_dielectric(cos_i, n1, n2)
+                    if branches & REFLECTIVE:
+                        reflect = add(reflect, scale(here.glass_reflect, tau * f))
+                    if branches & REFRACTIVE and f < 1.0:
+                        lost = f * here.refraction_fresnel
+                        through = scale(here.glass_transmit, tau * (1.0 - lost))
+                        bent = refract(d, n_shading, n1 / n2, cos_i, cos_t)
+                straight = here.transparent
+                p_reflect, p_through = _mean(reflect), _mean(through)
+                p_straight = _mean(straight)
+                total = p_reflect + p_through + p_straight
+                if total <= 0.0 or bounce == max_bounces:
+                    break
+                u, _ = uniform2(key, PURPOSE_PHOTON, 2 + bounce, 0)
+                u *= max(total, 1.0)  # past `total` (when below 1) the photon is absorbed
+                if u < p_reflect:
+                    d = sub(d, scale(n_shading, 2.0 * dot(d, n_shading)))
+                    o = spawn_point(p, n_geometric, o)
+                    power = scale(mul(power, reflect), 1.0 / p_reflect)
+                    specular = True
+                elif u < p_reflect + p_through:
+                    o = spawn_point(p, scale(n_geometric, -1.0), o)
+                    d = bent
+                    power = scale(mul(power, through), 1.0 / p_through)
+                    specular = True
+                elif u < total:
+                    o = spawn_point(p, scale(n_geometric, -1.0), o)
+                    power = scale(mul(power, straight), 1.0 / p_straight)
+                else:
+                    break
+                power = scale(power, max(total, 1.0))
+                shape, t, part, b1, b2 = closest_hit(geo, o, d, math.inf, stacks)
+    return stored
