@@ -66,6 +66,10 @@ class RenderStats:
     shadow_rays: int = 0  # rays towards lights (each asks only what light gets through)
     # of shadow_rays, those answered with no test: no shape met the area light's pyramid
     shadow_rays_unobstructed: int = 0
+    # the compile's photon pass (core.compile.caustics): photons traced, stored, its seconds
+    photons_traced: int = 0
+    photons_stored: int = 0
+    photon_s: float = 0.0
 
     @property
     def rays_cast(self) -> int:
@@ -75,8 +79,15 @@ class RenderStats:
         """The line the command line and Blender both print: "kernels cache 0.12 s | render
         1.52 s | 3.1 M rays (1.2 M shadow), 2.04 M rays/s | 4 threads"."""
         rate = self.rays_cast / self.render_s / 1e6 if self.render_s > 0 else 0.0
+        caustics = (
+            f"caustics {self.photon_s:.2f} s, {self.photons_stored} of {self.photons_traced} "
+            "photons stored | "
+            if self.photons_traced
+            else ""
+        )
         return (
-            f"kernels {self.kernel_source} {self.kernel_s:.2f} s | render {self.render_s:.2f} s"
+            f"kernels {self.kernel_source} {self.kernel_s:.2f} s | {caustics}"
+            f"render {self.render_s:.2f} s"
             f" | {_millions(self.rays_cast)} M rays ({_millions(self.shadow_rays)} M shadow), "
             f"{rate:.2f} M rays/s | {self.threads} threads"
         )
@@ -203,6 +214,10 @@ def render_compiled(
         shadow_rays=int(tally.ray_counts[SHADOW_RAYS]),
         shadow_rays_unobstructed=int(tally.ray_counts[SHADOW_RAYS_UNOBSTRUCTED]),
     )
+    if compiled.caustics is not None:
+        stats.photons_traced = compiled.caustics.traced
+        stats.photons_stored = compiled.caustics.stored
+        stats.photon_s = compiled.caustics.seconds
     warnings = list(compiled.warnings)
     if tally.csg_overflows:
         warnings.append(

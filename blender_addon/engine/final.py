@@ -47,6 +47,9 @@ def render(engine, depsgraph):
             engine.update_progress(done / total)
             engine.update_stats("", f"Whitted | Tile {done}/{total}")
 
+        if settings.caustics and settings.caustic_photons and not preview:
+            # the compile traces them before the first tile (if the scene has mirrors or glass)
+            engine.update_stats("", "Whitted | Caustic photons")
         output = core.render(
             scene, settings, on_tile=stream, should_cancel=lambda: cancelled(engine)
         )

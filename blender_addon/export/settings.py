@@ -39,8 +39,17 @@ def convert(scene) -> core.RenderSettings:
         glossy_samples=settings.glossy_samples,
         seed=settings.seed,
         glass_shadows=settings.glass_shadows.lower(),
+        caustics=_caustics(settings),
+        caustic_photons=settings.caustic_photons,
         transparent=render.film_transparent,
     )
+
+
+def _caustics(settings) -> tuple[str, ...]:
+    """The Render panel's caustic switches as core's names."""
+    kinds = (("reflective", settings.use_caustics_reflective),
+             ("refractive", settings.use_caustics_refractive))  # fmt: skip
+    return tuple(name for name, on in kinds if on)
 
 
 def _border_region(render, width, height):

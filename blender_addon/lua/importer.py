@@ -172,6 +172,8 @@ def _configure(scene, call) -> None:
     whitted.seed = settings.seed
     # the report's rule, so the imported scene renders as the script does
     whitted.glass_shadows = settings.glass_shadows.upper()
+    whitted.use_caustics_reflective = "reflective" in settings.caustics
+    whitted.use_caustics_refractive = "refractive" in settings.caustics
     world = bpy.data.worlds.new(f"{call.output.stem} ambient")
     give_nodes(world)
     background = next(n for n in world.node_tree.nodes if n.type == "BACKGROUND")

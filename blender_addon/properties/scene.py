@@ -51,6 +51,29 @@ class WhittedSceneSettings(bpy.types.PropertyGroup):
         ],
         default="BLOCKED",
     )
+    use_caustics_reflective: BoolProperty(
+        name="Reflective Caustics",
+        description="Light that mirrors throw onto diffuse surfaces (a mirror's sun patch, a "
+        "chrome bowl's focus), traced as photons from the lights",
+        default=True,
+    )
+    use_caustics_refractive: BoolProperty(
+        name="Refractive Caustics",
+        description="Light that glass focuses onto diffuse surfaces (a glass ball's bright "
+        "spot in its shadow), traced as photons from the lights. Needs Light Paths > Glass: "
+        "Blocked",
+        default=True,
+    )
+    caustic_photons: IntProperty(
+        name="Caustic Photons",
+        description="Photons traced for caustics, shared among the lights, mirrors and glass "
+        "by the power each sends: more give a smoother, sharper caustic (both errors fall as "
+        "the fourth root). No photon is traced in a scene without mirrors or glass",
+        min=0,
+        soft_max=2_000_000,
+        max=10_000_000,
+        default=200_000,
+    )
     pixel_samples: IntProperty(
         name="Anti-Aliasing",
         description=(

@@ -74,7 +74,22 @@ class WHITTED_PT_light_paths(_RenderPanel, bpy.types.Panel):
     def draw(self, context):
         layout = self.split_layout()
         layout.prop(context.scene.whitted, "max_depth", text="Bounces")
-        layout.prop(context.scene.whitted, "glass_shadows")
+        layout.prop(context.scene.whitted, "glass_shadows", text="Glass")
+
+
+class WHITTED_PT_light_paths_caustics(_RenderPanel, bpy.types.Panel):
+    bl_label = "Caustics"
+    bl_parent_id = "WHITTED_PT_light_paths"
+
+    def draw(self, context):
+        layout = self.split_layout()
+        settings = context.scene.whitted
+        column = layout.column(heading="Caustics")
+        column.prop(settings, "use_caustics_reflective", text="Mirrors")
+        refractive = column.row()
+        refractive.active = settings.glass_shadows == "BLOCKED"
+        refractive.prop(settings, "use_caustics_refractive", text="Glass")
+        layout.prop(settings, "caustic_photons", text="Photons")
 
 
 class WHITTED_PT_film(_RenderPanel, bpy.types.Panel):
@@ -106,6 +121,7 @@ PANELS = (
     WHITTED_PT_sampling_world,
     WHITTED_PT_sampling_glossy,
     WHITTED_PT_light_paths,
+    WHITTED_PT_light_paths_caustics,
     WHITTED_PT_film,
     WHITTED_PT_performance,
 )

@@ -98,8 +98,9 @@ def add_caustics(packed: PackedScene, settings: RenderSettings):
     warnings = []
     if "refractive" in settings.caustics and not branches & REFRACTIVE:
         warnings.append(
-            "refractive caustics need Glass Shadows: Blocked (under Attenuated, shadow rays "
-            "pass glass already): none are traced"
+            "refractive caustics need glass shadows blocked (Render Properties > Light Paths "
+            '> Glass: Blocked; glass_shadows="blocked"): under Attenuated, shadow rays '
+            "pass glass already, so none are traced"
         )
     lights = packed.lights
     flags = lights.emitter_flags

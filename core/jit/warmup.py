@@ -128,7 +128,20 @@ def warmup_steps() -> list[tuple[str, Callable[[], None]]]:
             lambda: compile_as_callee(transmittance, geometry(), o, d, 9.0, stacks, TRAVERSE_ALL),
         ),
         ("render kernel", lambda: prepare_kernels(packed[0])),
+        ("caustic photons", lambda: warm_photon_kernels(packed[0])),
     ]
+
+
+def warm_photon_kernels(packed) -> None:
+    """Compile the photon pass's kernels (core.compile.caustics): the warm-up scene's glass
+    ball sends photons, and a few points get their neighbours' distances."""
+    from .. import RenderSettings
+    from ..compile.caustics import add_caustics, neighbour_distances
+
+    settings = RenderSettings(8, 8, glass_shadows="blocked", caustics=("reflective", "refractive"),
+                              caustic_photons=64)  # fmt: skip
+    add_caustics(packed, settings)
+    neighbour_distances(np.random.default_rng(0).random((64, 3)))
 
 
 def progress_line(step: int, steps: int, label: str) -> str:
@@ -136,14 +149,15 @@ def progress_line(step: int, steps: int, label: str) -> str:
 
 
 # Each step's share of a cold warm-up and the whole's length, as measured on the development
-# machine, so that a progress bar moves evenly rather than by quarters: 44-48 s since the
+# machine, so that a progress bar moves evenly rather than by fifths: 44-48 s since the
 # kernels count no references and numba's options are read at once (2026-12-06: packing
 # 26 %, nearest hits 12 %, shadow rays 7 %, the render kernel 55 %; 64-77 s before, 91-96 s
 # before the shadow-ray search was a call of its own, 141-175 s before callees' compiles
-# were deferred)
-STEP_SHARES = {"scene packing": 0.26, "nearest hits": 0.12, "shadow rays": 0.07,
-               "render kernel": 0.55}  # fmt: skip
-TYPICAL_WARMUP_S = 47.0
+# were deferred); the photon pass's kernels added 16 s of 93 on a slower machine (2026-12-06,
+# issue 44), the shares re-measured there
+STEP_SHARES = {"scene packing": 0.22, "nearest hits": 0.12, "shadow rays": 0.05,
+               "render kernel": 0.44, "caustic photons": 0.17}  # fmt: skip
+TYPICAL_WARMUP_S = 56.0
 _PROGRESS = re.compile(r"(\d+) of (\d+) \((.*)\)$")
 
 

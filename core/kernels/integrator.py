@@ -54,6 +54,8 @@ from .pass_record import (
     REC_ENVIRONMENT,
     REC_REFLECTION,
     REC_REFRACTION,
+    TERM_ROW_LIT,
+    TERM_ROW_UNSHADOWED,
     add_to,
     clear,
     record_hit,
@@ -326,8 +328,12 @@ def trace_ray(ps, o, d, key, ws):
                     break
             if lights.photon_cells.shape[0] > 0:
                 # light brought by mirrors and glass (core.kernels.caustics)
-                caustic = caustic_irradiance(lights, p, n_geometric)
-                local = add(local, mul(kd, scale(caustic, 1.0 / math.pi)))
+                falling = scale(caustic_irradiance(lights, p, n_geometric), 1.0 / math.pi)
+                local = add(local, mul(kd, falling))
+                if splitting:  # the diffuse pass holds it, as light falling on the point
+                    for a in range(3):
+                        stacks.terms[TERM_ROW_LIT, a] += falling[a]
+                        stacks.terms[TERM_ROW_UNSHADOWED, a] += falling[a]
             seen = mul(w, scale(local, 1.0 - tau))
             colour = add(colour, seen)
             if first:

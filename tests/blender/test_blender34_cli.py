@@ -38,8 +38,8 @@ def test_a_first_render_on_a_new_machine_prints_the_kernel_compile_steps(tmp_pat
     steps = [
         line for line in lines if line.startswith("Whitted: compiling kernels: ") and " of " in line
     ]
-    assert steps and steps[0] == "Whitted: compiling kernels: 1 of 4 (scene packing)", run.stdout
-    assert steps[-1] == "Whitted: compiling kernels: 4 of 4 (render kernel)", run.stdout
+    assert steps and steps[0] == "Whitted: compiling kernels: 1 of 5 (scene packing)", run.stdout
+    assert steps[-1] == "Whitted: compiling kernels: 5 of 5 (caustic photons)", run.stdout
     assert "exited with status" not in run.stdout
     # The render waited for the warm-up, said so apart from its own time, then loaded them
     assert "first-use kernel compile" in run.stdout, run.stdout[-2000:]

@@ -109,8 +109,8 @@ def test_the_log_gives_farms_the_figures_the_summary_shortens(
 def test_the_first_use_compile_drives_the_progress_bar_and_is_kept_out_of_the_render_time(
     sample_scene, bpy_with_whitted, tmp_path, monkeypatch, seen
 ):
-    steps = ["1 of 4 (scene packing)", "2 of 4 (nearest hits)", "3 of 4 (shadow rays)",
-             "4 of 4 (render kernel)"]  # fmt: skip
+    steps = ["1 of 5 (scene packing)", "2 of 5 (nearest hits)", "3 of 5 (shadow rays)",
+             "4 of 5 (render kernel)", "5 of 5 (caustic photons)"]  # fmt: skip
     body = "".join(f'echo "Whitted: compiling kernels: {step}"\nsleep 0.7\n' for step in steps)
     warmup = stand_in_warmup(tmp_path, monkeypatch, body)
     monkeypatch.setattr(final_render(), "shared_warmup", lambda: warmup)
@@ -120,7 +120,7 @@ def test_the_first_use_compile_drives_the_progress_bar_and_is_kept_out_of_the_re
     progress = [value for kind, value in seen[:first_tile] if kind == "progress"]
     assert len(progress) >= 3 and progress == sorted(progress), progress
     # It starts near 0 and reaches the last step's start (the shares of the steps before it)
-    before_last = sum(list(STEP_SHARES.values())[:3])
+    before_last = sum(list(STEP_SHARES.values())[:4])
     assert progress[0] < 0.2 and progress[-1] >= before_last - 1e-6, progress
     headers = [text for kind, text in seen[:first_tile] if kind == "stats"]
     shown = re.compile(
@@ -154,7 +154,7 @@ def test_esc_during_the_compile_says_the_render_was_cancelled(
     warmup = stand_in_warmup(
         tmp_path,
         monkeypatch,
-        'echo "Whitted: compiling kernels: 1 of 4 (scene packing)"\nsleep 30\n',
+        'echo "Whitted: compiling kernels: 1 of 5 (scene packing)"\nsleep 30\n',
     )
     monkeypatch.setattr(final_render(), "shared_warmup", lambda: warmup)
     pressed = time.monotonic() + 0.5

@@ -244,7 +244,7 @@ def test_refractive_caustics_under_the_attenuated_rule_are_refused_with_a_warnin
     settings = RenderSettings(8, 8, caustics=("refractive",), glass_shadows="attenuated")
     compiled = compile_scene(scene, settings)
     assert compiled.caustics is None
-    assert any("Glass Shadows" in w for w in compiled.warnings)
+    assert any("Light Paths > Glass: Blocked" in w for w in compiled.warnings)
 
 
 @pytest.mark.parametrize("bad", [("mirrors",), "reflective"])
@@ -253,3 +253,16 @@ def test_a_bad_caustics_setting_is_refused(bad):
 
     with pytest.raises(SceneError, match="caustics"):
         RenderSettings(caustics=bad).validate()
+
+
+def test_the_diffuse_pass_holds_the_caustic():
+    """The floor (no highlight, no ambient) is its diffuse pass alone, caustic included."""
+    mirror = _hidden(Box("Mirror", Material(diffuse=(0.0, 0.0, 0.0), reflectivity=1.0),
+                         _placed(x=-0.01, z=1.0, size=(0.01, 1.0, 1.0))))  # fmt: skip
+    camera = Camera(eye=(1.0, 0.0, 10.0), view=(0.0, 0.0, -1.0), up=(0.0, 1.0, 0.0),
+                    projection="orthographic", ortho_height=4.0)  # fmt: skip
+    scene = Scene(shapes=[_floor(), mirror], lights=[_sun(45.0)], camera=camera)
+    out = render(scene, _settings(16, 20_000, passes=("diffuse",)))
+    combined, diffuse = out.image[..., :3], out.passes["diffuse"]
+    assert combined.max() > 1.5 * combined.min()  # the patch is there
+    np.testing.assert_allclose(diffuse, combined, rtol=1e-5, atol=1e-7)
