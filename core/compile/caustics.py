@@ -8,7 +8,7 @@ glass-shadow rule: under "attenuated" shadow rays bring that light already), and
 material has a diffuse part to receive them.
 
 The budget. `RenderSettings.caustic_photons` photons are shared among the rows (light,
-caster sphere) in proportion to the power each row sends into its sphere, measured first
+caster hull) in proportion to the power each row sends into its hull, measured first
 with PILOT photons a row, so that every photon carries about the same power wherever it
 lands. The radii: each photon's disk reaches its k-th nearest fellow (core.kernels.caustics),
 k the square root of the photons stored (NEIGHBOURS), at most REACH of the photons'
@@ -24,6 +24,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ..kernels.caster_hulls import HULL_BOX, HULL_SPHERE
 from ..kernels.caustics import neighbour_radii, photon_buckets
 from ..kernels.layout import EMITS_DIFFUSE, EMITS_SHADOW, PackedScene
 from ..kernels.photons import (
@@ -48,7 +49,7 @@ NEIGHBOURS = (32, 1024)
 REACH = 0.125  # a lone photon's disk: this share of the photons' extent
 MAX_LEVELS = 24
 SPACING_SHARE = 64
-MARGIN = 1e-6  # relative: how far outside its shape a caster sphere lies
+MARGIN = 1e-6  # relative: how far outside its shape a caster hull lies
 STORED_PER_PHOTON = 2  # room for stored photons, per photon traced
 BYTES_PER_PHOTON = 88  # stated in the module's docstring and the settings' limit
 
@@ -68,28 +69,27 @@ def branches_of(settings: RenderSettings) -> int:
     return bits
 
 
-def caster_spheres(packed: PackedScene, branches: int) -> np.ndarray:
-    """float64 (k, 4): centre and radius of the bounding sphere of each shape row whose
-    material may send light on by the branches asked for."""
+def caster_hulls(packed: PackedScene, branches: int) -> np.ndarray:
+    """float64 (k, 7): the hull (core.kernels.caster_hulls) of each shape row whose material
+    may send light on by the branches asked for: an analytic sphere's own, else its box,
+    each a little outside the shape (photons must never start on its surface, where the
+    first hit could be missed)."""
     mats, geo = packed.materials, packed.geometry
     mirror = mats.reflectivity > 0.0 if branches & REFLECTIVE else np.zeros(len(mats.ior), bool)
     specular = (mirror | (mats.transparency > 0.0)) & (mats.shader_range[:, 0] < 0)
-    casting = specular[packed.surfaces.shape_material]
-    bounds = geo.shape_bounds[casting]
-    centre = (bounds[:, :3] + bounds[:, 3:]) / 2.0
-    radius = np.linalg.norm(bounds[:, 3:] - bounds[:, :3], axis=1) / 2.0
-    # a sphere's own: its box's sphere is sqrt(3) as wide, and wastes 2/3 of the photons
-    for row, k in enumerate(np.flatnonzero(casting)):
+    rows = []
+    for k in np.flatnonzero(specular[packed.surfaces.shape_material]):
+        lo, hi = geo.shape_bounds[k, :3], geo.shape_bounds[k, 3:]
+        if not (np.isfinite(lo).all() and np.isfinite(hi).all()):
+            continue
+        pad = MARGIN * (1.0 + np.abs(np.concatenate([lo, hi])).max())
         if geo.shape_kind[k] == SHAPE_SPHERE:
-            affine = np.vstack([geo.shape_object_from_world[k], [0.0, 0.0, 0.0, 1.0]])
-            world = np.linalg.inv(affine)
-            centre[row] = world[:3, 3]
-            radius[row] = np.linalg.norm(world[:3, :3], axis=0).max()
-    # photons start a little outside, never on a caster's own surface (where the first hit
-    # could be missed)
-    radius = radius * (1.0 + MARGIN) + MARGIN * np.abs(centre).max(axis=1, initial=0.0)
-    keep = np.isfinite(radius) & (radius > 0.0)
-    return np.ascontiguousarray(np.hstack([centre, radius[:, None]])[keep])
+            world = np.linalg.inv(np.vstack([geo.shape_object_from_world[k], [0, 0, 0, 1.0]]))
+            radius = np.linalg.norm(world[:3, :3], axis=0).max()
+            rows.append([HULL_SPHERE, *world[:3, 3], radius * (1.0 + MARGIN) + pad, 0.0, 0.0])
+        else:
+            rows.append([HULL_BOX, *(lo - pad), *(hi + pad)])
+    return np.array(rows, float).reshape(-1, 7)
 
 
 def add_caustics(packed: PackedScene, settings: RenderSettings):
@@ -107,7 +107,7 @@ def add_caustics(packed: PackedScene, settings: RenderSettings):
     lit = np.flatnonzero((flags & EMITS_SHADOW != 0) & (flags & EMITS_DIFFUSE != 0))
     if not branches or settings.caustic_photons == 0 or lit.size == 0:
         return packed, warnings, None
-    casters = caster_spheres(packed, branches)
+    casters = caster_hulls(packed, branches)
     receives = packed.materials.transparency < 1.0
     if casters.shape[0] == 0 or not receives.any():
         return packed, warnings, None

@@ -3,22 +3,23 @@ onto diffuse surfaces (paths light -> specular+ -> diffuse), which shadow rays c
 follow: a shadow ray goes straight to the light, so a glass ball's focus and a mirror's
 sun patch are missing from a Whitted picture without them.
 
-Where photons start (the "caster spheres"). Only light that meets a mirror or glass can
-become a caustic, so photons are aimed at the bounding spheres of the shapes whose material
-reflects or refracts (core.compile.caustics), not sprayed over the scene. A photon of
-(light l, sphere k) starts at a uniform point x of sphere k's surface (normal n) and samples
+Where photons start (the "caster hulls"). Only light that meets a mirror or glass can
+become a caustic, so photons are aimed at the convex hulls (a sphere or a box,
+core.kernels.caster_hulls) of the shapes whose material reflects or refracts
+(core.compile.caustics), not sprayed over the scene. A photon of (light l, hull k) starts at
+a point x of hull k's surface (normal n, drawn with density p(x) per unit area) and samples
 light l from x exactly as a shading point does (`emitters.emitter_sample`): direction L,
 distance t and weight w, with the light's table radiance R (core.kernels.emitters: a
 shading point's irradiance is pi (n.L) R w on average). Every light ray that enters the
-convex sphere crosses its surface once, with n.L > 0 there, so the flux entering it is the
-integral of that irradiance over its area A = 4 pi rho^2: a photon carries
+convex hull crosses its surface once, with n.L > 0 there, so the power entering it is the
+integral of that irradiance over its surface: a photon carries
 
-    A pi R w (n.L) v / (N c)
+    pi R w (n.L) v / (p(x) N c)
 
 for N photons of its row, v the shadow ray's transmittance from x to the light (light that
-reached x through other glass comes as that glass's own photons), and c the number of caster
-spheres the light ray enters before its first hit (the same ray, sampled from each sphere
-it crosses, counts once in all). It then travels from x along -L.
+reached x through other glass comes as that glass's own photons), and c the number of hulls
+the light ray enters before its first hit (the same ray, sampled from each hull it crosses,
+counts once in all). It then travels from x along -L.
 
 How it travels. At each hit the material's terms (its row of the table: reflectivity and
 mirror tint, transparency with the exact Fresnel reflectance, glass tints, what passes
@@ -41,12 +42,12 @@ import math
 import numpy as np
 
 from ..jit.decorators import kernel
+from .caster_hulls import hull_centre, hull_start, hulls_entered
 from .emitters import emitter_sample
 from .integrator import fresnel_dielectric, refract
 from .layout import EMITS_FROM_SURFACE
 from .light_mesh import SHORT_OF_SURFACE
 from .light_pyramid import TRAVERSE_ALL
-from .light_samples import in_frame
 from .options import EMITTER_MESH, EMITTER_SUN_CONE
 from .rng import PURPOSE_PHOTON, chain, uniform2
 from .shadow_log import begin_point
@@ -56,7 +57,7 @@ from .trace import closest_hit, spawn_point, transmittance
 from .vec import add, dot, mul, normalize, row, scale, sub
 
 # PhotonTally slots: what a photon pass counts, for the compile's report
-TALLY_EMITTED = 0  # photons that left a light towards a caster sphere, lit
+TALLY_EMITTED = 0  # photons that left a light towards a caster hull, lit
 TALLY_STORED = 1  # photons stored on diffuse surfaces
 TALLY_DROPPED = 2  # stored photons beyond the arrays' room
 TALLY_PROGRAMMED = 3  # photons ended at a node material whose terms vary over the surface
@@ -67,80 +68,40 @@ REFLECTIVE, REFRACTIVE = 1, 2
 
 
 @kernel
-def sphere_point(centre_radius, k, a, b):
-    """(point, outward unit normal) of sphere row k of (n, 4) centre, radius at the
-    unit-square point (a, b), uniform in area."""
-    z = 1.0 - 2.0 * a
-    ring = math.sqrt(max(0.0, 1.0 - z * z))
-    phi = 2.0 * math.pi * b
-    n = (ring * math.cos(phi), ring * math.sin(phi), z)
-    rho = centre_radius[k, 3]
-    return (centre_radius[k, 0] + rho * n[0], centre_radius[k, 1] + rho * n[1],
-            centre_radius[k, 2] + rho * n[2]), n  # fmt: skip
-
-
-@kernel
-def spheres_entered(centre_radius, o, d, s_low, s_high):
-    """How many spheres the line o + s d (d unit) enters at an s in [s_low, s_high)."""
-    count = 0
-    for k in range(centre_radius.shape[0]):
-        c = (centre_radius[k, 0], centre_radius[k, 1], centre_radius[k, 2])
-        to_centre = sub(c, o)
-        along = dot(to_centre, d)
-        gap2 = dot(to_centre, to_centre) - along * along
-        rho = centre_radius[k, 3]
-        if gap2 >= rho * rho:
-            continue
-        entry = along - math.sqrt(rho * rho - gap2)
-        if s_low <= entry < s_high:
-            count += 1
-    return count
-
-
-@kernel
 def _mean(c):
     return (c[0] + c[1] + c[2]) / 3.0
 
 
 @kernel
-def disk_point(centre_radius, k, axis, a, b):
-    """(point, outward unit normal, cos between them and `axis`) of sphere row k at the
-    unit-square point (a, b), uniform over the disk the sphere shows along `axis` (lifted
-    onto the hemisphere facing it): density cos / (pi rho^2) over the sphere's area."""
-    ring = math.sqrt(a)
-    phi = 2.0 * math.pi * b
-    x, y = ring * math.cos(phi), ring * math.sin(phi)
-    z = math.sqrt(max(0.0, 1.0 - a))
-    n = in_frame(axis, x, y, z)
-    rho = centre_radius[k, 3]
-    return (centre_radius[k, 0] + rho * n[0], centre_radius[k, 1] + rho * n[1],
-            centre_radius[k, 2] + rho * n[2]), n, z  # fmt: skip
+def _light_axis(lights, light, centre):
+    """The unit direction from `centre` towards the light (a sun's own; an emissive
+    surface's first triangle's centre)."""
+    kind = lights.emitter_kind[light]
+    if kind >= EMITTER_SUN_CONE and kind != EMITTER_MESH:
+        return row(lights.emitter_position, light)
+    if kind == EMITTER_MESH:
+        first = int(lights.emitter_param[light, 0])
+        corners = lights.glow_triangles
+        target = (
+            (corners[first, 0] + corners[first, 3] + corners[first, 6]) / 3.0,
+            (corners[first, 1] + corners[first, 4] + corners[first, 7]) / 3.0,
+            (corners[first, 2] + corners[first, 5] + corners[first, 8]) / 3.0,
+        )
+    else:
+        target = row(lights.emitter_position, light)
+    return normalize(sub(target, centre))
 
 
 @kernel
 def photon_start(geo, lights, casters, light, k, key, photons, stacks):
     """(start point, unit direction of travel, distance to the light, power) of one photon of
-    row (light, sphere k) of `photons` photons, before the share of the spheres its light
-    ray enters; power 0 when its light sample brings nothing there.
-
-    Where on the sphere: uniform over the disk it shows towards the light's centre (a sun's
-    direction), so that under a sun every photon carries the same power (uniform over the
-    sphere, a photon's power follows the cosine at its start: 12% noise more on a lit slab
-    at equal photons); an emissive surface's, uniform over the sphere. Either way the power
-    is divided by the start's density. A light nearer the sphere than its radius lights
-    points the disk does not reach: those are missed."""
+    row (light, hull k) of `photons` photons, before the share of the hulls its light ray
+    enters; power 0 when its light sample brings nothing there. The start is drawn on the
+    hull facing the light (core.kernels.caster_hulls), its density divided out."""
     a, b = uniform2(key, PURPOSE_PHOTON, 0, 0)
-    rho = casters[k, 3]
-    kind = lights.emitter_kind[light]
-    if kind == EMITTER_MESH:
-        x, n = sphere_point(casters, k, a, b)
-        density = 1.0 / (4.0 * math.pi * rho * rho)
-    else:
-        position = row(lights.emitter_position, light)
-        if kind < EMITTER_SUN_CONE:
-            position = normalize(sub(position, row(casters, k)))
-        x, n, cos_axis = disk_point(casters, k, position, a, b)
-        density = cos_axis / (math.pi * rho * rho)
+    pick, _ = uniform2(key, PURPOSE_PHOTON, 0, 1)
+    axis = _light_axis(lights, light, hull_centre(casters, k))
+    x, n, density = hull_start(casters, k, axis, a, b, pick)
     a, b = uniform2(key, PURPOSE_PHOTON, 1, 0)
     to_light, t, weight = emitter_sample(lights, light, x, n, a, b)
     cos_n = dot(n, to_light)
@@ -155,8 +116,8 @@ def photon_start(geo, lights, casters, light, k, key, photons, stacks):
 
 @kernel
 def row_power(geo, lights, casters, plan, seed, stacks, out):
-    """The mean power (over RGB) each row (light, sphere, photons) of `plan` sends into its
-    sphere, estimated from `photons` photons, into `out`."""
+    """The mean power (over RGB) each row (light, hull, photons) of `plan` sends into its
+    hull, estimated from `photons` photons, into `out`."""
     for r in range(plan.shape[0]):
         light, k, photons = plan[r, 0], plan[r, 1], plan[r, 2]
         total = 0.0
@@ -170,7 +131,7 @@ def row_power(geo, lights, casters, plan, seed, stacks, out):
 @kernel
 def trace_photons(geo, surf, mats, lights, casters, plan, seed, branches, max_bounces,
                   out_position, out_direction, out_power, stacks, tally):  # fmt: skip
-    """Trace the photons of each row (light, caster sphere, photons) of `plan`, storing
+    """Trace the photons of each row (light, caster hull, photons) of `plan`, storing
     those that reach a diffuse surface by way of a mirror or glass into the out_* arrays
     (position, direction of travel, power), in order; returns how many were stored.
     `branches`: REFLECTIVE | REFRACTIVE, the specular events a photon may take."""
@@ -185,8 +146,8 @@ def trace_photons(geo, surf, mats, lights, casters, plan, seed, branches, max_bo
                 continue
             tally[TALLY_EMITTED] += 1
             shape, t, part, b1, b2 = closest_hit(geo, o, d, math.inf, stacks)
-            # the light ray from the light to its first hit: each sphere it enters samples it
-            entered = spheres_entered(casters, o, d, -t_light, t if shape >= 0 else math.inf)
+            # the light ray from the light to its first hit: each hull it enters samples it
+            entered = hulls_entered(casters, o, d, -t_light, t if shape >= 0 else math.inf)
             power = scale(power, 1.0 / max(entered, 1))
             specular = False
             for bounce in range(max_bounces + 1):

@@ -64,6 +64,9 @@ def _scene(bpy, make_material):
     ball.visible_camera = False
     add_light(bpy, scene, "SUN", (0.0, 0.0, 5.0), energy=2.0, angle=0.0)
     scene.whitted.shadow_samples = 1
+    # the shadow rule alone: Cycles at diffuse bounces 0 draws no caustic on the plane
+    # (test_caustics_in_blender checks Whitted's against closed forms)
+    scene.whitted.use_caustics_reflective = scene.whitted.use_caustics_refractive = False
     return scene
 
 

@@ -85,19 +85,23 @@ def add_light(bpy, scene, kind, location, rotation=(0.0, 0.0, 0.0), scale=(1, 1,
     return obj
 
 
-def render_with(bpy, scene, engine: str, path: Path, samples: int = 256) -> np.ndarray:
+def render_with(bpy, scene, engine: str, path: Path, samples: int = 256,
+                diffuse_bounces: int = 0) -> np.ndarray:  # fmt: skip
     """The scene's linear RGB by `engine` ("CYCLES" or "WHITTED"), (SIZE, SIZE, 3), row 0
-    at the top."""
+    at the top. `diffuse_bounces` 1 lets Cycles draw caustics on diffuse surfaces (a path
+    from the camera to a diffuse surface, then by mirrors or glass to a light)."""
     scene.render.engine = engine
     if engine == "CYCLES":
         cycles = scene.cycles
         cycles.device = "CPU"
         cycles.samples = samples
         cycles.use_denoising = False
-        cycles.diffuse_bounces = 0
+        cycles.diffuse_bounces = diffuse_bounces
         cycles.glossy_bounces = cycles.transmission_bounces = 16
         cycles.caustics_reflective = cycles.caustics_refractive = True
         cycles.blur_glossy = 0.0
+        # Clamp Indirect (10 by default) cuts a caustic's bright samples: energy lost
+        cycles.sample_clamp_direct = cycles.sample_clamp_indirect = 0.0
         cycles.filter_width = 0.01
         if hasattr(cycles, "use_adaptive_sampling"):
             cycles.use_adaptive_sampling = False
