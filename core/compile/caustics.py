@@ -10,10 +10,10 @@ material has a diffuse part to receive them.
 The budget. `RenderSettings.caustic_photons` photons are shared among the rows (light,
 caster hull) in proportion to the power each row sends into its hull, measured first
 with PILOT photons a row, so that every photon carries about the same power wherever it
-lands. The radii: each photon's disk reaches its k-th nearest fellow (core.kernels.caustics),
-k the square root of the photons stored (NEIGHBOURS), at most REACH of the photons'
-extent. Memory: 88 bytes a stored photon (position, direction, power, radius, its bucket),
-at most twice the budget.
+lands. The radii: each photon's disk holds about k of its fellows at their density about
+it (core.kernels.caustics), k the square root of the photons stored (NEIGHBOURS), at most
+REACH of the photons' extent. Memory: 88 bytes a stored photon (position, direction,
+power, radius, its bucket), at most twice the budget.
 """
 
 from __future__ import annotations
@@ -42,7 +42,7 @@ from ..model import RenderSettings
 from ..vocabulary import SHAPE_SPHERE
 
 PILOT = 256  # photons a row, to share out the budget
-# A photon's disk reaches its k-th nearest fellow, k = sqrt(m) for m stored photons within
+# A photon's disk holds about k of its fellows, k = sqrt(m) for m stored photons within
 # these bounds: the estimate's noise falls as 1 / sqrt(k) and its blur grows as sqrt(k / m),
 # so both fall as m^(-1/4)
 NEIGHBOURS = (32, 1024)
@@ -156,9 +156,10 @@ def add_caustics(packed: PackedScene, settings: RenderSettings):
 
 
 def neighbour_distances(position: np.ndarray) -> np.ndarray:
-    """Each photon's distance to its k-th nearest fellow (NEIGHBOURS), at most REACH of the
-    photons' extent (a lone photon's disk): found in passes of doubling cells, each pass
-    settling the photons whose neighbours lie within one cell (core.kernels.caustics)."""
+    """Each photon's disk radius: one that holds about k of its fellows (NEIGHBOURS) at
+    their density about it, at most REACH of the photons' extent (a lone photon's disk):
+    found in passes of doubling cells, each pass settling the photons whose 27 cells hold k
+    (core.kernels.caustics.neighbour_radii)."""
     m = len(position)
     extent = float(np.linalg.norm(position.max(axis=0) - position.min(axis=0)))
     cap = max(REACH * extent, 1e-9)
@@ -167,17 +168,13 @@ def neighbour_distances(position: np.ndarray) -> np.ndarray:
     wanted = min(int(np.clip(math.sqrt(m), *NEIGHBOURS)), m - 1)
     if wanted < 1:
         return radius
-    heap = np.zeros(wanted)
-    # from cells finer than the photons' mean spacing (were they all on one square): crowded
-    # photons are settled while their cells hold few others (measured on a ball lens,
-    # 158 000 photons: 2.9 s starting at 1/16 of the spacing and five by five by five cells,
-    # 1.5 s so)
+    # from cells finer than the photons' mean spacing (were they all on one square), so
+    # that crowded photons are settled on cells their size
     edge = max(extent / math.sqrt(m) / SPACING_SHARE, 1e-9)
     while todo.any() and edge < cap:
         levels = np.array([edge])
-        order, cells = _hashed_grid(position, np.full(m, edge), levels)
-        neighbour_radii(position, order, cells, edge, len(cells) - 2, wanted, heap, radius,
-                        todo)  # fmt: skip
+        _, cells = _hashed_grid(position, np.full(m, edge), levels)
+        neighbour_radii(position, cells, edge, len(cells) - 2, wanted, radius, todo)
         edge *= 2.0
     return np.minimum(radius, cap)
 
