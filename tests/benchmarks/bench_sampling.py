@@ -288,7 +288,9 @@ def chart_shadows():
 
 
 # --- output -------------------------------------------------------------------------------
-def write_chart(name, title, rows, default, sample_label, prefix):
+def write_chart(name, title, rows, default, sample_label, prefix,
+                xlabel="render time (s), 64 x 64",
+                ylabel="RMSE against the exact answer"):  # fmt: skip
     """Write the chart and its CSV; print {prefix}_default_rmse and _s, and every row."""
     RESULTS.mkdir(exist_ok=True)
     with open(RESULTS / f"{name}.csv", "w", newline="") as f:
@@ -306,8 +308,8 @@ def write_chart(name, title, rows, default, sample_label, prefix):
     ax.plot(chosen[2], chosen[3], "k*", markersize=16, label=f"default: {default[0]} {default[1]}")
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("render time (s), 64 x 64")
-    ax.set_ylabel("RMSE against the exact answer")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
     ax.set_title(title)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend()
