@@ -13,7 +13,6 @@ import pytest
 
 from core import (
     Camera,
-    Link,
     Material,
     RenderSettings,
     Scene,
@@ -25,6 +24,7 @@ from core import (
 )
 from core.compile import compile_scene, with_frame
 from core.kernels.shadow_log import SHADOW_VARIES
+from tests.core.test_shadows_through_node_materials import x_mix_material
 from tests.support.probe import light_by_full_rule
 
 RULES = ("attenuated", "blocked")
@@ -44,21 +44,6 @@ def _ball(material):
 
 def _principled(**inputs):
     return Material(name="Principled", surface=ShaderNode("principled", inputs))
-
-
-def _x_mix(closure):
-    """A Mix Shader of Diffuse and `closure` whose factor is 0.5 + 0.4 X (object X): a per-hit
-    program, run at each crossing of a shadow ray."""
-    coords = ShaderNode("tex_coord")
-    separate = ShaderNode("separate", {"Vector": Link(coords, "Object")})
-    factor = ShaderNode("math", {"A": Link(separate, "X"), "B": 0.4, "C": 0.5},
-                        {"operation": "MULTIPLY_ADD"})  # fmt: skip
-    mix = ShaderNode("mix_shader", {
-        "Fac": Link(factor, "Value"),
-        "Shader A": Link(ShaderNode("diffuse"), "BSDF"),
-        "Shader B": Link(closure, "BSDF"),
-    })  # fmt: skip
-    return Material(name="Mix", surface=mix)
 
 
 @pytest.mark.parametrize("rule", RULES)
@@ -105,8 +90,8 @@ def test_per_hit_materials_follow_the_rule_at_each_crossing(rule):
     way."""
     x0 = 0.45
     ray = ((x0, 0.0, -3.0), (0.0, 0.0, 1.0), 6.0)
-    glass = _packed(rule, _ball(_x_mix(ShaderNode("glass", {"IOR": 1.5})))).packed
-    transparent = _packed(rule, _ball(_x_mix(ShaderNode("transparent")))).packed
+    glass = _packed(rule, _ball(x_mix_material(ShaderNode("glass", {"IOR": 1.5})))).packed
+    transparent = _packed(rule, _ball(x_mix_material(ShaderNode("transparent")))).packed
     share = (0.5 + 0.4 * x0) ** 2
     assert transparent.geometry.shape_transparency[0] == SHADOW_VARIES
     assert math.isclose(light_by_full_rule(transparent, *ray), share, rel_tol=1e-9)

@@ -96,9 +96,10 @@ def test_a_floor_under_a_leaf_card_shows_the_cards_alpha_as_its_shadow():
     np.testing.assert_allclose(out, expected, atol=1e-6)
 
 
-def _x_mix_material():
-    """A Mix Shader of Diffuse and Transparent whose factor is 0.5 + 0.4 X (object X): a
-    shadow ray crossing the surface at object X passes 0.5 + 0.4 X there."""
+def x_mix_material(closure=None):
+    """A Mix Shader of Diffuse and `closure` (a Transparent BSDF unless given) whose factor
+    is 0.5 + 0.4 X (object X): a shadow ray crossing the surface at object X passes
+    0.5 + 0.4 X there (under the glass-shadow rule, tests/core/test_glass_shadows.py)."""
     coords = ShaderNode("tex_coord")
     separate = ShaderNode("separate", {"Vector": Link(coords, "Object")})
     factor = ShaderNode("math", {"A": Link(separate, "X"), "B": 0.4, "C": 0.5},
@@ -106,7 +107,7 @@ def _x_mix_material():
     mix = ShaderNode("mix_shader", {
         "Fac": Link(factor, "Value"),
         "Shader A": Link(ShaderNode("diffuse"), "BSDF"),
-        "Shader B": Link(ShaderNode("transparent"), "BSDF"),
+        "Shader B": Link(closure or ShaderNode("transparent"), "BSDF"),
     })  # fmt: skip
     return Material(name="Veil", surface=mix)
 
@@ -116,7 +117,7 @@ def _factor(x):
 
 
 def test_a_ray_through_a_varying_sphere_passes_the_product_at_both_crossings():
-    packed = packed_shapes(Sphere("Veil", _x_mix_material(), np.eye(4)))
+    packed = packed_shapes(Sphere("Veil", x_mix_material(), np.eye(4)))
     assert packed.geometry.shape_transparency[0] == SHADOW_VARIES
     for x0 in (-0.7, 0.0, 0.45):
         # along z: both crossings at X = x0
@@ -131,7 +132,7 @@ def test_a_ray_through_a_varying_sphere_passes_the_product_at_both_crossings():
 
 def test_varying_operands_of_a_csg_union_pass_the_product_of_their_crossings():
     """Two such spheres, apart, united: a ray along x through both crosses each twice."""
-    veil = _x_mix_material()
+    veil = x_mix_material()
     left = Sphere("Left", veil, _moved(-2.0))
     right = Sphere("Right", veil, _moved(2.0))
     packed = packed_shapes(Csg("Pair", veil, np.eye(4), operation="union", left=left,
