@@ -50,6 +50,7 @@ REACH = 0.125  # a lone photon's disk: this share of the photons' extent
 MAX_LEVELS = 24
 SPACING_SHARE = 64
 MARGIN = 1e-6  # relative: how far outside its shape a caster hull lies
+MAX_HULLS = 64
 STORED_PER_PHOTON = 2  # room for stored photons, per photon traced
 BYTES_PER_PHOTON = 88  # stated in the module's docstring and the settings' limit
 
@@ -89,7 +90,16 @@ def caster_hulls(packed: PackedScene, branches: int) -> np.ndarray:
             rows.append([HULL_SPHERE, *world[:3, 3], radius * (1.0 + MARGIN) + pad, 0.0, 0.0])
         else:
             rows.append([HULL_BOX, *(lo - pad), *(hi + pad)])
-    return np.array(rows, float).reshape(-1, 7)
+    hulls = np.array(rows, float).reshape(-1, 7)
+    if len(hulls) > MAX_HULLS:
+        # every photon tests every hull, and every light gets a row a hull: past this many,
+        # one box round them all (each photon then less likely to meet a caster, none lost)
+        boxes = geo.shape_bounds[np.flatnonzero(specular[packed.surfaces.shape_material])]
+        boxes = boxes[np.isfinite(boxes).all(axis=1)]
+        lo, hi = boxes[:, :3].min(axis=0), boxes[:, 3:].max(axis=0)
+        pad = MARGIN * (1.0 + np.abs(np.concatenate([lo, hi])).max())
+        hulls = np.array([[HULL_BOX, *(lo - pad), *(hi + pad)]])
+    return hulls
 
 
 def add_caustics(packed: PackedScene, settings: RenderSettings):

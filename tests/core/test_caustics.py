@@ -301,3 +301,21 @@ def test_a_point_lights_light_in_a_mirror_is_its_mirror_image_lights():
     assert inside.sum() > 100
     assert math.isclose(ratio, 1.0, rel_tol=0.03)
     assert per_pixel < 0.06
+
+
+def test_many_mirrors_share_one_hull_and_still_light_the_floor():
+    """A thousand small mirror balls: one hull round them all (core.compile.caustics'
+    MAX_HULLS), so the pass stays as quick as for one, and their light still lands."""
+    from core.compile.caustics import MAX_HULLS, REFLECTIVE, caster_hulls
+
+    balls = [
+        Sphere(f"Ball {i}", Material(diffuse=(0.0, 0.0, 0.0), reflectivity=1.0),
+               _placed(x=(i % 32) * 0.1 - 1.6, y=(i // 32) * 0.1 - 1.6, z=1.0,
+                       size=(0.04, 0.04, 0.04)))
+        for i in range(1000)
+    ]  # fmt: skip
+    scene = Scene(shapes=[_floor(), *balls], lights=[_sun(30.0)])
+    compiled = compile_scene(scene, _settings(8, 20_000))
+    assert len(balls) > MAX_HULLS
+    assert caster_hulls(compiled.packed, REFLECTIVE).shape == (1, 7)
+    assert compiled.caustics.stored > 100
