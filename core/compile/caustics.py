@@ -106,7 +106,8 @@ def add_caustics(packed: PackedScene, settings: RenderSettings):
     """(packed with its lights' photon arrays filled, warnings, CausticReport or None)."""
     branches = branches_of(settings)
     warnings = []
-    if "refractive" in settings.caustics and not branches & REFRACTIVE:
+    has_glass = bool((packed.materials.transparency > 0.0).any())
+    if "refractive" in settings.caustics and not branches & REFRACTIVE and has_glass:
         warnings.append(
             "refractive caustics need glass shadows blocked (Render Properties > Light Paths "
             '> Glass: Blocked; glass_shadows="blocked"): under Attenuated, shadow rays '

@@ -248,6 +248,9 @@ def test_refractive_caustics_under_the_attenuated_rule_are_refused_with_a_warnin
     compiled = compile_scene(scene, settings)
     assert compiled.caustics is None
     assert any("Light Paths > Glass: Blocked" in w for w in compiled.warnings)
+    # a scene without glass has nothing to warn of
+    plain = Scene(shapes=[_floor()], lights=[_sun(30.0)])
+    assert compile_scene(plain, settings).warnings == []
 
 
 @pytest.mark.parametrize("bad", [("mirrors",), "reflective"])
