@@ -70,6 +70,12 @@ class ViewportSession:
             return
         self.scene, self.settings, self.compiled = scene, settings, compiled
         self.error, self.warnings = None, warnings + compiled.warnings
+        if compiled.caustics is not None and render.caustic_photons > settings.caustic_photons:
+            # last: what Whitted cannot honour comes first in the header
+            self.warnings.append(
+                f"caustics from {settings.caustic_photons:,} photons here, "
+                f"F12 traces {render.caustic_photons:,}"
+            )
         self.exports += 1
         self.renderer.submit(compiled, scene, settings)
         keep_redrawing()

@@ -184,6 +184,20 @@ def test_what_whitted_cannot_honour_shows_in_the_views_status(
     assert f"light '{light.name}'" in session.status() and "Radius 0.5 m" in session.status()
 
 
+def test_the_views_status_says_when_f12_traces_more_caustic_photons(session, bpy_with_whitted):
+    from tests.blender.test_caustics_in_blender import _mirror_scene
+
+    bpy = bpy_with_whitted
+    scene = _mirror_scene(bpy)
+    session.update(bpy.context.evaluated_depsgraph_get(), camera_view(bpy, scene))
+    finish(session)
+    assert "caustics from 50,000 photons here, F12 traces 200,000" in session.status()
+    scene.whitted.caustic_photons = 40_000  # within the view's own budget: nothing to say
+    session.update(bpy.context.evaluated_depsgraph_get(), camera_view(bpy, scene))
+    finish(session)
+    assert "F12 traces" not in session.status()
+
+
 def test_a_final_render_while_the_viewport_renders_completes_and_both_are_right(
     session, sample_scene, bpy_with_whitted, tmp_path
 ):
