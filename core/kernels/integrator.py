@@ -128,12 +128,12 @@ def _sees(visibility, depth, came_through):
 
 
 @kernel
-def _mean(w):
+def channel_mean(w):
     return (w[0] + w[1] + w[2]) / 3.0
 
 
 @kernel
-def _mirror_tint(here, cos_i):
+def mirror_tint(here, cos_i):
     """The mirror's tint at this incidence: Schlick's c0 + (c90 - c0)(1 - cos)^5."""
     toward_edge = (1.0 - cos_i) ** 5
     return add(here.mirror_normal, scale(sub(here.mirror_edge, here.mirror_normal), toward_edge))
@@ -158,7 +158,7 @@ def _leave_surface(rays, top, here, sample, samples, spread, key, event, o, d, w
         cos_m = min(1.0, max(0.0, -dot(d, m)))
     reflect = (0.0, 0.0, 0.0)
     if rho > 0.0:
-        reflect = scale(_mirror_tint(here, cos_m), (1.0 - tau) * rho)
+        reflect = scale(mirror_tint(here, cos_m), (1.0 - tau) * rho)
     if coat_reflects > 0.0:
         reflect = add(reflect, scale((1.0, 1.0, 1.0), (1.0 - tau) * coat_reflects))
     if tau > 0.0:
@@ -231,7 +231,7 @@ def trace_ray(ps, o, d, key, ws):
             if depth == 0 and frame.options[OPTION_TRANSPARENT] != 0:
                 # a camera ray (or what passed straight through) meets nothing, not even
                 # background: the pixel's alpha loses its share
-                alpha -= _mean(w)
+                alpha -= channel_mean(w)
             else:
                 seen = mul(w, environment_seen(frame, lights, d, depth, came_through))
                 colour = add(colour, seen)
@@ -246,7 +246,7 @@ def trace_ray(ps, o, d, key, ws):
                 top = _push(rays, top, beyond, d, w, depth, branch, refracted_before, crossed + 1)
             continue
         if depth == 0 and surf.shape_holdout[shape] != 0:
-            alpha -= _mean(w)  # a hole in the picture, as Cycles cuts: nothing behind shows
+            alpha -= channel_mean(w)  # a hole in the picture, as Cycles cuts: nothing behind shows
             continue
         material = surf.shape_material[shape]
         first = recording and depth == 0 and not hit_recorded
@@ -290,7 +290,7 @@ def trace_ray(ps, o, d, key, ws):
             if here.coat_hides:
                 kd = scale(kd, 1.0 - coat_reflects)  # the diffuse seen through the coat
         if depth == 0 and here.holdout > 0.0:
-            alpha -= _mean(w) * here.holdout
+            alpha -= channel_mean(w) * here.holdout
         if first:
             hit_recorded = True
             record_hit(record, surf, mats, shape, material, p, n_shading, u, v, 1.0 - tau, kd)

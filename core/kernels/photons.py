@@ -44,7 +44,7 @@ import numpy as np
 from ..jit.decorators import kernel
 from .caster_hulls import hull_centre, hull_start, hulls_entered
 from .emitters import emitter_sample
-from .integrator import fresnel_dielectric, refract
+from .integrator import channel_mean, fresnel_dielectric, mirror_tint, refract
 from .layout import EMITS_FROM_SURFACE
 from .light_mesh import SHORT_OF_SURFACE
 from .light_pyramid import TRAVERSE_ALL
@@ -57,19 +57,13 @@ from .trace import closest_hit, spawn_point, transmittance
 from .vec import add, dot, mul, normalize, row, scale, sub
 
 # PhotonTally slots: what a photon pass counts, for the compile's report
-TALLY_EMITTED = 0  # photons that left a light towards a caster hull, lit
-TALLY_STORED = 1  # photons stored on diffuse surfaces
-TALLY_DROPPED = 2  # stored photons beyond the arrays' room
-TALLY_PROGRAMMED = 3  # photons ended at a node material whose terms vary over the surface
-TALLY_SLOTS = 4
+TALLY_STORED = 0  # photons stored on diffuse surfaces
+TALLY_DROPPED = 1  # stored photons beyond the arrays' room
+TALLY_PROGRAMMED = 2  # photons ended at a node material whose terms vary over the surface
+TALLY_SLOTS = 3
 
 # Branch switches (core.compile.caustics): which specular events may carry a photon
 REFLECTIVE, REFRACTIVE = 1, 2
-
-
-@kernel
-def _mean(c):
-    return (c[0] + c[1] + c[2]) / 3.0
 
 
 @kernel
@@ -124,7 +118,7 @@ def row_power(geo, lights, casters, plan, seed, stacks, out):
         for i in range(photons):
             key = chain(chain(chain(np.uint64(0), seed), r), i)
             _, _, _, power = photon_start(geo, lights, casters, light, k, key, photons, stacks)
-            total += _mean(power)
+            total += channel_mean(power)
         out[r] = total
 
 
@@ -144,7 +138,6 @@ def trace_photons(geo, surf, mats, lights, casters, plan, seed, branches, max_bo
                                                 stacks)  # fmt: skip
             if max(power[0], power[1], power[2]) <= 0.0:
                 continue
-            tally[TALLY_EMITTED] += 1
             shape, t, part, b1, b2 = closest_hit(geo, o, d, math.inf, stacks)
             # the light ray from the light to its first hit: each hull it enters samples it
             entered = hulls_entered(casters, o, d, -t_light, t if shape >= 0 else math.inf)
@@ -161,7 +154,8 @@ def trace_photons(geo, surf, mats, lights, casters, plan, seed, branches, max_bo
                                                              d, t, False)  # fmt: skip
                 here = table_surface(mats, material, row(mats.diffuse, material))
                 tau, rho = here.transparency, here.reflectivity
-                if specular and tau < 1.0 and (mats.texture[material] >= 0 or _mean(here.kd) > 0.0):
+                diffuse = mats.texture[material] >= 0 or channel_mean(here.kd) > 0.0
+                if specular and tau < 1.0 and diffuse:
                     if stored < out_power.shape[0]:
                         for a in range(3):
                             out_position[stored, a] = p[a]
@@ -180,12 +174,7 @@ def trace_photons(geo, surf, mats, lights, casters, plan, seed, branches, max_bo
                 through = (0.0, 0.0, 0.0)
                 bent = d
                 if branches & REFLECTIVE and rho > 0.0:
-                    toward_edge = (1.0 - cos_i) ** 5
-                    tint = add(
-                        here.mirror_normal,
-                        scale(sub(here.mirror_edge, here.mirror_normal), toward_edge),
-                    )
-                    reflect = scale(tint, (1.0 - tau) * rho)  # fmt: skip
+                    reflect = scale(mirror_tint(here, cos_i), (1.0 - tau) * rho)
                 if tau > 0.0:
                     n1, n2 = ((here.outer_ior, here.inner_ior) if entering
                               else (here.inner_ior, here.outer_ior))  # fmt: skip
@@ -197,8 +186,8 @@ def trace_photons(geo, surf, mats, lights, casters, plan, seed, branches, max_bo
                         through = scale(here.glass_transmit, tau * (1.0 - lost))
                         bent = refract(d, n_shading, n1 / n2, cos_i, cos_t)
                 straight = here.transparent
-                p_reflect, p_through = _mean(reflect), _mean(through)
-                p_straight = _mean(straight)
+                p_reflect, p_through = channel_mean(reflect), channel_mean(through)
+                p_straight = channel_mean(straight)
                 total = p_reflect + p_through + p_straight
                 if total <= 0.0 or bounce == max_bounces:
                     break

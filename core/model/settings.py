@@ -157,6 +157,9 @@ class RenderSettings:
         check_choice(owner, "shadow_sampling", self.shadow_sampling, SHADOW_SAMPLINGS)
         check_flag(owner, "shadow_culling", self.shadow_culling)
         check_choice(owner, "glass_shadows", self.glass_shadows, GLASS_SHADOW_RULES)
+        if isinstance(self.caustics, str) or not isinstance(self.caustics, (tuple, list)):
+            raise SceneError(owner, "caustics", f"got {self.caustics!r}; use a tuple of "
+                             f"{', '.join(CAUSTIC_KINDS)} (or () for none)")  # fmt: skip
         self.caustics = tuple(self.caustics)
         for kind in self.caustics:
             check_choice(owner, "caustics", kind, CAUSTIC_KINDS)
