@@ -3,6 +3,7 @@
     python -m core render scene.lua [-o picture.png] [--threads N] [--allow-outside-files]
                                     [--script-seconds S] [--script-memory MIB]
                                     [--passes depth,normal,...|all]
+                                    [--caustics both] [--photons N] [--glass-shadows RULE]
 
 The script runs first, to the end, in a child process within its time and memory limits;
 only then is anything rendered, so a script with an error anywhere writes nothing. Each
@@ -20,6 +21,7 @@ import time
 from pathlib import Path
 
 from .cs488 import ScriptError, ScriptLimits, load_script
+from .cs488.render_options import CAUSTICS, NO_OPTIONS, RenderOptions
 from .cs488.sandbox import (
     DEFAULT_LIMITS,
     MAX_SCRIPT_MEMORY_MIB,
@@ -29,8 +31,10 @@ from .cs488.sandbox import (
 )
 from .errors import SceneError
 from .farm import command as farm_command
+from .model.settings import DEFAULT_CAUSTIC_PHOTONS, MAX_CAUSTIC_PHOTONS
 from .output_file import OutputError, check_writable, write_whole
 from .passes import PASS_NAMES, check_passes, crypto_names
+from .vocabulary import GLASS_SHADOWS
 
 BAR_WIDTH = 30
 MAX_THREADS = 1024  # past any machine's cores
@@ -70,6 +74,22 @@ def main(argv: list[str] | None = None) -> int:
         "shadow rays only where the probes disagree (faster; may miss an occluder narrower "
         "than the light); without it, the report's picture exactly",
     )  # fmt: skip
+    render_command.add_argument(
+        "--caustics", choices=tuple(CAUSTICS), default=None,
+        help="trace light off mirrors (reflective), through glass (refractive) or both onto "
+        "diffuse surfaces as photons, over the script's gr.render options (default: the "
+        "script's; the report's scripts: none)",
+    )  # fmt: skip
+    render_command.add_argument(
+        "--photons", type=_bounded(int, 0, MAX_CAUSTIC_PHOTONS, "photons"), default=None,
+        metavar="N", help=f"caustic photons traced (default {DEFAULT_CAUSTIC_PHOTONS:,})",
+    )  # fmt: skip
+    render_command.add_argument(
+        "--glass-shadows", choices=tuple(GLASS_SHADOWS), default=None,
+        help="shadow rays through glass: attenuated by it (the report's rule) or blocked "
+        "(the light behind glass then comes as refractive caustics); default: blocked with "
+        "refractive caustics, else attenuated",
+    )  # fmt: skip
     default = DEFAULT_LIMITS
     render_command.add_argument(
         "--script-seconds", default=default.seconds, metavar="S",
@@ -88,10 +108,12 @@ def main(argv: list[str] | None = None) -> int:
     if args.command == "farm":
         return farm_command.run(args)
     limits = ScriptLimits(seconds=args.script_seconds, memory_mib=args.script_memory)
+    caustics = CAUSTICS[args.caustics] if args.caustics is not None else None
+    options = RenderOptions(caustics, args.photons, args.glass_shadows)
     try:
         return _render_script(
             args.script, args.output, args.threads, args.allow_outside_files, limits, args.passes,
-            args.region, args.adaptive_shadows,
+            args.region, args.adaptive_shadows, options,
         )  # fmt: skip
     except (ScriptError, SceneError, OutputError) as error:
         print(f"error: {error}", file=sys.stderr)
@@ -112,8 +134,10 @@ def _bounded(kind, low, high, unit: str):
             value = None
         if value is None or not low <= value <= high:
             whole = " whole" if kind is int else ""
+            shown = "," if kind is int else ",g"  # 10,000,000, not 1e+07
             raise argparse.ArgumentTypeError(
-                f"got {text[:40]!r}; give a{whole} number of {unit} from {low:,g} to {high:,g}"
+                f"got {text[:40]!r}; give a{whole} number of {unit} from {low:{shown}} to "
+                f"{high:{shown}}"
             )
         return value
 
@@ -140,7 +164,8 @@ def _region(text: str) -> tuple[int, int, int, int]:
 def _render_script(script: Path, output: Path | None, threads: int, anywhere: bool,
                    limits: ScriptLimits, passes: tuple[str, ...] = (),
                    region: tuple[int, int, int, int] | None = None,
-                   adaptive_shadows: bool = False) -> int:  # fmt: skip
+                   adaptive_shadows: bool = False,
+                   options: RenderOptions = NO_OPTIONS) -> int:  # fmt: skip
     calls = load_script(script, print_line=print, anywhere=anywhere, limits=limits,
                         notice=lambda text: print(text, file=sys.stderr, flush=True))  # fmt: skip
     if not calls:
@@ -157,6 +182,9 @@ def _render_script(script: Path, output: Path | None, threads: int, anywhere: bo
         call.settings.passes = passes
         call.settings.region = region
         call.settings.adaptive_shadows = adaptive_shadows
+        # the command line's caustics and glass rule over the script's (render_options)
+        for name, value in options.over(call.options).settings().items():
+            setattr(call.settings, name, value)
         try:  # here, not after a first render's kernel compile
             call.settings.validate()
         except SceneError as error:
@@ -177,7 +205,8 @@ def _render_script(script: Path, output: Path | None, threads: int, anywhere: bo
         for warning in call.warnings:
             print(f"warning: {warning}", file=sys.stderr)
         target, label = _target(script, output, call)
-        result = render(call.scene, call.settings, on_tile=_progress_bar())
+        result = render(call.scene, call.settings, on_tile=_tile_bar(),
+                        on_photons=_progress_bar("caustic photons"))  # fmt: skip
         print(result.stats.summary())
         for warning in result.warnings:
             print(f"warning: {warning}", file=sys.stderr)
@@ -198,19 +227,26 @@ def _target(script: Path, output: Path | None, call) -> tuple[Path, str]:
     return call.output, f"{script.name}: gr.render's file {call.output}"
 
 
-def _progress_bar():
+def _tile_bar():
+    bar = _progress_bar("tiles")
+    return lambda tile, pixels, done, total: bar(done, total)
+
+
+def _progress_bar(unit: str):
+    """A progress bar on stderr, redrawn in a terminal; a log gets the half-way mark and the
+    end, not a line per step. Returns a function of (done, total)."""
     start = time.perf_counter()
     interactive = sys.stderr.isatty()
 
-    def on_tile(tile, pixels, done, total):
+    def show(done, total):
         if not interactive and done not in (total, (total + 1) // 2):
-            return  # a log gets the half-way mark and the end, not a line per tile
+            return
         filled = BAR_WIDTH * done // total
         bar = "#" * filled + "." * (BAR_WIDTH - filled)
         end = "\n" if done == total or not interactive else ""
         elapsed = time.perf_counter() - start
         start_of_line = "\r" if interactive else ""
-        print(f"{start_of_line}[{bar}] {done}/{total} tiles {elapsed:.1f} s", end=end,
+        print(f"{start_of_line}[{bar}] {done:,}/{total:,} {unit} {elapsed:.1f} s", end=end,
               file=sys.stderr)  # fmt: skip
 
-    return on_tile
+    return show

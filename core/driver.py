@@ -169,6 +169,7 @@ def render(
     settings: RenderSettings,
     on_tile: TileCallback | None = None,
     should_cancel: Callable[[], bool] | None = None,
+    on_photons: Callable[[int, int], None] | None = None,
 ) -> RenderOutput:
     """Render `scene`. Raises `SceneError` for bad input before any work starts.
 
@@ -176,8 +177,11 @@ def render(
     with pixels float32 (tile.height, tile.width, 4 + pass channels), row 0 at the top.
     should_cancel() is polled between tiles; once it says True no new tile starts and render
     returns with `cancelled` set and the unrendered pixels zero.
+    on_photons(done, total) is called as the caustic photon pass goes (when it runs), which
+    should_cancel() also stops.
     """
-    return render_compiled(compile_scene(scene, settings), settings, on_tile, should_cancel)
+    compiled = compile_scene(scene, settings, on_photons, should_cancel)
+    return render_compiled(compiled, settings, on_tile, should_cancel)
 
 
 def render_compiled(

@@ -237,6 +237,10 @@ def configure(scene, width, height, pixel_samples=1, shadow_samples=16, max_dept
     settings.shadow_samples = shadow_samples
     settings.shadow_sampling = "STRATIFIED"
     settings.max_depth = max_depth
+    # the report's scenes keep its pictures: its pale shadow through glass, no caustics (as
+    # the Lua importer sets them; Render > Light Paths turns them on)
+    settings.glass_shadows = "ATTENUATED"
+    settings.use_caustics_reflective = settings.use_caustics_refractive = False
 
 
 def variant(stage, name):

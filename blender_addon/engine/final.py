@@ -47,12 +47,15 @@ def render(engine, depsgraph):
             engine.update_progress(done / total)
             engine.update_stats("", f"Whitted | Tile {done}/{total}")
 
-        if settings.caustics and settings.caustic_photons and not preview:
-            # the compile traces them before the first tile (if the scene has mirrors or glass)
-            engine.update_stats("", "Whitted | Caustic photons")
+        def photons(done, total):
+            # the compile traces them before the first tile, when the scene needs them
+            engine.update_progress(done / total)
+            engine.update_stats("", f"Whitted | Caustic photons {done:,}/{total:,}")
+
         output = core.render(
-            scene, settings, on_tile=stream, should_cancel=lambda: cancelled(engine)
-        )
+            scene, settings, on_tile=stream, should_cancel=lambda: cancelled(engine),
+            on_photons=None if preview else photons,
+        )  # fmt: skip
     except core.SceneError as error:
         if not preview:  # a thumbnail the scene cannot make stays blank, without a report
             engine.report({"ERROR"}, f"Whitted: {error}")

@@ -61,8 +61,10 @@ def pack_scene(scene: Scene, settings: RenderSettings) -> PackedScene:
     return compile_scene(scene, settings).packed
 
 
-def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
-    """Validate and pack, returning the warnings (such as degenerate triangles dropped)."""
+def compile_scene(scene: Scene, settings: RenderSettings, on_photons=None,
+                  should_cancel=None) -> CompiledScene:  # fmt: skip
+    """Validate and pack, returning the warnings (such as degenerate triangles dropped).
+    on_photons and should_cancel: the caustic photon pass's (caustics.add_caustics)."""
     scene.validate()
     settings.validate()
     frame = pack_frame(scene, settings)
@@ -86,7 +88,8 @@ def compile_scene(scene: Scene, settings: RenderSettings) -> CompiledScene:
     glowing = glowing_shapes(scene.shapes, materials, material_of)
     lights = pack_lights(scene.lights, scene.environment, glowing)
     packed = kernel_ready(PackedScene(frame, geometry, surfaces, materials, lights))
-    packed, caustic_warnings, caustics = add_caustics(packed, settings)
+    packed, caustic_warnings, caustics = add_caustics(packed, settings, on_photons,
+                                                      should_cancel)  # fmt: skip
     packed = kernel_ready(packed)
     warnings = (
         [

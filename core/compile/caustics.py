@@ -2,10 +2,10 @@
 and gathered into the hashed grid the shading points read (core.kernels.caustics).
 
 Model no more than the scene needs: no photon is traced unless caustics are asked for, a
-light in Blender's units casts shadows and lights diffuse surfaces, some shape's material
-reflects (reflective caustics) or refracts (refractive caustics, which need the "blocked"
-glass-shadow rule: under "attenuated" shadow rays bring that light already), and some
-material has a diffuse part to receive them.
+light is there (a report's, or one in Blender's units that casts shadows and lights diffuse
+surfaces), some shape's material reflects (reflective caustics) or refracts (refractive
+caustics, which need the "blocked" glass-shadow rule: under "attenuated" shadow rays bring
+that light already), and some material has a diffuse part to receive them.
 
 The budget. `RenderSettings.caustic_photons` photons are shared among the rows (light,
 caster hull) in proportion to the power each row sends into its hull, measured first
@@ -52,6 +52,9 @@ SPACING_SHARE = 64
 MARGIN = 1e-6  # relative: how far outside its shape a caster hull lies
 MAX_HULLS = 64
 STORED_PER_PHOTON = 2  # room for stored photons, per photon traced
+# The pass is traced in about this many parts (of at least PART_PHOTONS photons), between
+# which its progress is shown and a cancel is heard
+PARTS, PART_PHOTONS = 32, 2048
 BYTES_PER_PHOTON = 88  # stated in the module's docstring and the settings' limit
 
 
@@ -102,8 +105,12 @@ def caster_hulls(packed: PackedScene, branches: int) -> np.ndarray:
     return hulls
 
 
-def add_caustics(packed: PackedScene, settings: RenderSettings):
-    """(packed with its lights' photon arrays filled, warnings, CausticReport or None)."""
+def add_caustics(packed: PackedScene, settings: RenderSettings, on_photons=None,
+                 should_cancel=None):  # fmt: skip
+    """(packed with its lights' photon arrays filled, warnings, CausticReport or None).
+    on_photons(done, total) is called after each part of the pass; once should_cancel()
+    says True no part starts and the scene gets no photons (the render that follows stops
+    too, polling the same)."""
     branches = branches_of(settings)
     warnings = []
     has_glass = bool((packed.materials.transparency > 0.0).any())
@@ -116,6 +123,9 @@ def add_caustics(packed: PackedScene, settings: RenderSettings):
     lights = packed.lights
     flags = lights.emitter_flags
     lit = np.flatnonzero((flags & EMITS_SHADOW != 0) & (flags & EMITS_DIFFUSE != 0))
+    # the report's lights, numbered after those (core.kernels.photons)
+    reported = len(lights.point_position) + len(lights.area_centre) + len(lights.sun_toward)
+    lit = np.concatenate([lit, len(flags) + np.arange(reported)])
     if not branches or settings.caustic_photons == 0 or lit.size == 0:
         return packed, warnings, None
     casters = caster_hulls(packed, branches)
@@ -131,13 +141,22 @@ def add_caustics(packed: PackedScene, settings: RenderSettings):
     if power.sum() <= 0.0:
         return packed, warnings, None
     share = np.floor(settings.caustic_photons * power / power.sum()).astype(np.int64)
-    plan = np.ascontiguousarray(np.column_stack([rows[:, :2], share])[share > 0])
-    room = STORED_PER_PHOTON * int(share.sum())
+    plan = np.column_stack([rows[:, :2], share])[share > 0]
+    total = int(share.sum())
+    room = STORED_PER_PHOTON * total
     position, direction, power_out = (np.zeros((room, 3)) for _ in range(3))
     tally = np.zeros(TALLY_SLOTS, np.int64)
-    stored = trace_photons(geo, surf, mats, lights, casters, plan, settings.seed, branches,
-                           max(settings.max_depth, 1), position, direction, power_out, stacks,
-                           tally)  # fmt: skip
+    stored, done = 0, 0
+    for part in photon_parts(plan, total):
+        if should_cancel is not None and should_cancel():
+            return packed, warnings, None
+        stored += trace_photons(geo, surf, mats, lights, casters, part, settings.seed, branches,
+                                max(settings.max_depth, 1), position[stored:],
+                                direction[stored:], power_out[stored:], stacks,
+                                tally)  # fmt: skip
+        done += int(part[:, 5].sum())
+        if on_photons is not None:
+            on_photons(done, total)
     if tally[TALLY_PROGRAMMED]:
         warnings.append(
             f"caustics: {tally[TALLY_PROGRAMMED]} photons ended at node materials whose terms "
@@ -148,7 +167,7 @@ def add_caustics(packed: PackedScene, settings: RenderSettings):
         warnings.append(f"caustics: {tally[TALLY_DROPPED]} photons found no room and were dropped")
     position, direction, power_out = position[:stored], direction[:stored], power_out[:stored]
     if stored == 0:
-        return packed, warnings, CausticReport(int(share.sum()), 0, 0.0, 0.0)
+        return packed, warnings, CausticReport(total, 0, 0.0, 0.0)
     radius = neighbour_distances(position)
     levels = _levels(radius)
     order, cells = _hashed_grid(position, radius, levels)
@@ -162,8 +181,29 @@ def add_caustics(packed: PackedScene, settings: RenderSettings):
     )
     seconds = time.perf_counter() - start
     median = float(np.median(radius))
-    report = CausticReport(int(share.sum()), int(tally[TALLY_STORED]), median, seconds)
+    report = CausticReport(total, int(tally[TALLY_STORED]), median, seconds)
     return packed._replace(lights=lights), warnings, report
+
+
+def photon_parts(plan: np.ndarray, total: int) -> list[np.ndarray]:
+    """The rows (light, hull, photons) of `plan` as trace_photons' parts: rows (light, hull,
+    photons, the row's number, first, count), each part about total / PARTS photons."""
+    size = max(PART_PHOTONS, -(-total // PARTS))
+    pieces = [
+        (light, k, n, number, first, min(size, n - first))
+        for number, (light, k, n) in enumerate(plan.tolist())
+        for first in range(0, n, size)
+    ]
+    parts, part, held = [], [], 0
+    for piece in pieces:  # small rows share a part
+        part.append(piece)
+        held += piece[5]
+        if held >= size:
+            parts.append(np.array(part, np.int64))
+            part, held = [], 0
+    if part:
+        parts.append(np.array(part, np.int64))
+    return parts
 
 
 def neighbour_distances(position: np.ndarray) -> np.ndarray:

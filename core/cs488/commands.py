@@ -31,13 +31,14 @@ from .graph import (
     operand_count,
 )
 from .render_call import RenderCall
+from .render_options import RenderOptions, script_options
 from .sandbox import ArgumentError
 
 MATERIAL_USAGE = "{dr, dg, db}, {sr, sg, sb}, p[, reflectivity[, outer_ior[, inner_ior]]]"
 TEXTURE_USAGE = "file, {sr, sg, sb}, p[, reflectivity[, outer_ior[, inner_ior]]]"
 RENDER_USAGE = (
     "node, file, width, height, eye, view, up, fovy, ambient, lights[, max_recursion, "
-    "supersampling, shadow_rays[, focal_length, aperture_radius]]"
+    "supersampling, shadow_rays[, focal_length, aperture_radius]][, options]"
 )
 # Every gr command, as the A4 language and the report's manual name them
 GR_COMMANDS = (
@@ -325,7 +326,16 @@ class Commands:
         return LightSpec(area, colour, position, falloff, (width, height))
 
     def render(self, *args):
-        expect(args, (10, 13, 15), RENDER_USAGE)
+        expect(args, (10, 11, 13, 14, 15, 16), RENDER_USAGE)
+        options = RenderOptions()
+        if len(args) in (11, 14, 16):  # Whitted's options table (core.cs488.render_options)
+            options = script_options(args[-1])
+            args = args[:-1]
+        elif len(args) in (13, 15) and isinstance(args[-1], (dict, list)):
+            raise ArgumentError(
+                f"the options table comes last, after 10, 13 or 15 arguments; got it after "
+                f"{len(args) - 1} ({RENDER_USAGE})"
+            )
         root = args[0]
         if not isinstance(root, Node):
             raise ArgumentError(f"the node to render must be a node; got {describe(root)}")
@@ -353,6 +363,7 @@ class Commands:
             fovy=number(args[7], "fovy"),
             ambient=numbers(args[8], "ambient {r, g, b}", low=0),
             lights=list(lights),
+            options=options,
         )
         if len(args) >= 13:
             call.max_recursion = whole(args[10], "max recursion level", 0)

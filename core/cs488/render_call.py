@@ -10,6 +10,7 @@ import numpy as np
 from ..errors import SceneError
 from ..model import Camera, Material, RenderSettings, Scene
 from .graph import CsgNode, GeometryNode, Node, vec3
+from .render_options import RenderOptions
 from .sandbox import ArgumentError
 
 # The most shapes one gr.render call may draw. A node under several parents is drawn once per
@@ -42,6 +43,7 @@ class RenderCall:
     shadow_rays: int = 1
     focal_length: float | None = None
     aperture_radius: float = 0.0
+    options: RenderOptions = field(default_factory=RenderOptions)  # Whitted's extension
     scene: Scene | None = None
     settings: RenderSettings | None = None
     warnings: list[str] = field(default_factory=list)
@@ -81,6 +83,7 @@ class RenderCall:
             pixel_samples=3 if self.supersampling else 1,
             pixel_sampling="grid",
             shadow_samples=self.shadow_rays,
+            **self.options.settings(),
         )
         if self.max_recursion is not None:
             self.settings.max_depth = self.max_recursion
@@ -122,7 +125,7 @@ class RenderCall:
             ]
         else:
             lines.append("Depth of field is turned off")
-        return "\n".join(lines)
+        return "\n".join(lines + self.options.summary())
 
 
 def _collect(node: Node, parent: np.ndarray, shapes: list, unset: list) -> None:

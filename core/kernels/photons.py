@@ -33,6 +33,17 @@ position and direction); the shading point multiplies in its own colour
 caustic: shadow rays see it. Node materials whose terms vary over the surface end a
 photon (counted: the compile warns, naming none of them here).
 
+The report's lights (CS488 point and area lights with their falloff 1 / (c0 + c1 d + c2 d^2),
+and directional lights) send photons too, numbered after the lights in Blender's units:
+points, then areas, then suns. A point of theirs lights x as a point source of intensity I
+of physical falloff, I cos / t^2: a photon of power pi I (n.L) v / (t^2 p(x) N c), the pi
+undoing the gather's Lambertian 1 / pi, since the report's diffuse term is kd I cos. Where
+the photon is stored, after a path of length D from the light, its power is multiplied by
+D^2 / (c0 + c1 D + c2 D^2): the report's falloff along the unfolded path, so that a flat
+mirror lights the floor exactly as the light's mirror image would by the report's formula
+(tested). An area light's point is uniform over its rectangle, as its shadow rays' points
+are; a directional light has no falloff.
+
 Every number comes from the photon's own key (seed, row, index), so the photons are the
 same for any threads, tiles or farm split.
 """
@@ -62,14 +73,66 @@ TALLY_DROPPED = 1  # stored photons beyond the arrays' room
 TALLY_PROGRAMMED = 2  # photons ended at a node material whose terms vary over the surface
 TALLY_SLOTS = 3
 
+NO_FALLOFF = (0.0, 0.0, 1.0)  # c0 c1 c2 of a light whose photons carry its falloff already
+
 # Branch switches (core.compile.caustics): which specular events may carry a photon
 REFLECTIVE, REFRACTIVE = 1, 2
 
 
 @kernel
+def _report_light(lights, light):
+    """(0 point, 1 area, 2 directional; its row) of the report's light numbered `light`."""
+    j = light - lights.emitter_kind.shape[0]
+    points, areas = lights.point_position.shape[0], lights.area_centre.shape[0]
+    if j < points:
+        return 0, j
+    if j < points + areas:
+        return 1, j - points
+    return 2, j - points - areas
+
+
+@kernel
+def _report_light_sample(lights, light, x, a, b):
+    """(unit direction from x to the light, distance, intensity, falloff c0 c1 c2) of the
+    report's light numbered `light`; an area light's point (a, b) of its rectangle."""
+    kind, j = _report_light(lights, light)
+    if kind == 2:
+        return row(lights.sun_toward, j), math.inf, row(lights.sun_intensity, j), NO_FALLOFF
+    if kind == 0:
+        position = row(lights.point_position, j)
+        intensity, falloff = row(lights.point_intensity, j), row(lights.point_attenuation, j)
+    else:
+        u = scale(row(lights.area_edge_u, j), a - 0.5)
+        v = scale(row(lights.area_edge_v, j), b - 0.5)
+        position = add(row(lights.area_centre, j), add(u, v))
+        intensity, falloff = row(lights.area_intensity, j), row(lights.area_attenuation, j)
+    gap = sub(position, x)
+    t = math.sqrt(dot(gap, gap))
+    if t == 0.0:
+        return gap, 0.0, intensity, falloff
+    return scale(gap, 1.0 / t), t, intensity, falloff
+
+
+@kernel
+def falloff_share(falloff, distance):
+    """D^2 / (c0 + c1 D + c2 D^2): the report's falloff over a path of length D, against the
+    physical 1 / D^2 the photons' density carries; 1 for lights without it (NO_FALLOFF)."""
+    c0, c1, c2 = falloff
+    if c0 == 0.0 and c1 == 0.0:
+        return 1.0 / c2
+    return distance * distance / (c0 + c1 * distance + c2 * distance * distance)
+
+
+@kernel
 def _light_axis(lights, light, centre):
     """The unit direction from `centre` towards the light (a sun's own; an emissive
-    surface's first triangle's centre)."""
+    surface's first triangle's centre; a report's light's position or centre)."""
+    if light >= lights.emitter_kind.shape[0]:
+        kind, j = _report_light(lights, light)
+        if kind == 2:
+            return row(lights.sun_toward, j)
+        target = row(lights.point_position if kind == 0 else lights.area_centre, j)
+        return normalize(sub(target, centre))
     kind = lights.emitter_kind[light]
     if kind >= EMITTER_SUN_CONE and kind != EMITTER_MESH:
         return row(lights.emitter_position, light)
@@ -88,24 +151,32 @@ def _light_axis(lights, light, centre):
 
 @kernel
 def photon_start(geo, lights, casters, light, k, key, photons, stacks):
-    """(start point, unit direction of travel, distance to the light, power) of one photon of
-    row (light, hull k) of `photons` photons, before the share of the hulls its light ray
-    enters; power 0 when its light sample brings nothing there. The start is drawn on the
-    hull facing the light (core.kernels.caster_hulls), its density divided out."""
+    """(start point, unit direction of travel, distance to the light, power, falloff) of one
+    photon of row (light, hull k) of `photons` photons, before the share of the hulls its
+    light ray enters and the report's falloff (`falloff_share`); power 0 when its light
+    sample brings nothing there. The start is drawn on the hull facing the light
+    (core.kernels.caster_hulls), its density divided out."""
     a, b = uniform2(key, PURPOSE_PHOTON, 0, 0)
     pick, _ = uniform2(key, PURPOSE_PHOTON, 0, 1)
     axis = _light_axis(lights, light, hull_centre(casters, k))
     x, n, density = hull_start(casters, k, axis, a, b, pick)
     a, b = uniform2(key, PURPOSE_PHOTON, 1, 0)
-    to_light, t, weight = emitter_sample(lights, light, x, n, a, b)
+    short = 1.0
+    if light < lights.emitter_kind.shape[0]:
+        to_light, t, weight = emitter_sample(lights, light, x, n, a, b)
+        radiance, falloff = row(lights.emitter_radiance, light), NO_FALLOFF
+        if lights.emitter_flags[light] & EMITS_FROM_SURFACE:
+            short = 1.0 - SHORT_OF_SURFACE
+    else:  # the irradiance pi R w of a point source of physical falloff, pi I / t^2
+        to_light, t, radiance, falloff = _report_light_sample(lights, light, x, a, b)
+        weight = 1.0 / (t * t) if 0.0 < t < math.inf else 1.0
     cos_n = dot(n, to_light)
     if weight <= 0.0 or t == 0.0 or cos_n <= 0.0 or density <= 0.0:
-        return x, to_light, t, (0.0, 0.0, 0.0)
-    short = 1.0 - SHORT_OF_SURFACE if lights.emitter_flags[light] & EMITS_FROM_SURFACE else 1.0
+        return x, to_light, t, (0.0, 0.0, 0.0), falloff
     begin_point(stacks.shadow_state)  # crossings of varying surfaces count as passing
     visible = transmittance(geo, x, to_light, t * short, stacks, TRAVERSE_ALL)
     power = math.pi * weight * cos_n * visible / (density * photons)
-    return x, scale(to_light, -1.0), t, scale(row(lights.emitter_radiance, light), power)
+    return x, scale(to_light, -1.0), t, scale(radiance, power), falloff
 
 
 @kernel
@@ -117,35 +188,40 @@ def row_power(geo, lights, casters, plan, seed, stacks, out):
         total = 0.0
         for i in range(photons):
             key = chain(chain(chain(np.uint64(0), seed), r), i)
-            _, _, _, power = photon_start(geo, lights, casters, light, k, key, photons, stacks)
-            total += channel_mean(power)
+            _, _, t, power, falloff = photon_start(geo, lights, casters, light, k, key, photons,
+                                                   stacks)  # fmt: skip
+            total += channel_mean(power) * falloff_share(falloff, t)
         out[r] = total
 
 
 @kernel
 def trace_photons(geo, surf, mats, lights, casters, plan, seed, branches, max_bounces,
                   out_position, out_direction, out_power, stacks, tally):  # fmt: skip
-    """Trace the photons of each row (light, caster hull, photons) of `plan`, storing
-    those that reach a diffuse surface by way of a mirror or glass into the out_* arrays
-    (position, direction of travel, power), in order; returns how many were stored.
-    `branches`: REFLECTIVE | REFRACTIVE, the specular events a photon may take."""
+    """Trace photons of rows of `plan` (light, caster hull, the row's photons, the row's
+    number, first, count: photons first to first + count - 1 of the row, so that a pass can
+    be traced in parts, the same photons whatever the parts), storing those that reach a
+    diffuse surface by way of a mirror or glass into the out_* arrays (position, direction
+    of travel, power), in order; returns how many were stored. `branches`: REFLECTIVE |
+    REFRACTIVE, the specular events a photon may take."""
     stored = 0
     for r in range(plan.shape[0]):
-        light, k, photons = plan[r, 0], plan[r, 1], plan[r, 2]
-        for i in range(photons):
-            key = chain(chain(chain(np.uint64(0), seed), r), i)
-            o, d, t_light, power = photon_start(geo, lights, casters, light, k, key, photons,
-                                                stacks)  # fmt: skip
+        light, k, photons, number = plan[r, 0], plan[r, 1], plan[r, 2], plan[r, 3]
+        for i in range(plan[r, 4], plan[r, 4] + plan[r, 5]):
+            key = chain(chain(chain(np.uint64(0), seed), number), i)
+            o, d, t_light, power, falloff = photon_start(geo, lights, casters, light, k, key,
+                                                         photons, stacks)  # fmt: skip
             if max(power[0], power[1], power[2]) <= 0.0:
                 continue
             shape, t, part, b1, b2 = closest_hit(geo, o, d, math.inf, stacks)
             # the light ray from the light to its first hit: each hull it enters samples it
             entered = hulls_entered(casters, o, d, -t_light, t if shape >= 0 else math.inf)
             power = scale(power, 1.0 / max(entered, 1))
+            travelled = t_light  # from the light, for the report's falloff
             specular = False
             for bounce in range(max_bounces + 1):
                 if shape < 0:
                     break
+                travelled += t
                 material = surf.shape_material[shape]
                 if mats.shader_range[material, 0] >= 0:
                     tally[TALLY_PROGRAMMED] += 1
@@ -157,10 +233,11 @@ def trace_photons(geo, surf, mats, lights, casters, plan, seed, branches, max_bo
                 diffuse = mats.texture[material] >= 0 or channel_mean(here.kd) > 0.0
                 if specular and tau < 1.0 and diffuse:
                     if stored < out_power.shape[0]:
+                        share = falloff_share(falloff, travelled)
                         for a in range(3):
                             out_position[stored, a] = p[a]
                             out_direction[stored, a] = d[a]
-                            out_power[stored, a] = power[a]
+                            out_power[stored, a] = power[a] * share
                         stored += 1
                         tally[TALLY_STORED] += 1
                     else:

@@ -258,3 +258,24 @@ def test_a_re_render_sees_an_auto_smooth_change(tmp_path):
     fresh = np.asarray(Image.open(tmp_path / "fresh" / "smooth.png"))
     assert not np.array_equal(faceted, smooth)
     np.testing.assert_array_equal(smooth, fresh)
+
+
+def test_the_caustic_photon_pass_shows_its_progress_in_the_log(tmp_path):
+    """The report's mirror balls with Light Paths > Caustics > Mirrors turned on: their CS488
+    light sends photons, and `blender -b`'s `Fra:` lines show the pass going before the
+    tiles; the summary line names it."""
+    turn_on = (
+        "import bpy; s = bpy.context.scene; w = s.whitted; w.use_caustics_reflective = True; "
+        "w.caustic_photons = 40000; s.render.resolution_percentage = 25"
+    )
+    run = blender_34(
+        str(SAMPLE.parent / "mirror.blend"), "--addons", "whitted", "-E", "WHITTED",
+        "--python-expr", turn_on, "-o", f"{tmp_path}/mirror_####", "-F", "PNG", "-f", "1",
+    )  # fmt: skip
+    assert run.returncode == 0, run.stdout[-2000:]
+    lines = [line for line in run.stdout.splitlines() if line.startswith("Fra:1 ")]
+    passes = [i for i, line in enumerate(lines) if "| Whitted | Caustic photons " in line]
+    tiles = [i for i, line in enumerate(lines) if "| Whitted | Tile " in line]
+    assert len(passes) > 1 and tiles and max(passes) < min(tiles), run.stdout[-3000:]
+    assert re.search(r"Caustic photons ([\d,]+)/\1", lines[passes[-1]]), lines[passes[-1]]
+    assert "photons stored" in run.stdout

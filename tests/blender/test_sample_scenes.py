@@ -436,3 +436,9 @@ def test_each_sample_opens_framed_through_its_camera(bpy_with_whitted, name):
     eye = np.array(scene.camera.matrix_world.translation)
     farthest = float(np.linalg.norm(corners - eye, axis=1).max())
     assert scene.camera.data.clip_end > farthest
+    # the report's scenes keep the report's pictures: its glass rule, no photon pass (their
+    # CS488 lights would send photons under Blender's defaults)
+    for each in bpy.data.scenes:
+        settings = each.whitted
+        assert settings.glass_shadows == "ATTENUATED", each.name
+        assert not (settings.use_caustics_reflective or settings.use_caustics_refractive)

@@ -298,9 +298,14 @@ def test_a_point_lights_light_in_a_mirror_is_its_mirror_image_lights():
     y_cross, z_cross = y + s * (image_light[1] - y), s * image_light[2]
     inside = (x > 0.05) & (np.abs(y_cross) < 0.8) & (z_cross > 0.2) & (z_cross < 1.8)
     expected = (irradiance(light) + rho * irradiance(image_light)) / math.pi
+    _assert_matches(image, expected, inside, "point light in a mirror")
+
+
+def _assert_matches(image, expected, inside, label):
+    """Over the pixels `inside`: the mean within 3%, each pixel within 6% on average."""
     ratio = image[inside].mean() / expected[inside].mean()
     per_pixel = np.abs(image[inside] / expected[inside] - 1.0).mean()
-    print(f"point light in a mirror: {ratio:.4f}, mean pixel error {per_pixel:.3f}")
+    print(f"{label}: {ratio:.4f}, mean pixel error {per_pixel:.3f}")
     assert inside.sum() > 100
     assert math.isclose(ratio, 1.0, rel_tol=0.03)
     assert per_pixel < 0.06
@@ -322,3 +327,106 @@ def test_many_mirrors_share_one_hull_and_still_light_the_floor():
     assert len(balls) > MAX_HULLS
     assert caster_hulls(compiled.packed, REFLECTIVE).shape == (1, 7)
     assert compiled.caustics.stored > 100
+
+
+def _report_light_expected(points, falloff, rho, x, y):
+    """The report's diffuse light on the floor (kd 1) from point sources of intensity 1 each
+    (their mean) and their mirror images in the plane x = 0 seen through the mirror (well
+    inside its edges), by its formula I cos / (c0 + c1 d + c2 d^2); and where every image is
+    seen through the mirror."""
+    floor = np.stack([x, y, np.zeros_like(x)], axis=-1)
+    total, inside = np.zeros_like(x), np.ones_like(x, bool)
+    for point in points:
+        for source, weight in ((point, 1.0), (point * np.array([-1.0, 1.0, 1.0]), rho)):
+            gap = source - floor
+            d = np.sqrt((gap**2).sum(axis=-1))
+            c0, c1, c2 = falloff
+            total += weight * gap[..., 2] / d / (c0 + c1 * d + c2 * d * d) / len(points)
+        s = x / (x + point[0])  # where the line to the image crosses the mirror's plane
+        y_cross, z_cross = y + s * (point[1] - y), s * point[2]
+        inside &= (x > 0.05) & (np.abs(y_cross) < 0.8) & (z_cross > 0.2) & (z_cross < 1.8)
+    return total, inside
+
+
+@pytest.mark.parametrize(
+    "kind, falloff",
+    [("point", (1.0, 0.0, 0.0)), ("point", (0.5, 0.3, 0.2)), ("area", (1.0, 0.0, 0.0))],
+)
+def test_the_reports_lights_in_a_mirror_light_the_floor_as_their_mirror_images(kind, falloff):
+    """The report's point and area lights send photons too, with its falloff over the whole
+    path: through a flat mirror, the floor gets what the light's mirror image would give by
+    the report's formula, pixel by pixel."""
+    from core import AreaLight, PointLight
+
+    rho, at = 0.8, np.array([1.0, 0.0, 1.5])
+    mirror = _hidden(Box("Mirror", Material(diffuse=(0.0, 0.0, 0.0), reflectivity=rho),
+                         _placed(x=-0.01, z=1.0, size=(0.01, 1.0, 1.0))))  # fmt: skip
+    if kind == "point":
+        lamp, points = PointLight(tuple(at), (1.0,) * 3, falloff), [at]
+    else:  # a 0.4 m square; the expected light is 8 x 8 of its points' mean
+        lamp = AreaLight(tuple(at), (0.4, 0.0, 0.0), (0.0, 0.4, 0.0), (1.0,) * 3, falloff)
+        grid = (np.arange(8) + 0.5) / 8 * 0.4 - 0.2
+        points = [at + np.array([u, v, 0.0]) for u in grid for v in grid]
+    settings = _settings(48, 200_000, shadow_samples=16 if kind == "area" else 1)
+    image, x, y = _floor_picture([mirror], lamp, settings, centre=(1.5, 0.0))
+    expected, inside = _report_light_expected(points, falloff, rho, x, y)
+    _assert_matches(image, expected, inside, f"{kind} {falloff} in a mirror")
+    # without caustics the mirror adds nothing: the test can tell
+    plain, _, _ = _floor_picture([mirror], lamp, RenderSettings(48, 48, pixel_samples=1))
+    assert plain[inside].mean() < 0.8 * image[inside].mean()
+
+
+def test_a_directional_lights_patch_in_a_mirror_is_its_intensity_times_the_reflectance():
+    from core import DirectionalLight
+
+    rho = 0.8
+    mirror = _hidden(Box("Mirror", Material(diffuse=(0.0, 0.0, 0.0), reflectivity=rho),
+                         _placed(x=-0.01, z=1.0, size=(0.01, 1.0, 1.0))))  # fmt: skip
+    sun = DirectionalLight(direction=(-1.0, 0.0, -1.0), intensity=(1.0, 1.0, 1.0))
+    image, x, y = _floor_picture([mirror], sun, _settings(48, 100_000), centre=(1.0, 0.0))
+    patch = (x > 0.3) & (x < 1.7) & (np.abs(y) < 0.7)
+    open_floor = (x > 2.3) | ((np.abs(y) > 1.3) & (x > 0.0))
+    ratio = image[patch].mean() / image[open_floor].mean()
+    assert math.isclose(ratio, 1.0 + rho, rel_tol=0.03), ratio
+
+
+def _mirror_scene():
+    mirror = _hidden(Box("Mirror", Material(diffuse=(0.0, 0.0, 0.0), reflectivity=0.8),
+                         _placed(x=-0.01, z=1.0, size=(0.01, 1.0, 1.0))))  # fmt: skip
+    return Scene(shapes=[_floor(), mirror], lights=[_sun(45.0)])
+
+
+def test_the_pass_in_parts_traces_the_same_photons_and_shows_its_progress(monkeypatch):
+    """Traced in one part or in many (between which progress shows and a cancel is heard),
+    the photons are the same, bit for bit."""
+    from core.compile import caustics
+
+    shown = []
+    settings = _settings(8, 30_000)
+    many = compile_scene(_mirror_scene(), settings, on_photons=lambda *a: shown.append(a))
+    monkeypatch.setattr(caustics, "PART_PHOTONS", 10**9)
+    one = compile_scene(_mirror_scene(), settings)
+    a, b = many.packed.lights, one.packed.lights
+    assert a.photon_position.shape[0] > 1000
+    for name in ("photon_position", "photon_power", "photon_radius", "photon_cells"):
+        assert np.array_equal(getattr(a, name), getattr(b, name)), name
+    done = [d for d, _ in shown]
+    assert len(shown) > 5 and done == sorted(done) and shown[-1][0] == shown[-1][1]
+
+
+def test_a_cancel_during_the_pass_stops_it_and_the_render():
+    calls = []
+
+    def cancel():
+        calls.append(1)
+        return len(calls) > 2  # after two parts
+
+    camera = Camera(eye=(1.0, 0.0, 10.0), view=(0.0, 0.0, -1.0), up=(0.0, 1.0, 0.0),
+                    projection="orthographic", ortho_height=4.0)  # fmt: skip
+    scene = _mirror_scene()
+    scene.camera = camera
+    shown = []
+    out = render(scene, _settings(16, 100_000), should_cancel=cancel,
+                 on_photons=lambda *a: shown.append(a))  # fmt: skip
+    assert out.cancelled
+    assert len(shown) == 2 and shown[-1][0] < shown[-1][1]

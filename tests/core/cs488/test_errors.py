@@ -23,7 +23,24 @@ CASES = [
      "p[, reflectivity[, outer_ior[, inner_ior]]]); got 7"),
     ("gr.material({1, 1, 1}, {0, 0, 0})", "gr.material: takes 3 to 6 arguments"),
     ("gr.light({0, 0, 0}, {1, 1, 1}, {1, 0, 0}, 2)", "gr.light: takes 3 or 5 arguments"),
-    ("r = gr.node('r') " + RENDER + ", 1)", "gr.render: takes 10, 13 or 15 arguments"),
+    ("r = gr.node('r') " + RENDER + ", 1, 2)", "gr.render: takes 10, 11, 13, 14, 15 or 16 "
+     "arguments"),
+    # Whitted's options table (core.cs488.render_options)
+    ("r = gr.node('r') " + RENDER + ", 1)",
+     "gr.render: the options after the lights must be a table {caustics = "),
+    ("r = gr.node('r') " + RENDER + ", {caustic = 'both'})",
+     "gr.render: options {caustic}: not an option of gr.render; it takes {caustics = "),
+    ("r = gr.node('r') " + RENDER + ", {caustics = 'mirrors'})",
+     "gr.render: options.caustics must be one of 'none', 'reflective', 'refractive', 'both', "
+     "true or false; got 'mirrors'"),
+    ("r = gr.node('r') " + RENDER + ", {photons = 2.5})",
+     "gr.render: options.photons must be a whole number from 0 to 10,000,000; got 2.5"),
+    ("r = gr.node('r') " + RENDER + ", {photons = 1/0})",
+     "gr.render: options.photons must be a whole number from 0 to 10,000,000; got inf"),
+    ("r = gr.node('r') " + RENDER + ", {glass_shadows = 'none'})",
+     "gr.render: options.glass_shadows must be 'attenuated' or 'blocked'; got 'none'"),
+    ("r = gr.node('r') " + RENDER + ", 4, 1, {})",
+     "gr.render: the options table comes last, after 10, 13 or 15 arguments; got it after 12"),
     ("r = gr.node('r') r:translate(1, 2)", "node:translate: takes 3 arguments (x, y, z); got 2"),
     ("r = gr.node('r') r:rotate('x')", "node:rotate: takes 2 arguments (axis, degrees); got 1"),
     # Argument types and ranges
