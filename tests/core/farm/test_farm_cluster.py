@@ -100,6 +100,22 @@ def test_a_lua_scene_splits_and_stitches_too(cluster, tmp_path):
     np.testing.assert_array_equal(pixels(tmp_path / "farm.png"), pixels(tmp_path / "single.png"))
 
 
+def test_a_caustic_scene_splits_with_the_same_photons_on_every_worker(cluster, tmp_path):
+    """Every worker traces the photon pass for its border from the same seed: the same
+    photons, so the stitched caustic has no seams (bit for bit the single render's)."""
+    from tests.core.cs488.test_render_options import CAMERA, MIRROR_SCENE
+
+    script = tmp_path / "mirror.lua"
+    script.write_text(MIRROR_SCENE + f"gr.render(root, 'out.png', 48, 48, {CAMERA}, "
+                      "{caustics = 'reflective', photons = 30000})\n")  # fmt: skip
+    farm_client.run_job(job(cluster, script, tmp_path / "farm.png", split=(3, 2)),
+                        say=lambda line: None)  # fmt: skip
+    single = [sys.executable, "-m", "core", "render", script, "-o", tmp_path / "single.png"]
+    run = subprocess.run(single, check=True, capture_output=True, text=True, cwd=ROOT)
+    assert "photons stored" in run.stdout  # the pass ran
+    np.testing.assert_array_equal(pixels(tmp_path / "farm.png"), pixels(tmp_path / "single.png"))
+
+
 def test_a_frame_range_renders_every_frame_once(cluster, single_render, tmp_path):
     report = farm_client.run_job(
         job(cluster, SAMPLE, tmp_path / "frame_####.png", frames=(1, 2, 3), chunk=2),
