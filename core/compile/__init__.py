@@ -38,7 +38,7 @@ from .csg import owner_rows, pack_csg
 from .frame import pack_frame
 from .glowing import glowing_shapes
 from .lights import pack_lights
-from .materials import pack_materials, shadow_shares
+from .materials import pack_materials, shadow_powers, shadow_shares
 from .meshes import pack_meshes
 from .shapes import pack_geometry
 from .surfaces import pack_surfaces
@@ -80,9 +80,10 @@ def compile_scene(scene: Scene, settings: RenderSettings, on_photons=None,
     graphs = [graph_of_row.get(k) for k in range(len(materials.transparency))]
     refraction_passes = settings.glass_shadows == "attenuated"
     lets_through = shadow_shares(materials, graphs, refraction_passes)
-    shadow_share = [lets_through[material_of[id(s.material)]] for s in shapes]
+    powers = shadow_powers(materials, lets_through, refraction_passes)
+    rows = [material_of[id(s.material)] for s in shapes]
     geometry = pack_geometry(scene.shapes, shapes, world_from_object, csg, tree_of_row,
-                             meshes, mesh_of, shadow_share)  # fmt: skip
+                             meshes, mesh_of, lets_through[rows], powers[rows])  # fmt: skip
     owners = [scene.shapes[row] for row in owner_rows(csg, tree_of_row, len(scene.shapes))]
     surfaces = pack_surfaces(shapes, owners, material_of, meshes)
     glowing = glowing_shapes(scene.shapes, materials, material_of)

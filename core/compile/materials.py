@@ -170,6 +170,20 @@ def shadow_shares(table: Materials, surfaces: list, refraction_passes: bool = Tr
     return share
 
 
+def shadow_powers(table: Materials, shares: np.ndarray, refraction_passes: bool) -> np.ndarray:
+    """float64 (m, 3): the colour of each material's share (`shadow_shares`) as powers of
+    it, ln(colour) / ln(share) per channel (Geometry.shape_shadow_power), so that n
+    crossings pass share^n in all and colour^n per channel: a red Transparent BSDF casts a
+    red shadow, as in Cycles. 1 (grey) where the share is 0, 1 or varies over the surface."""
+    refracted = table.transparency if refraction_passes else np.zeros_like(table.transparency)
+    colour = np.minimum(1.0, refracted[:, None] + table.transparent)
+    power = np.ones((len(shares), 3))
+    tinted = (shares > 0.0) & (shares < 1.0) & (np.ptp(colour, axis=1) > 0.0)
+    with np.errstate(divide="ignore"):  # a channel of 0: power inf, share^inf = 0
+        power[tinted] = np.log(colour[tinted]) / np.log(shares[tinted])[:, None]
+    return power
+
+
 def folded_row(table: Materials, k: int) -> dict:
     """What the kernels read of row k, by core.Material's field names (for tests)."""
     return dict(

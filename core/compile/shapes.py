@@ -15,6 +15,7 @@ from ..errors import SceneError
 from ..kernels.bvh_build import build_bvh
 from ..kernels.bvh_wide import WIDTH
 from ..kernels.layout import Geometry
+from ..kernels.shadow_log import SHADOW_VARIES
 from ..kernels.triangles import LEAF_WIDTH
 from ..model import Csg, Mesh, Torus
 from .arrays import concatenated
@@ -28,10 +29,12 @@ _TOP_TRAVERSAL_COST = 1.0
 
 def pack_geometry(scene_shapes: list, shapes: list, world_from_object: np.ndarray,
                   csg: CsgTables, tree_of_row: dict, meshes: MeshTables,
-                  mesh_of: dict, shadow_share: list) -> Geometry:  # fmt: skip
+                  mesh_of: dict, shadow_share: np.ndarray,
+                  shadow_power: np.ndarray) -> Geometry:  # fmt: skip
     """`shapes` are the rows (scene shapes, then CSG operands), placed by world_from_object
     (n, 4, 4); tree_of_row and mesh_of index the CSG and mesh tables; shadow_share[i] is what
-    one crossing of row i's surface lets through (`materials.shadow_shares`)."""
+    one crossing of row i's surface lets through (`materials.shadow_shares`), and
+    shadow_power[i] its colour (`materials.shadow_powers`)."""
     n = len(shapes)
     param = np.zeros((n, 2))
     shape_index = np.full(n, -1, np.int32)
@@ -69,6 +72,7 @@ def pack_geometry(scene_shapes: list, shapes: list, world_from_object: np.ndarra
     top_order = np.flatnonzero(solid)[top_order]
     if not solid.any():
         top_info = np.zeros((0, 2), np.int32)
+    tau = _shadow_transparency(shapes, scene_rows, shadow_share)
     return Geometry(
         top_bounds=np.ascontiguousarray(np.hstack([top_lo, top_hi])),
         top_info=np.ascontiguousarray(top_info, np.int32),
@@ -77,7 +81,8 @@ def pack_geometry(scene_shapes: list, shapes: list, world_from_object: np.ndarra
         shape_object_from_world=object_from_world,
         shape_param=param,
         shape_index=shape_index,
-        shape_transparency=_shadow_transparency(shapes, scene_rows, shadow_share),
+        shape_transparency=tau,
+        shape_shadow_power=_shadow_power(tau, shadow_power),
         shape_bounds=np.ascontiguousarray(np.hstack([lo, hi]).reshape(n, 6)),
         mesh_root=np.array(meshes.root, np.int32),
         node_boxes=concatenated(meshes.node_boxes, (0, 6, WIDTH), np.float32),
@@ -99,6 +104,17 @@ def _shadow_transparency(shapes: list, scene_rows: int, shadow_share: list) -> n
         else:
             tau[i] = 0.0 if isinstance(shape, Csg) else shadow_share[i]
     return tau
+
+
+def _shadow_power(tau: np.ndarray, shadow_power: np.ndarray) -> np.ndarray:
+    """Geometry.shape_shadow_power: each row's colour where it lets some light through; no
+    rows at all where no shadow can be coloured (no coloured share, no share that varies
+    over a surface), which the kernels read as "grey everywhere" and skip: the colour's
+    bookkeeping is then not done at all."""
+    power = np.where(((tau > 0.0) & (tau < 1.0))[:, None], shadow_power, 1.0)
+    if np.all(power == 1.0) and not np.any(tau == SHADOW_VARIES):
+        return np.ones((0, 3))
+    return power
 
 
 def _check_reach(shapes: list, lo: np.ndarray, hi: np.ndarray) -> None:

@@ -45,7 +45,7 @@ from .options import (
     SHADOW_HALTON,
 )
 from .rng import PURPOSE_LIGHT_SHIFT, uniform2
-from .shading import AreaLight, add_falling, light_candidates
+from .shading import AreaLight, add_falling, light_candidates, seen_through
 from .shadow_rays import PROBES, light_visibility, probe_square
 from .vec import add, dot, mul, row, scale, sub
 
@@ -159,6 +159,8 @@ def emitted_colour(frame, lights, geo, stacks, point, phong, key, event, split):
         else:
             for j in range(count):
                 visibility[j] = 1.0
+                stacks.visibility_tint[j, 0] = 1.0
+                stacks.visibility_tint[j, 1] = stacks.visibility_tint[j, 2] = 1.0
         diffuse = 1.0 if flags & EMITS_DIFFUSE else 0.0
         specular = 1.0 if (flags & EMITS_SPECULAR) and glossy else 0.0
         radiance = row(lights.emitter_radiance, light)
@@ -172,15 +174,16 @@ def emitted_colour(frame, lights, geo, stacks, point, phong, key, event, split):
             if n_dot_l <= 0.0 or visibility[j] == 0.0:
                 continue
             factor = diffuse * n_dot_l
+            seen = seen_through(stacks, j)
             if specular > 0.0:
                 reflected = sub(scale(n, 2.0 * n_dot_l), light_dir)
                 r_dot_v = min(dot(reflected, to_viewer), 1.0)
                 if r_dot_v > 0.0:
                     highlight = r_dot_v**shininess
-                    total = add(total, scale(ks, highlight * weight * visibility[j]))
-            total = add(total, scale(kd, factor * weight * visibility[j]))
+                    total = add(total, mul(ks, scale(seen, highlight * weight)))
+            total = add(total, mul(kd, scale(seen, factor * weight)))
             if split and diffuse > 0.0:
                 falling = scale(radiance, weight / count)
-                add_falling(terms, light_dir, falling, visibility[j], n, 1.0)
+                add_falling(terms, light_dir, falling, seen, n, 1.0)
         colour = add(colour, scale(mul(total, radiance), 1.0 / count))
     return colour

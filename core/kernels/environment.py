@@ -37,7 +37,7 @@ from .options import (
     SHADOW_HALTON,
 )
 from .rng import PURPOSE_LIGHT_SHIFT, uniform2
-from .shading import add_falling
+from .shading import add_falling, seen_through
 from .shadow_rays import shadow_visibility
 from .surface import bilinear, nearest
 from .vec import add, as_tuple, dot, mul, row, scale
@@ -177,7 +177,8 @@ def environment_light(frame, lights, geo, stacks, point, kd, key, event, split):
             continue
         d = row(targets, j)
         radiance = scale(environment_radiance(frame, lights, d), targets[j, 4] / samples)
-        total = add(total, scale(radiance, dot(n, d) * visibility[j]))
+        seen = seen_through(stacks, j)
+        total = add(total, mul(radiance, scale(seen, dot(n, d))))
         if split:
-            add_falling(terms, d, radiance, visibility[j], n, 1.0)
+            add_falling(terms, d, radiance, seen, n, 1.0)
     return mul(kd, total)

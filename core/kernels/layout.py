@@ -47,6 +47,10 @@ class Geometry(NamedTuple):
     # transparency, or 1 (the row is skipped) when it casts no shadow; a CSG row's is 0;
     # SHADOW_VARIES where its program answers each crossing (core.kernels.shadow_log)
     shape_transparency: np.ndarray
+    # float64 (n, 3): the colour of that share, as powers: a shadow ray crossing the surface
+    # n times gets share^n in all, and per channel share^(n p) = colour^n (core.kernels.trace
+    # `tint_by`); 1 for a grey share (and for CSG and varying rows, whose shares are grey)
+    shape_shadow_power: np.ndarray
     shape_bounds: np.ndarray  # float64 (n, 6): world box (lo xyz, hi xyz), for CSG operands
     # meshes
     mesh_root: np.ndarray  # int32 (m,): its BVH's root in node_*

@@ -176,7 +176,8 @@ def photon_start(geo, lights, casters, light, k, key, photons, stacks):
     begin_point(stacks.shadow_state)  # crossings of varying surfaces count as passing
     visible = transmittance(geo, x, to_light, t * short, stacks, TRAVERSE_ALL)
     power = math.pi * weight * cos_n * visible / (density * photons)
-    return x, scale(to_light, -1.0), t, scale(radiance, power), falloff
+    coloured = mul(radiance, (stacks.shadow_tint[0], stacks.shadow_tint[1], stacks.shadow_tint[2]))
+    return x, scale(to_light, -1.0), t, scale(coloured, power), falloff
 
 
 @kernel

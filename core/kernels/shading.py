@@ -81,15 +81,22 @@ def _aim(targets, j, position, origin):
 
 
 @inlined_kernel
-def _lit_by(targets, visibility, j, intensity, attenuation, point, phong):
-    """What light point j of `targets` (aimed at by `_aim`, seen through visibility[j])
+def seen_through(stacks, j):
+    """What sample j's shadow ray let through, per channel: stacks.visibility[j] times its
+    colour (stacks.visibility_tint, 1 but through coloured transparent surfaces)."""
+    v, tint = stacks.visibility[j], stacks.visibility_tint
+    return tint[j, 0] * v, tint[j, 1] * v, tint[j, 2] * v
+
+
+@inlined_kernel
+def _lit_by(targets, stacks, j, intensity, attenuation, point, phong):
+    """What light point j of `targets` (aimed at by `_aim`, seen through its shadow ray)
     adds at a point."""
     distance = targets[j, 3]
     if distance == 0.0:
         return 0.0, 0.0, 0.0
-    return _phong_lit(
-        row(targets, j), _radiance(intensity, attenuation, distance), visibility[j], point, phong
-    )
+    radiance = _radiance(intensity, attenuation, distance)
+    return _phong_lit(row(targets, j), radiance, seen_through(stacks, j), point, phong)
 
 
 @inlined_kernel
@@ -105,24 +112,24 @@ def _radiance(intensity, attenuation, distance):
 @inlined_kernel
 def add_falling(terms, light_dir, radiance, visible, n, weight):
     """Add to `terms` (core.kernels.pass_record) the light falling on the point (times N.L
-    and `weight`) with and without what its shadow ray let through. For the shadow and
-    diffuse passes of a first hit only: the colour itself is `_phong_lit`'s, as ever."""
+    and `weight`) with and without what its shadow ray let through (`visible`, RGB). For the
+    shadow and diffuse passes of a first hit only: the colour itself is `_phong_lit`'s."""
     n_dot_l = dot(n, light_dir)
     if n_dot_l > 0.0:
         for a in range(3):
             falling = radiance[a] * n_dot_l * weight
             terms[TERM_ROW_UNSHADOWED, a] += falling
-            terms[TERM_ROW_LIT, a] += falling * visible
+            terms[TERM_ROW_LIT, a] += falling * visible[a]
 
 
 @inlined_kernel
 def _phong_lit(light_dir, radiance, visible, point, phong):
     """The report's Phong terms for light arriving along unit light_dir with `radiance`,
-    of which `visible` gets through (the shadow ray's transmittance)."""
+    of which `visible` (RGB) gets through (the shadow ray's transmittance)."""
     n, to_viewer = point.normal, point.to_viewer
     kd, ks, shininess = phong
     n_dot_l = dot(n, light_dir)
-    if n_dot_l <= 0.0 or visible == 0.0:
+    if n_dot_l <= 0.0 or visible[0] == visible[1] == visible[2] == 0.0:
         return 0.0, 0.0, 0.0
     reflectance = scale(kd, n_dot_l)
     if ks[0] > 0.0 or ks[1] > 0.0 or ks[2] > 0.0:
@@ -132,7 +139,7 @@ def _phong_lit(light_dir, radiance, visible, point, phong):
         r_dot_v = min(dot(reflected, to_viewer), 1.0)
         if r_dot_v > 0.0:
             reflectance = add(reflectance, scale(ks, r_dot_v**shininess))
-    return mul(reflectance, scale(radiance, visible))
+    return mul(reflectance, mul(radiance, visible))
 
 
 @kernel
@@ -164,7 +171,7 @@ def local_colour(frame, lights, geo, stacks, point, phong, key, event, split):
 
     Each light aims its points into stacks.light_targets, `shadow_visibility` casts their
     shadow rays, and only then are the Phong terms summed, in a loop with no call in it."""
-    targets, visibility, terms = stacks.light_targets, stacks.visibility, stacks.terms
+    targets, terms = stacks.light_targets, stacks.terms
     origin, n = point.origin, point.normal
     if split:
         terms[:] = 0.0
@@ -175,18 +182,19 @@ def local_colour(frame, lights, geo, stacks, point, phong, key, event, split):
         targets[0, 3] = math.inf
         shadow_visibility(geo, stacks, TRAVERSE_ALL, origin, n, 0, 1)
         radiance = row(lights.sun_intensity, light)
-        colour = add(colour, _phong_lit(toward, radiance, visibility[0], point, phong))
+        seen = seen_through(stacks, 0)
+        colour = add(colour, _phong_lit(toward, radiance, seen, point, phong))
         if split:
-            add_falling(terms, toward, radiance, visibility[0], n, 1.0)
+            add_falling(terms, toward, radiance, seen, n, 1.0)
     for light in range(lights.point_position.shape[0]):
         _aim(targets, 0, row(lights.point_position, light), origin)
         shadow_visibility(geo, stacks, TRAVERSE_ALL, origin, n, 0, 1)
         intensity = row(lights.point_intensity, light)
         attenuation = row(lights.point_attenuation, light)
-        colour = add(colour, _lit_by(targets, visibility, 0, intensity, attenuation, point, phong))
+        colour = add(colour, _lit_by(targets, stacks, 0, intensity, attenuation, point, phong))
         if split and targets[0, 3] != 0.0:
             radiance = _radiance(intensity, attenuation, targets[0, 3])
-            add_falling(terms, row(targets, 0), radiance, visibility[0], n, 1.0)
+            add_falling(terms, row(targets, 0), radiance, seen_through(stacks, 0), n, 1.0)
     samples = frame.options[OPTION_SHADOW_SAMPLES]
     pattern = frame.options[OPTION_SHADOW_PATTERN]
     adaptive = frame.options[OPTION_SHADOW_ADAPTIVE] != 0
@@ -215,9 +223,7 @@ def local_colour(frame, lights, geo, stacks, point, phong, key, event, split):
         attenuation = row(lights.area_attenuation, light)
         total = (0.0, 0.0, 0.0)
         for j in range(samples):
-            total = add(
-                total, _lit_by(targets, visibility, j, intensity, attenuation, point, phong)
-            )
+            total = add(total, _lit_by(targets, stacks, j, intensity, attenuation, point, phong))
         colour = add(colour, scale(total, 1.0 / samples))
         if split:
             for j in range(samples):
@@ -225,5 +231,6 @@ def local_colour(frame, lights, geo, stacks, point, phong, key, event, split):
                 if distance != 0.0:
                     radiance = _radiance(intensity, attenuation, distance)
                     light_dir = row(targets, j)
-                    add_falling(terms, light_dir, radiance, visibility[j], n, 1.0 / samples)
+                    seen = seen_through(stacks, j)
+                    add_falling(terms, light_dir, radiance, seen, n, 1.0 / samples)
     return colour

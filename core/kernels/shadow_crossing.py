@@ -19,7 +19,7 @@ def crossing_share(geo, surf, mats, ws, shape, part, b1, b2, o, d, t, refraction
     it (part, b1, b2 as a nearest hit gives them): the rule of a constant material's
     share (`core.compile.materials.shadow_shares`), the mean of what passes it straight
     plus, if `refraction_passes`, its transparency, at most 1, with the terms its program
-    gives there."""
+    gives there; and its colour, per channel over that share."""
     material = surf.shape_material[shape]
     p, _, n_shading, u, v = surface_at(geo, surf, shape, part, b1, b2, o, d, t, True)
     with_frame = mats.shader_frame[material] != 0
@@ -28,9 +28,18 @@ def crossing_share(geo, surf, mats, ws, shape, part, b1, b2, o, d, t, refraction
     # Light Path: a shadow ray (its depth is not known here: read as 0)
     run_program(mats, material, ws.shader_stack, ws.lobes, hit, across, rows, (0.0, 1.0, 0.0))
     here = terms_from_lobes(ws.lobes)
-    straight = (here.transparent[0] + here.transparent[1] + here.transparent[2]) / 3.0
+    clear = here.transparent
+    straight = (clear[0] + clear[1] + clear[2]) / 3.0
     refracted = here.transparency if refraction_passes else 0.0
-    return min(1.0, max(0.0, refracted + straight))
+    share = min(1.0, max(0.0, refracted + straight))
+    tint = (1.0, 1.0, 1.0)  # its colour per channel over the share (as trace.tint_by's)
+    if share > 0.0 and (clear[0] != clear[1] or clear[1] != clear[2]):
+        tint = (
+            min(1.0, max(0.0, refracted + clear[0])) / share,
+            min(1.0, max(0.0, refracted + clear[1])) / share,
+            min(1.0, max(0.0, refracted + clear[2])) / share,
+        )
+    return share, tint
 
 
 @inlined_kernel
@@ -39,7 +48,7 @@ def answer_crossings(geo, surf, mats, ws, refraction_passes):
     set the log to be replayed. False when nothing was listed: the point is lit already.
     `refraction_passes`: the glass-shadow rule (OPTION_GLASS_SHADOWS is "attenuated")."""
     stacks = ws.stacks
-    state, log = stacks.shadow_state, stacks.shadow_log
+    state, log, log_tint = stacks.shadow_state, stacks.shadow_log, stacks.shadow_log_tint
     f, i = stacks.varying_f, stacks.varying_i
     count = state[STATE_CROSSINGS]
     if count == 0:
@@ -50,8 +59,11 @@ def answer_crossings(geo, surf, mats, ws, refraction_passes):
             continue  # an earlier crossing of the same ray blocked it
         o, d = (f[c, 3], f[c, 4], f[c, 5]), (f[c, 6], f[c, 7], f[c, 8])
         shape, part, b1, b2, t = i[c, 0], i[c, 1], f[c, 1], f[c, 2], f[c, 0]
-        share = crossing_share(geo, surf, mats, ws, shape, part, b1, b2, o, d, t, refraction_passes)
+        share, tint = crossing_share(geo, surf, mats, ws, shape, part, b1, b2, o, d, t,
+                                     refraction_passes)  # fmt: skip
         log[g] *= share
+        for a in range(3):
+            log_tint[g, a] *= tint[a]
     state[STATE_RAY] = 0
     state[STATE_CROSSINGS] = 0
     state[STATE_REPLAY] = 1

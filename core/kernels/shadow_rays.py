@@ -70,9 +70,11 @@ def shadow_visibility(geo, stacks, listed, origin, n, first, end):
     A call of its own, apart from the shading that uses its results: with a shadow ray's
     call inside the loop over samples, the loop kept its values in memory across the call,
     and shading an unobstructed sample cost 2.3 times as much (210 ns against 91)."""
-    targets, visibility = stacks.light_targets, stacks.visibility
-    state, log = stacks.shadow_state, stacks.shadow_log
+    targets, visibility, tint = stacks.light_targets, stacks.visibility, stacks.visibility_tint
+    state, log, log_tint = stacks.shadow_state, stacks.shadow_log, stacks.shadow_log_tint
     replay = state[STATE_REPLAY] != 0
+    # without coloured shadows in the scene every tint stays 1, as the workspace began
+    coloured = geo.shape_shadow_power.shape[0] != 0
     for j in range(first, end):
         distance = targets[j, 3]
         light_dir = row(targets, j)
@@ -81,20 +83,31 @@ def shadow_visibility(geo, stacks, listed, origin, n, first, end):
         g = state[STATE_RAY]  # this ray's number in the point's log (core.kernels.shadow_log)
         if replay and g < log.shape[0]:
             visibility[j] = log[g]  # its varying crossings answered since it was cast
+            if coloured:
+                tint[j, 0], tint[j, 1] = log_tint[g, 0], log_tint[g, 1]
+                tint[j, 2] = log_tint[g, 2]
         elif listed == 0:
             if not replay:
                 stacks.ray_counts[SHADOW_RAYS_UNOBSTRUCTED] += 1
             visibility[j] = 1.0
+            if coloured:
+                tint[j, 0] = tint[j, 1] = tint[j, 2] = 1.0
         else:
             listed_before = state[STATE_CROSSINGS]
             visible = transmittance(geo, origin, light_dir, distance, stacks, listed)
             if visible == 0.0:
                 state[STATE_CROSSINGS] = listed_before  # blocked: its crossings do not matter
             visibility[j] = visible
+            if coloured:
+                colour = stacks.shadow_tint
+                tint[j, 0], tint[j, 1], tint[j, 2] = colour[0], colour[1], colour[2]
         if not replay:
             stacks.ray_counts[SHADOW_RAYS] += 1
         if g < log.shape[0]:
             log[g] = visibility[j]
+            if coloured:
+                log_tint[g, 0], log_tint[g, 1] = tint[j, 0], tint[j, 1]
+                log_tint[g, 2] = tint[j, 2]
         state[STATE_RAY] = g + 1
 
 
@@ -124,9 +137,12 @@ def light_visibility(geo, stacks, listed, origin, n, count, adaptive):
         if first == 0:
             return
         seen = visibility[count]
+        tint = stacks.visibility_tint
         agree = seen >= 0.0 and state[STATE_CROSSINGS] == crossings_before
         for k in range(1, PROBES):
             agree = agree and visibility[count + k] == seen
+            for c in range(3):  # (all 1 without coloured shadows in the scene)
+                agree = agree and tint[count + k, c] == tint[count, c]
         if g >= log.shape[0]:
             agree = False  # no slot to keep the decision in for a replay: every ray, always
         elif state[STATE_REPLAY] != 0:
@@ -136,5 +152,6 @@ def light_visibility(geo, stacks, listed, origin, n, count, adaptive):
         if agree:
             for j in range(count):
                 visibility[j] = seen
+                tint[j, 0], tint[j, 1], tint[j, 2] = tint[count, 0], tint[count, 1], tint[count, 2]
             return
         first, end = 0, count

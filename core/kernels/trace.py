@@ -182,6 +182,16 @@ def shape_transmittance(geo, shape, o, d, t_max, stacks):
     return tau**crossings
 
 
+@inlined_kernel
+def tint_by(geo, shape, factor, tint):
+    """Multiply `tint` (3,) by the colour of `factor` (share^n, n crossings of shape's
+    surface): colour^n / share^n = factor^(p - 1) per channel (Geometry.shape_shadow_power)."""
+    power = geo.shape_shadow_power
+    if power[shape, 0] != 1.0 or power[shape, 1] != 1.0 or power[shape, 2] != 1.0:
+        for c in range(3):
+            tint[c] *= factor ** (power[shape, c] - 1.0)
+
+
 @optimised_alone
 @inlined_kernel
 def transmittance(geo, o, d, t_max, stacks, listed):
@@ -201,11 +211,19 @@ def transmittance(geo, o, d, t_max, stacks, listed):
     cache: a point in full shadow costs one shape test per ray). Either way the factors are
     multiplied in leaf order, so the two give the same bits.
 
+    The light's colour goes into stacks.shadow_tint, a factor of the returned fraction per
+    channel: 1 unless coloured transparent surfaces are crossed (`tint_by`); left as it is
+    (1 from the start) in a scene where no shadow can be coloured.
+
     One loop serves both sources, so that the shape tests are compiled once."""
     bounds, info, order = geo.top_bounds, geo.top_info, geo.top_order
     stack, candidates, occluder = stacks.top, stacks.candidates, stacks.occluder
     inverse_d = inverse(d)
     light = 1.0
+    tint = stacks.shadow_tint
+    coloured = geo.shape_shadow_power.shape[0] != 0  # else no row is: no colour is kept
+    if coloured:
+        tint[0] = tint[1] = tint[2] = 1.0
     # Traversal state: the next node to open, and the leaf's shapes order[k:end] being tried
     node = -1
     if (
@@ -230,6 +248,8 @@ def transmittance(geo, o, d, t_max, stacks, listed):
             c += 1
             if position == hinted and not probe:
                 light *= hinted_factor
+                if coloured and hinted_factor != 1.0:
+                    tint_by(geo, candidates[hinted], hinted_factor, tint)
                 continue
             shape = candidates[position]
             if box_entry(geo.shape_bounds, shape, o, inverse_d, 0.0, t_max) == NO_HIT:
@@ -262,6 +282,8 @@ def transmittance(geo, o, d, t_max, stacks, listed):
             hinted_factor = factor
         else:
             light *= factor
+            if coloured and factor != 1.0:
+                tint_by(geo, shape, factor, tint)
     return light
 
 

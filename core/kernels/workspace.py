@@ -67,11 +67,16 @@ class Stacks(NamedTuple):
     # Blender's units the sample's weight (core.kernels.emitters)
     light_targets: np.ndarray
     visibility: np.ndarray  # float64 (shadow samples + PROBES,): what reaches the point from each
+    # float64 (shadow samples + PROBES, 3): its colour, as a factor of `visibility` per
+    # channel (1 unless a coloured transparent surface is crossed; core.kernels.trace)
+    visibility_tint: np.ndarray
     # a shading point's lighting split into the passes' terms (core.kernels.pass_record)
     terms: np.ndarray  # float64 (TERM_ROWS, 3)
     # a shading point's shadow rays through surfaces whose share varies (core.kernels.shadow_log)
     shadow_state: np.ndarray  # int64 (SHADOW_STATE_SLOTS,)
     shadow_log: np.ndarray  # float64 (SHADOW_LOG_SIZE,): each ray's visibility
+    shadow_log_tint: np.ndarray  # float64 (SHADOW_LOG_SIZE, 3): and its tint
+    shadow_tint: np.ndarray  # float64 (3,): the tint of the last `trace.transmittance`
     varying_f: np.ndarray  # float64 (VARYING_CAPACITY, 9): t, b1, b2, the ray's o and d
     varying_i: np.ndarray  # int64 (VARYING_CAPACITY, 3): shape row, part, the ray's number
     # uint64 (STRATA_SLOTS,): the camera sample's place among its pixel's, over which the
@@ -149,9 +154,12 @@ def new_workspace(
             # the samples' rows, then adaptive soft shadows' probes (core.kernels.shadow_rays)
             np.zeros((max(shadow_samples, 1) + PROBES, 5)),
             np.zeros(max(shadow_samples, 1) + PROBES),
+            np.ones((max(shadow_samples, 1) + PROBES, 3)),
             np.zeros((TERM_ROWS, 3)),
             np.zeros(SHADOW_STATE_SLOTS, np.int64),
             np.zeros(SHADOW_LOG_SIZE),
+            np.ones((SHADOW_LOG_SIZE, 3)),
+            np.ones(3),
             np.zeros((VARYING_CAPACITY, 9)),
             np.zeros((VARYING_CAPACITY, 3), np.int64),
             np.zeros(STRATA_SLOTS, np.uint64),

@@ -93,3 +93,24 @@ def test_the_classic_rule_lets_light_through_glass_unlike_cycles(bpy_with_whitte
     whitted = render_with(bpy, scene, "WHITTED", tmp_path / "whitted.exr")
     shadow, open_plane = _shadow_and_open(whitted)
     assert shadow > 0.9 * open_plane
+
+
+def test_a_coloured_transparent_balls_shadow_has_cycles_colour(bpy_with_whitted, tmp_path):
+    """A Transparent BSDF of colour (1, 0.3, 0.1): Cycles' shadow is that colour squared,
+    channel by channel (two crossings), and so is Whitted's; a grey mean would give each
+    channel 0.22 of the open plane."""
+    bpy = bpy_with_whitted
+    colour = (1.0, 0.3, 0.1)
+    scene = _scene(bpy, lambda bpy: node_material(bpy, "Red veil", "ShaderNodeBsdfTransparent",
+                                                  Color=(*colour, 1.0))[0])  # fmt: skip
+    cycles = render_with(bpy, scene, "CYCLES", tmp_path / "cycles.exr", samples=16)
+    whitted = render_with(bpy, scene, "WHITTED", tmp_path / "whitted.exr")
+    centre = (np.arange(SIZE) + 0.5) / SIZE * VIEW - VIEW / 2.0
+    x, y = np.meshgrid(centre, centre)
+    radius = np.hypot(x, y)
+    for image, name in ((cycles, "Cycles"), (whitted, "Whitted")):
+        shadow = image[radius < 0.8 * RADIUS].mean(axis=0)
+        open_plane = image[radius > 1.3 * RADIUS].mean(axis=0)
+        share = shadow / open_plane
+        print(f"{name}: shadow / open plane per channel {np.round(share, 4)}")
+        np.testing.assert_allclose(share, np.square(colour), atol=TOLERANCE)
