@@ -27,6 +27,7 @@ import numpy as np
 from ..kernels.caster_hulls import HULL_BOX, HULL_SPHERE
 from ..kernels.caustics import neighbour_radii, photon_buckets
 from ..kernels.layout import EMITS_DIFFUSE, EMITS_SHADOW, PackedScene
+from ..kernels.options import EMITTER_MESH, EMITTER_SUN_CONE
 from ..kernels.photons import (
     REFLECTIVE,
     REFRACTIVE,
@@ -136,8 +137,9 @@ def add_caustics(packed: PackedScene, settings: RenderSettings, on_photons=None,
     rows = np.array([(light, k, PILOT) for light in lit for k in range(len(casters))], np.int64)
     stacks = new_workspace(0).stacks
     geo, surf, mats = packed.geometry, packed.surfaces, packed.materials
+    containing = lights_inside(lights, casters)
     power = np.zeros(len(rows))
-    row_power(geo, lights, casters, rows, settings.seed, stacks, power)
+    row_power(geo, lights, casters, containing, rows, settings.seed, stacks, power)
     if power.sum() <= 0.0:
         return packed, warnings, None
     share = np.floor(settings.caustic_photons * power / power.sum()).astype(np.int64)
@@ -150,10 +152,10 @@ def add_caustics(packed: PackedScene, settings: RenderSettings, on_photons=None,
     for part in photon_parts(plan, total):
         if should_cancel is not None and should_cancel():
             return packed, warnings, None
-        stored += trace_photons(geo, surf, mats, lights, casters, part, settings.seed, branches,
-                                max(settings.max_depth, 1), position[stored:],
-                                direction[stored:], power_out[stored:], stacks,
-                                tally)  # fmt: skip
+        stored += trace_photons(geo, surf, mats, lights, casters, containing, part,
+                                settings.seed, branches, max(settings.max_depth, 1),
+                                position[stored:], direction[stored:], power_out[stored:],
+                                stacks, tally)  # fmt: skip
         done += int(part[:, 5].sum())
         if on_photons is not None:
             on_photons(done, total)
@@ -183,6 +185,35 @@ def add_caustics(packed: PackedScene, settings: RenderSettings, on_photons=None,
     median = float(np.median(radius))
     report = CausticReport(total, int(tally[TALLY_STORED]), median, seconds)
     return packed._replace(lights=lights), warnings, report
+
+
+def light_centres(lights) -> np.ndarray:
+    """float64 (lights, 3): where each light (numbered as core.kernels.photons numbers them)
+    is, NaN for suns (never inside anything): an emissive surface's triangles' mean corner."""
+    kinds = lights.emitter_kind
+    centres = np.array(lights.emitter_position, float).reshape(-1, 3)
+    centres[(kinds >= EMITTER_SUN_CONE) & (kinds != EMITTER_MESH)] = np.nan
+    for light in np.flatnonzero(kinds == EMITTER_MESH):
+        first, count = (int(v) for v in lights.emitter_param[light, :2])
+        corners = lights.glow_triangles[first : first + count].reshape(-1, 3)
+        centres[light] = corners.mean(axis=0)
+    suns = np.full((len(lights.sun_toward), 3), np.nan)
+    return np.vstack([centres, lights.point_position.reshape(-1, 3),
+                      lights.area_centre.reshape(-1, 3), suns])  # fmt: skip
+
+
+def lights_inside(lights, casters: np.ndarray) -> np.ndarray:
+    """uint8 (lights, hulls): 1 where the light's centre is inside the hull (a lamp in a
+    glass globe), whose photons then start at the light (core.kernels.caster_hulls)."""
+    centres = light_centres(lights)
+    inside = np.zeros((len(centres), len(casters)), np.uint8)
+    with np.errstate(invalid="ignore"):  # the suns' NaN: inside nothing
+        for k, hull in enumerate(casters):
+            if hull[0] == HULL_SPHERE:
+                inside[:, k] = np.linalg.norm(centres - hull[1:4], axis=1) < hull[4]
+            else:
+                inside[:, k] = np.all((centres > hull[1:4]) & (centres < hull[4:7]), axis=1)
+    return inside
 
 
 def photon_parts(plan: np.ndarray, total: int) -> list[np.ndarray]:

@@ -11,9 +11,14 @@ irradiance over its surface (core.kernels.photons' estimate).
 
 A start point is drawn with a density proportional to the cosine between the surface's
 normal and `axis` (towards the light's centre): under a sun every photon then carries the
-same power. Points whose normal faces away from `axis` are never drawn: a light whose
-rays reach them (one inside the hull, or an area light wider than its distance) is missed
-there, a documented limit of the pass.
+same power. Points whose normal faces away from `axis` are never drawn: an area light wider
+than its distance is missed there, a documented limit of the pass.
+
+A light whose centre lies inside a hull (a lamp in a glass globe) lights it from within:
+every ray it sends leaves the hull once, through a point drawn uniformly over the whole
+surface (`hull_point`), and the photon starts at the light itself (core.kernels.photons).
+`containing` (lights, hulls) marks those pairs, and a light ray counts every hull that holds
+its light as one that samples it (`hulls_entered`).
 """
 
 import math
@@ -94,6 +99,37 @@ def hull_start(casters, k, axis, a, b, pick):
 
 
 @kernel
+def hull_point(casters, k, a, b, pick):
+    """(point, outward unit normal, density per unit area) uniform over hull k's whole
+    surface, for a light inside it; (a, b, pick) uniform in [0, 1)."""
+    if casters[k, 0] == HULL_SPHERE:
+        z = 1.0 - 2.0 * a
+        ring = math.sqrt(max(0.0, 1.0 - z * z))
+        phi = 2.0 * math.pi * b
+        n = (ring * math.cos(phi), ring * math.sin(phi), z)
+        rho = casters[k, 4]
+        x = (casters[k, 1] + rho * n[0], casters[k, 2] + rho * n[1], casters[k, 3] + rho * n[2])
+        return x, n, 1.0 / (4.0 * math.pi * rho * rho)
+    whole = 0.0
+    for i in range(3):
+        whole += 2.0 * _face_area(casters, k, i)
+    if whole <= 0.0:
+        return (0.0, 0.0, 0.0), (0.0, 0.0, 1.0), 0.0
+    # a face by its area (each axis's two faces, the pick's halves), then a uniform point
+    running, chosen, side = 0.0, 2, 1.0
+    for i in range(3):
+        share = 2.0 * _face_area(casters, k, i)
+        if pick * whole < running + share:
+            chosen = i
+            side = 1.0 if pick * whole < running + 0.5 * share else -1.0
+            break
+        running += share
+    axis = (1.0 if chosen == 0 else 0.0, 1.0 if chosen == 1 else 0.0, 1.0 if chosen == 2 else 0.0)
+    x, n, _ = _box_start(casters, k, (side * axis[0], side * axis[1], side * axis[2]), a, b, 0.0)
+    return x, n, 1.0 / whole
+
+
+@kernel
 def hull_centre(casters, k):
     if casters[k, 0] == HULL_SPHERE:
         return casters[k, 1], casters[k, 2], casters[k, 3]
@@ -129,10 +165,15 @@ def _entry(casters, k, o, d):
 
 
 @kernel
-def hulls_entered(casters, o, d, s_low, s_high):
-    """How many hulls the line o + s d (d unit) enters at an s in [s_low, s_high)."""
+def hulls_entered(casters, containing, light, o, d, s_low, s_high):
+    """How many hulls sample the light ray o + s d (d unit), s from s_low (the light) to
+    s_high (its first hit): those it enters in [s_low, s_high), and those that hold the
+    light (`containing[light]`), which every ray of it leaves."""
     count = 0
     for k in range(casters.shape[0]):
+        if containing[light, k]:
+            count += 1
+            continue
         entry = _entry(casters, k, o, d)
         if s_low <= entry < s_high:
             count += 1

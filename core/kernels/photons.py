@@ -19,7 +19,9 @@ integral of that irradiance over its surface: a photon carries
 for N photons of its row, v the shadow ray's transmittance from x to the light (light that
 reached x through other glass comes as that glass's own photons), and c the number of hulls
 the light ray enters before its first hit (the same ray, sampled from each hull it crosses,
-counts once in all). It then travels from x along -L.
+counts once in all). It then travels from x along -L. A light inside the hull (a lamp in a glass globe) sends
+every ray out through it once: x is drawn over the whole hull, n.L < 0, and the photon
+starts at the light's sample, its way to x (through the globe) traced, not shadow-tested.
 
 How it travels. At each hit the material's terms (its row of the table: reflectivity and
 mirror tint, transparency with the exact Fresnel reflectance, glass tints, what passes
@@ -53,7 +55,7 @@ import math
 import numpy as np
 
 from ..jit.decorators import kernel
-from .caster_hulls import hull_centre, hull_start, hulls_entered
+from .caster_hulls import hull_centre, hull_point, hull_start, hulls_entered
 from .emitters import emitter_sample
 from .integrator import channel_mean, fresnel_dielectric, mirror_tint, refract
 from .layout import EMITS_FROM_SURFACE
@@ -150,16 +152,22 @@ def _light_axis(lights, light, centre):
 
 
 @kernel
-def photon_start(geo, lights, casters, light, k, key, photons, stacks):
-    """(start point, unit direction of travel, distance to the light, power, falloff) of one
-    photon of row (light, hull k) of `photons` photons, before the share of the hulls its
-    light ray enters and the report's falloff (`falloff_share`); power 0 when its light
-    sample brings nothing there. The start is drawn on the hull facing the light
-    (core.kernels.caster_hulls), its density divided out."""
+def photon_start(geo, lights, casters, containing, light, k, key, photons, stacks):
+    """(start point, unit direction of travel, distance from the light to the hull, power,
+    falloff) of one photon of row (light, hull k) of `photons` photons, before the share of
+    the hulls its light ray enters and the report's falloff (`falloff_share`); power 0 when
+    its light sample brings nothing there. The hull's point is drawn facing the light
+    (core.kernels.caster_hulls), its density divided out, and the photon starts there; for
+    a light inside the hull (`containing`), over the whole hull, and the photon starts at
+    the light, its path to the hull traced rather than shadow-tested."""
     a, b = uniform2(key, PURPOSE_PHOTON, 0, 0)
     pick, _ = uniform2(key, PURPOSE_PHOTON, 0, 1)
-    axis = _light_axis(lights, light, hull_centre(casters, k))
-    x, n, density = hull_start(casters, k, axis, a, b, pick)
+    inside = containing[light, k] != 0
+    if inside:
+        x, n, density = hull_point(casters, k, a, b, pick)
+    else:
+        axis = _light_axis(lights, light, hull_centre(casters, k))
+        x, n, density = hull_start(casters, k, axis, a, b, pick)
     a, b = uniform2(key, PURPOSE_PHOTON, 1, 0)
     short = 1.0
     if light < lights.emitter_kind.shape[0]:
@@ -170,9 +178,14 @@ def photon_start(geo, lights, casters, light, k, key, photons, stacks):
     else:  # the irradiance pi R w of a point source of physical falloff, pi I / t^2
         to_light, t, radiance, falloff = _report_light_sample(lights, light, x, a, b)
         weight = 1.0 / (t * t) if 0.0 < t < math.inf else 1.0
-    cos_n = dot(n, to_light)
+    # the light's rays cross the hull's surface inwards, or (from a light inside) outwards
+    cos_n = -dot(n, to_light) if inside else dot(n, to_light)
     if weight <= 0.0 or t == 0.0 or cos_n <= 0.0 or density <= 0.0:
         return x, to_light, t, (0.0, 0.0, 0.0), falloff
+    if inside:  # from the light (just short of an emissive surface) towards x
+        power = math.pi * weight * cos_n / (density * photons)
+        start = add(x, scale(to_light, t * short))
+        return start, scale(to_light, -1.0), t, scale(radiance, power), falloff
     begin_point(stacks.shadow_state)  # crossings of varying surfaces count as passing
     visible = transmittance(geo, x, to_light, t * short, stacks, TRAVERSE_ALL)
     power = math.pi * weight * cos_n * visible / (density * photons)
@@ -181,7 +194,7 @@ def photon_start(geo, lights, casters, light, k, key, photons, stacks):
 
 
 @kernel
-def row_power(geo, lights, casters, plan, seed, stacks, out):
+def row_power(geo, lights, casters, containing, plan, seed, stacks, out):
     """The mean power (over RGB) each row (light, hull, photons) of `plan` sends into its
     hull, estimated from `photons` photons, into `out`."""
     for r in range(plan.shape[0]):
@@ -189,15 +202,16 @@ def row_power(geo, lights, casters, plan, seed, stacks, out):
         total = 0.0
         for i in range(photons):
             key = chain(chain(chain(np.uint64(0), seed), r), i)
-            _, _, t, power, falloff = photon_start(geo, lights, casters, light, k, key, photons,
-                                                   stacks)  # fmt: skip
+            _, _, t, power, falloff = photon_start(geo, lights, casters, containing, light, k,
+                                                   key, photons, stacks)  # fmt: skip
             total += channel_mean(power) * falloff_share(falloff, t)
         out[r] = total
 
 
 @kernel
-def trace_photons(geo, surf, mats, lights, casters, plan, seed, branches, max_bounces,
-                  out_position, out_direction, out_power, stacks, tally):  # fmt: skip
+def trace_photons(geo, surf, mats, lights, casters, containing, plan, seed, branches,
+                  max_bounces, out_position, out_direction, out_power, stacks,
+                  tally):  # fmt: skip
     """Trace photons of rows of `plan` (light, caster hull, the row's photons, the row's
     number, first, count: photons first to first + count - 1 of the row, so that a pass can
     be traced in parts, the same photons whatever the parts), storing those that reach a
@@ -209,13 +223,17 @@ def trace_photons(geo, surf, mats, lights, casters, plan, seed, branches, max_bo
         light, k, photons, number = plan[r, 0], plan[r, 1], plan[r, 2], plan[r, 3]
         for i in range(plan[r, 4], plan[r, 4] + plan[r, 5]):
             key = chain(chain(chain(np.uint64(0), seed), number), i)
-            o, d, t_light, power, falloff = photon_start(geo, lights, casters, light, k, key,
-                                                         photons, stacks)  # fmt: skip
+            o, d, t_light, power, falloff = photon_start(geo, lights, casters, containing,
+                                                         light, k, key, photons,
+                                                         stacks)  # fmt: skip
+            if containing[light, k]:
+                t_light = 0.0  # it starts at the light
             if max(power[0], power[1], power[2]) <= 0.0:
                 continue
             shape, t, part, b1, b2 = closest_hit(geo, o, d, math.inf, stacks)
             # the light ray from the light to its first hit: each hull it enters samples it
-            entered = hulls_entered(casters, o, d, -t_light, t if shape >= 0 else math.inf)
+            entered = hulls_entered(casters, containing, light, o, d, -t_light,
+                                    t if shape >= 0 else math.inf)  # fmt: skip
             power = scale(power, 1.0 / max(entered, 1))
             travelled = t_light  # from the light, for the report's falloff
             specular = False

@@ -430,3 +430,33 @@ def test_a_cancel_during_the_pass_stops_it_and_the_render():
                  on_photons=lambda *a: shown.append(a))  # fmt: skip
     assert out.cancelled
     assert len(shown) == 2 and shown[-1][0] < shown[-1][1]
+
+
+@pytest.mark.parametrize("kind", ["blender", "report"])
+def test_a_light_inside_a_glass_ball_lights_the_floor_as_if_bare(kind):
+    """A point light at the centre of a clear glass ball: its rays meet the glass head-on,
+    and what Fresnel reflects goes back through the centre and out the other side, so all
+    of it leaves (no absorption): the floor gets exactly the bare light's I cos / d^2, all of
+    it as caustic (the glass blocks the shadow rays). The photons start at the light, inside
+    the ball's hull."""
+    from core import PointLight, SphereLight
+
+    at = np.array([0.0, 0.0, 1.5])
+    clear = Material(diffuse=(0.0, 0.0, 0.0), transparency=1.0, inner_ior=N)
+    glass = _hidden(Sphere("Globe", clear, _placed(*at, size=(0.5,) * 3)))
+    if kind == "blender":  # 1 W/sr
+        lamp = SphereLight(name="Lamp", position=tuple(at), power=(4.0 * math.pi,) * 3,
+                           radius=0.0)  # fmt: skip
+    else:
+        lamp = PointLight(tuple(at), (1.0, 1.0, 1.0), (0.0, 0.0, 1.0))
+    # the photons spread over the whole floor, half of them upwards to nothing: more of
+    # them for the view's per-pixel noise (6.4% at 200 000)
+    image, x, y = _floor_picture([glass], lamp, _settings(48, 800_000))
+    gap = np.stack([at[0] - x, at[1] - y, np.full_like(x, at[2])], axis=-1)
+    d2 = (gap**2).sum(axis=-1)
+    expected = at[2] / np.sqrt(d2) / d2 / (math.pi if kind == "blender" else 1.0)
+    _assert_matches(image, expected, np.ones_like(x, bool), f"{kind} light in a glass ball")
+    # the premise: without photons the glass leaves the floor dark
+    dark, _, _ = _floor_picture([glass], lamp, RenderSettings(48, 48, pixel_samples=1,
+                                                              glass_shadows="blocked"))  # fmt: skip
+    assert dark.max() < 0.01 * expected.min()
