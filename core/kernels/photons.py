@@ -19,9 +19,10 @@ integral of that irradiance over its surface: a photon carries
 for N photons of its row, v the shadow ray's transmittance from x to the light (light that
 reached x through other glass comes as that glass's own photons), and c the number of hulls
 the light ray enters before its first hit (the same ray, sampled from each hull it crosses,
-counts once in all). It then travels from x along -L. A light inside the hull (a lamp in a glass globe) sends
-every ray out through it once: x is drawn over the whole hull, n.L < 0, and the photon
-starts at the light's sample, its way to x (through the globe) traced, not shadow-tested.
+counts once in all). It then travels from x along -L. A light inside the hull (a lamp in a
+glass globe) sends every ray out through it once: x is drawn over the whole hull, n.L < 0,
+and the photon starts at the light's sample, its way to x (through the globe) traced, not
+shadow-tested.
 
 How it travels. At each hit the material's terms (its row of the table: reflectivity and
 mirror tint, transparency with the exact Fresnel reflectance, glass tints, what passes
