@@ -32,7 +32,6 @@ from ..kernels.photons import (
     REFLECTIVE,
     REFRACTIVE,
     TALLY_DROPPED,
-    TALLY_PROGRAMMED,
     TALLY_SLOTS,
     TALLY_STORED,
     row_power,
@@ -40,6 +39,7 @@ from ..kernels.photons import (
 )
 from ..kernels.workspace import new_workspace
 from ..model import RenderSettings
+from ..model.shader import sends_caustics
 from ..vocabulary import SHAPE_SPHERE
 
 PILOT = 256  # photons a row, to share out the budget
@@ -107,13 +107,28 @@ def caster_hulls(packed: PackedScene, branches: int) -> np.ndarray:
 
 
 def add_caustics(packed: PackedScene, settings: RenderSettings, on_photons=None,
-                 should_cancel=None):  # fmt: skip
+                 should_cancel=None, names=(), graphs=()):  # fmt: skip
     """(packed with its lights' photon arrays filled, warnings, CausticReport or None).
     on_photons(done, total) is called after each part of the pass; once should_cancel()
     says True no part starts and the scene gets no photons (the render that follows stops
-    too, polling the same)."""
+    too, polling the same). names and graphs: the material table's rows' names and node
+    graphs (None for a constant row), for the warnings."""
     branches = branches_of(settings)
     warnings = []
+    unfollowed = [
+        names[k]
+        for k in np.flatnonzero(packed.materials.shader_range[:, 0] >= 0)
+        if k < len(graphs) and graphs[k] is not None
+        and sends_caustics(graphs[k], bool(branches & REFLECTIVE), bool(branches & REFRACTIVE))
+    ]  # fmt: skip
+    if unfollowed:
+        listed = ", ".join(f"'{name}'" for name in unfollowed[:5])
+        more = f" and {len(unfollowed) - 5} more" if len(unfollowed) > 5 else ""
+        warnings.append(
+            f"caustics: node material(s) {listed}{more} vary over the surface (textures, "
+            "procedurals): the light they reflect or refract onto other surfaces is not "
+            "drawn; caustics come from mirrors and glass whose terms are constant"
+        )
     has_glass = bool((packed.materials.transparency > 0.0).any())
     if "refractive" in settings.caustics and not branches & REFRACTIVE and has_glass:
         warnings.append(
@@ -159,12 +174,6 @@ def add_caustics(packed: PackedScene, settings: RenderSettings, on_photons=None,
         done += int(part[:, 5].sum())
         if on_photons is not None:
             on_photons(done, total)
-    if tally[TALLY_PROGRAMMED]:
-        warnings.append(
-            f"caustics: {tally[TALLY_PROGRAMMED]} photons ended at node materials whose terms "
-            "vary over the surface (textures, procedurals): caustics through or off those are "
-            "not drawn"
-        )
     if tally[TALLY_DROPPED]:
         warnings.append(f"caustics: {tally[TALLY_DROPPED]} photons found no room and were dropped")
     position, direction, power_out = position[:stored], direction[:stored], power_out[:stored]

@@ -33,8 +33,9 @@ probability, so the estimate stays unbiased. A photon that has reflected or refr
 least once is stored where it meets a surface with a diffuse part (its incident power,
 position and direction); the shading point multiplies in its own colour
 (core.kernels.caustics). Light that passes straight (Transparent BSDF, Alpha) is not a
-caustic: shadow rays see it. Node materials whose terms vary over the surface end a
-photon (counted: the compile warns, naming none of them here).
+caustic: shadow rays see it. A node material whose terms vary over the surface (a textured
+floor) stores a photon that came by a mirror or glass and ends it: its reflection or
+refraction is not followed (the compile warns of those that may reflect or refract).
 
 The report's lights (CS488 point and area lights with their falloff 1 / (c0 + c1 d + c2 d^2),
 and directional lights) send photons too, numbered after the lights in Blender's units:
@@ -73,8 +74,7 @@ from .vec import add, dot, mul, normalize, row, scale, sub
 # PhotonTally slots: what a photon pass counts, for the compile's report
 TALLY_STORED = 0  # photons stored on diffuse surfaces
 TALLY_DROPPED = 1  # stored photons beyond the arrays' room
-TALLY_PROGRAMMED = 2  # photons ended at a node material whose terms vary over the surface
-TALLY_SLOTS = 3
+TALLY_SLOTS = 2
 
 NO_FALLOFF = (0.0, 0.0, 1.0)  # c0 c1 c2 of a light whose photons carry its falloff already
 
@@ -243,15 +243,18 @@ def trace_photons(geo, surf, mats, lights, casters, containing, plan, seed, bran
                     break
                 travelled += t
                 material = surf.shape_material[shape]
-                if mats.shader_range[material, 0] >= 0:
-                    tally[TALLY_PROGRAMMED] += 1
-                    break
+                programmed = mats.shader_range[material, 0] >= 0
+                if programmed and not specular:
+                    break  # light reaching it straight from the light: no caustic
                 p, n_geometric, n_shading, _, _ = surface_at(geo, surf, shape, part, b1, b2, o,
                                                              d, t, False)  # fmt: skip
                 here = table_surface(mats, material, row(mats.diffuse, material))
                 tau, rho = here.transparency, here.reflectivity
                 diffuse = mats.texture[material] >= 0 or channel_mean(here.kd) > 0.0
-                if specular and tau < 1.0 and diffuse:
+                # a node material varying over the surface (a textured floor): its terms are
+                # its program's at each shading point, which multiplies in its own diffuse
+                # colour (none: nothing); the photon ends there
+                if specular and (programmed or tau < 1.0 and diffuse):
                     if stored < out_power.shape[0]:
                         share = falloff_share(falloff, travelled)
                         for a in range(3):
@@ -262,6 +265,8 @@ def trace_photons(geo, surf, mats, lights, casters, containing, plan, seed, bran
                         tally[TALLY_STORED] += 1
                     else:
                         tally[TALLY_DROPPED] += 1
+                if programmed:
+                    break
                 entering = dot(d, n_geometric) < 0.0
                 if not entering:
                     n_geometric = scale(n_geometric, -1.0)

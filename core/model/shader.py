@@ -393,3 +393,22 @@ def passes_light(surface, refraction_passes: bool = True) -> bool:
             if refraction_passes and _given(node, "Transmission", 0.0):
                 return True
     return False
+
+
+def sends_caustics(surface, reflective: bool, refractive: bool) -> bool:
+    """Whether a graph may send light on as a caustic: reflect it as a mirror (Glossy,
+    Metallic, Glass, a Principled BSDF whose Metallic or Transmission is linked or above 0),
+    when `reflective`; refract it (Glass, Refraction, Principled Transmission), when
+    `refractive`."""
+    for node in _closures(surface):
+        kind = node.kind
+        if reflective and kind in ("glossy", "metallic", "glass"):
+            return True
+        if refractive and kind in ("glass", "refraction"):
+            return True
+        if kind == "principled":
+            if reflective and (_given(node, "Metallic", 0.0) or _given(node, "Transmission", 0.0)):
+                return True
+            if refractive and _given(node, "Transmission", 0.0):
+                return True
+    return False

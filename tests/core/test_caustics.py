@@ -460,3 +460,62 @@ def test_a_light_inside_a_glass_ball_lights_the_floor_as_if_bare(kind):
     dark, _, _ = _floor_picture([glass], lamp, RenderSettings(48, 48, pixel_samples=1,
                                                               glass_shadows="blocked"))  # fmt: skip
     assert dark.max() < 0.01 * expected.min()
+
+
+def _varying(closure_a, closure_b, slope=0.4):
+    """A Mix Shader of two closures by 0.5 + slope X (object X): terms that vary over the
+    surface, so that the material is a program run at each hit."""
+    from core import Link, ShaderNode
+
+    coords = ShaderNode("tex_coord")
+    separate = ShaderNode("separate", {"Vector": Link(coords, "Object")})
+    factor = ShaderNode("math", {"A": Link(separate, "X"), "B": slope, "C": 0.5},
+                        {"operation": "MULTIPLY_ADD"})  # fmt: skip
+    return ShaderNode("mix_shader", {"Fac": Link(factor, "Value"),
+                                     "Shader A": Link(closure_a, "BSDF"),
+                                     "Shader B": Link(closure_b, "BSDF")})  # fmt: skip
+
+
+def test_a_textured_floor_receives_the_mirrors_sun_patch():
+    """The floor's colour varies over it (a node material run at each hit): the mirror's
+    light lands on it all the same, (1 + rho) of each pixel's light without caustics."""
+    from core import ShaderNode
+
+    rho = 0.8
+    red = ShaderNode("diffuse", {"Color": (0.9, 0.2, 0.1)})
+    white = ShaderNode("diffuse", {"Color": (1.0, 1.0, 1.0)})
+    # 0.5 + 0.25 x in world x: the box's object X is world x / 30
+    floor = Box("Floor", Material(name="Tiles", surface=_varying(red, white, 0.25 * 30)),
+                _placed(z=-0.5, size=(30, 30, 0.5)))  # fmt: skip
+    mirror = _hidden(Box("Mirror", Material(diffuse=(0.0, 0.0, 0.0), reflectivity=rho),
+                         _placed(x=-0.01, z=1.0, size=(0.01, 1.0, 1.0))))  # fmt: skip
+    camera = Camera(eye=(1.0, 0.0, 10.0), view=(0.0, 0.0, -1.0), up=(0.0, 1.0, 0.0),
+                    projection="orthographic", ortho_height=4.0)  # fmt: skip
+    scene = Scene(shapes=[floor, mirror], lights=[_sun(45.0)], camera=camera)
+    lit = render(scene, _settings(48, 100_000)).image[..., :3].astype(float)
+    plain = render(scene, RenderSettings(48, 48, pixel_samples=1)).image[..., :3].astype(float)
+    along = (np.arange(48) + 0.5) / 48 * 4.0 - 2.0
+    x, y = np.meshgrid(1.0 + along, -along)
+    patch = (x > 0.3) & (x < 1.7) & (np.abs(y) < 0.7)
+    assert np.ptp(plain[patch][:, 1]) > 0.05  # the premise: its colour varies over it
+    ratio = lit[patch].sum(axis=0) / plain[patch].sum(axis=0)
+    np.testing.assert_allclose(ratio, 1.0 + rho, rtol=0.03)
+
+
+def test_node_mirrors_and_glass_that_vary_are_named_in_a_warning():
+    from core import ShaderNode
+
+    streaked = Material(name="Streaked chrome", surface=_varying(
+        ShaderNode("glossy", {"Roughness": 0.0}), ShaderNode("diffuse")))  # fmt: skip
+    ball = Sphere("Ball", streaked, _placed(z=2.0))
+    compiled = compile_scene(Scene(shapes=[_floor(), ball], lights=[_sun(30.0)]),
+                             _settings(8, 10_000))  # fmt: skip
+    assert any("'Streaked chrome'" in w and "not drawn" in w for w in compiled.warnings)
+    # a varying diffuse floor sends no caustic: nothing to warn of
+    floor = Box("Floor", Material(name="Tiles", surface=_varying(ShaderNode("diffuse"),
+                                                                 ShaderNode("diffuse"))),
+                _placed(z=-0.5, size=(30, 30, 0.5)))  # fmt: skip
+    mirror = Sphere("Ball", Material(reflectivity=1.0), _placed(z=2.0))
+    compiled = compile_scene(Scene(shapes=[floor, mirror], lights=[_sun(30.0)]),
+                             _settings(8, 10_000))  # fmt: skip
+    assert compiled.warnings == []
