@@ -169,8 +169,9 @@ def add_caustics(packed: PackedScene, settings: RenderSettings, on_photons=None,
             return packed, warnings, None
         stored += trace_photons(geo, surf, mats, lights, casters, containing, part,
                                 settings.seed, branches, max(settings.max_depth, 1),
-                                position[stored:], direction[stored:], power_out[stored:],
-                                stacks, tally)  # fmt: skip
+                                settings.glossy_samples > 0, position[stored:],
+                                direction[stored:], power_out[stored:], stacks,
+                                tally)  # fmt: skip
         done += int(part[:, 5].sum())
         if on_photons is not None:
             on_photons(done, total)

@@ -29,7 +29,9 @@ mirror tint, transparency with the exact Fresnel reflectance, glass tints, what 
 straight) give the reflected, refracted and straight-on weights the integrator gives a
 camera ray (core.kernels.integrator); one branch is chosen with probability of its mean
 weight (Russian roulette: the rest is absorbed), and the photon's power is divided by that
-probability, so the estimate stays unbiased. A photon that has reflected or refracted at
+probability, so the estimate stays unbiased. On a rough surface, with Glossy Samples, the
+facet it meets is drawn from the GGX lobe as a camera ray's is (core.kernels.glossy), and a
+photon it sends below the surface is lost. A photon that has reflected or refracted at
 least once is stored where it meets a surface with a diffuse part (its incident power,
 position and direction); the shading point multiplies in its own colour
 (core.kernels.caustics). Light that passes straight (Transparent BSDF, Alpha) is not a
@@ -59,6 +61,7 @@ import numpy as np
 from ..jit.decorators import kernel
 from .caster_hulls import hull_centre, hull_point, hull_start, hulls_entered
 from .emitters import emitter_sample
+from .glossy import visible_normal
 from .integrator import channel_mean, fresnel_dielectric, mirror_tint, refract
 from .layout import EMITS_FROM_SURFACE
 from .light_mesh import SHORT_OF_SURFACE
@@ -211,14 +214,15 @@ def row_power(geo, lights, casters, containing, plan, seed, stacks, out):
 
 @kernel
 def trace_photons(geo, surf, mats, lights, casters, containing, plan, seed, branches,
-                  max_bounces, out_position, out_direction, out_power, stacks,
+                  max_bounces, spread, out_position, out_direction, out_power, stacks,
                   tally):  # fmt: skip
     """Trace photons of rows of `plan` (light, caster hull, the row's photons, the row's
     number, first, count: photons first to first + count - 1 of the row, so that a pass can
     be traced in parts, the same photons whatever the parts), storing those that reach a
     diffuse surface by way of a mirror or glass into the out_* arrays (position, direction
     of travel, power), in order; returns how many were stored. `branches`: REFLECTIVE |
-    REFRACTIVE, the specular events a photon may take."""
+    REFRACTIVE, the specular events a photon may take; `spread`: rough surfaces scatter
+    photons over their lobes (RenderSettings.glossy_samples > 0), else they are sharp."""
     stored = 0
     for r in range(plan.shape[0]):
         light, k, photons, number = plan[r, 0], plan[r, 1], plan[r, 2], plan[r, 3]
@@ -271,7 +275,15 @@ def trace_photons(geo, surf, mats, lights, casters, containing, plan, seed, bran
                 if not entering:
                     n_geometric = scale(n_geometric, -1.0)
                     n_shading = scale(n_shading, -1.0)
-                cos_i = min(1.0, max(0.0, -dot(d, n_shading)))
+                # the facet it meets: the shading normal, or on a rough surface (with Glossy
+                # Samples, as camera rays) one drawn from its GGX lobe (core.kernels.glossy)
+                m = n_shading
+                rough = spread and here.roughness > 0.0
+                if rough:
+                    u1, u2 = uniform2(key, PURPOSE_PHOTON, 2 + bounce, 1)
+                    alpha = max(here.roughness * here.roughness, 1e-6)
+                    m = visible_normal(scale(d, -1.0), n_shading, alpha, u1, u2)
+                cos_i = min(1.0, max(0.0, -dot(d, m)))
                 reflect = (0.0, 0.0, 0.0)
                 through = (0.0, 0.0, 0.0)
                 bent = d
@@ -286,7 +298,7 @@ def trace_photons(geo, surf, mats, lights, casters, containing, plan, seed, bran
                     if branches & REFRACTIVE and f < 1.0:
                         lost = f * here.refraction_fresnel
                         through = scale(here.glass_transmit, tau * (1.0 - lost))
-                        bent = refract(d, n_shading, n1 / n2, cos_i, cos_t)
+                        bent = refract(d, m, n1 / n2, cos_i, cos_t)
                 straight = here.transparent
                 p_reflect, p_through = channel_mean(reflect), channel_mean(through)
                 p_straight = channel_mean(straight)
@@ -296,11 +308,15 @@ def trace_photons(geo, surf, mats, lights, casters, containing, plan, seed, bran
                 u, _ = uniform2(key, PURPOSE_PHOTON, 2 + bounce, 0)
                 u *= max(total, 1.0)  # past `total` (when below 1) the photon is absorbed
                 if u < p_reflect:
-                    d = sub(d, scale(n_shading, 2.0 * dot(d, n_shading)))
+                    d = sub(d, scale(m, 2.0 * dot(d, m)))
+                    if rough and dot(d, n_geometric) <= 0.0:
+                        break  # sent below the surface: shadowed by the facets about it
                     o = spawn_point(p, n_geometric, o)
                     power = scale(mul(power, reflect), 1.0 / p_reflect)
                     specular = True
                 elif u < p_reflect + p_through:
+                    if rough and dot(bent, n_geometric) >= 0.0:
+                        break
                     o = spawn_point(p, scale(n_geometric, -1.0), o)
                     d = bent
                     power = scale(mul(power, through), 1.0 / p_through)

@@ -519,3 +519,30 @@ def test_node_mirrors_and_glass_that_vary_are_named_in_a_warning():
     compiled = compile_scene(Scene(shapes=[floor, mirror], lights=[_sun(30.0)]),
                              _settings(8, 10_000))  # fmt: skip
     assert compiled.warnings == []
+
+
+def test_a_rough_mirror_blurs_its_patch_with_glossy_samples():
+    """Roughness 0.3 with Glossy Samples: the photons scatter over the GGX lobe (as camera
+    rays do; the agreement with Cycles is in tests/blender/test_caustics_in_blender.py), so
+    the patch's light spreads past the sharp patch's edges, and what the plane gets in all
+    stays within the sharp mirror's (the lobe loses what it sends below the mirror)."""
+
+    def floor_light(glossy_samples):
+        mirror = _hidden(Box("Mirror", Material(diffuse=(0.0, 0.0, 0.0), reflectivity=0.8,
+                                                roughness=0.3),
+                             _placed(x=-0.01, z=1.0, size=(0.01, 1.0, 1.0))))  # fmt: skip
+        settings = _settings(48, 100_000, glossy_samples=glossy_samples)
+        image, x, y = _floor_picture([mirror], _sun(45.0), settings, centre=(2.0, 0.0),
+                                     view=6.0)  # fmt: skip
+        return image, x, y
+
+    sharp, x, y = floor_light(0)
+    rough, _, _ = floor_light(8)
+    open_floor = sharp[(x > 4.5) & (np.abs(y) > 2.5)].mean()
+    beyond = (x > 2.2) & (x < 3.0) & (np.abs(y) < 0.5)  # past the sharp patch's far edge
+    assert sharp[beyond].mean() < 1.01 * open_floor
+    assert rough[beyond].mean() > 1.05 * open_floor
+    extra_sharp = (sharp - open_floor)[x > 0.0].sum()
+    extra_rough = (rough - open_floor)[x > 0.0].sum()
+    print(f"rough / sharp light thrown: {extra_rough / extra_sharp:.3f}")
+    assert 0.8 < extra_rough / extra_sharp < 1.02
