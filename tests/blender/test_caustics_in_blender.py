@@ -153,4 +153,4 @@ def test_a_rough_mirrors_blurred_patch_agrees_with_cycles(bpy_with_whitted, tmp_
           f"{(s[lit] / c[lit]).max():.3f}")  # fmt: skip
     assert math.isclose(w.sum(), c.sum(), rel_tol=0.04)
     assert np.abs(ratio - 1.0).max() < 0.15
-    assert np.abs(s[lit] / c[lit] - 1.0).max() > 0.3  # the sharp patch is not Cycles' blur
+    assert np.abs(s[lit] / c[lit] - 1.0).max() > 0.15  # the sharp patch is not Cycles' blur
