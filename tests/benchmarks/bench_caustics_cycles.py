@@ -11,7 +11,14 @@ pixels), best of two.
 
 Prints, for each engine, its time to a picture within 2% of the energy and 20% of the peak
 (the issue's criteria) and within BLOCK_TARGET block error: cycles_converged_s,
-whitted_converged_s and their ratio. Writes results/caustics_cycles.png and .csv."""
+whitted_converged_s and their ratio. Writes results/caustics_cycles.png and .csv.
+
+Measured (2026-12-06, 2 cores): Cycles 2.2 s at 64 spp, Whitted 0.52 s at 50 000 photons,
+4.3 times sooner. Whitted's block error levels off at 1.6% as photons grow: its caustic's
+energy sits 1.2% above Cycles' here (and 1.1% under a large area light,
+tests/blender/test_caustics_in_blender.py), while it matches the exact tracer of the ball
+in tests/core/test_caustics.py within 0.05% under a parallel sun: a difference between the
+engines, not noise, left open."""
 
 import math
 import time
