@@ -546,3 +546,41 @@ def test_a_rough_mirror_blurs_its_patch_with_glossy_samples():
     extra_rough = (rough - open_floor)[x > 0.0].sum()
     print(f"rough / sharp light thrown: {extra_rough / extra_sharp:.3f}")
     assert 0.8 < extra_rough / extra_sharp < 1.02
+
+
+def test_a_ball_lenss_paraxial_rays_meet_at_its_focal_length():
+    """Under a sun straight down, only rays near the axis reach the ball through a hole of
+    radius 0.08 R in an opaque plate over it: they meet at the paraxial focus nR / (2(n - 1))
+    from the centre (1.5 R for n = 1.5). The photons stored on a floor there lie within a
+    twentieth of the spread on floors 0.25 R nearer or farther (the cone of rays about
+    0.013 R wide there)."""
+    from core import Csg, Cylinder
+
+    top = 3.0  # the ball's centre
+    focus = N * 1.0 / (2.0 * (N - 1.0))
+    slab = Box("Slab", Material(), _placed(z=top + 1.1, size=(2.0, 2.0, 0.02)))
+    hole = Cylinder("Hole", Material(), _placed(z=top + 1.1, size=(0.08, 0.08, 0.5)))
+    plate = Csg("Plate", Material(), np.eye(4), operation="difference", left=slab, right=hole)
+    ball = Sphere("Ball", Material(diffuse=(0.0, 0.0, 0.0), transparency=1.0, inner_ior=N),
+                  _placed(z=top))  # fmt: skip
+
+    def spread(distance):
+        """The radius about the axis holding 90% of the power of the photons on the floor
+        (the rest, 0.13% by power, came back round inside the ball and lands far off)."""
+        floor_z = top - distance
+        floor = Box("Floor", Material(diffuse=(1.0, 1.0, 1.0)),
+                    _placed(z=floor_z - 0.5, size=(30, 30, 0.5)))  # fmt: skip
+        scene = Scene(shapes=[floor, ball, plate], lights=[_sun(0.0)])
+        lights = compile_scene(scene, _settings(8, 400_000)).packed.lights
+        position, power = lights.photon_position, lights.photon_power.mean(axis=1)
+        on_floor = np.abs(position[:, 2] - floor_z) < 1e-6
+        assert on_floor.sum() > 500
+        radius = np.sqrt((position[on_floor, :2] ** 2).sum(axis=1))
+        order = np.argsort(radius)
+        held = np.cumsum(power[on_floor][order])
+        return float(radius[order][np.searchsorted(held, 0.9 * held[-1])])
+
+    near, at, far = (spread(focus + shift) for shift in (-0.25, 0.0, 0.25))
+    print(f"photons' spread: {near:.5f} nearer, {at:.5f} at the focus, {far:.5f} farther")
+    assert at < 0.05 * min(near, far)
+    assert 0.005 < near < 0.02 and 0.005 < far < 0.02  # the cone's width, as reckoned
