@@ -79,9 +79,10 @@ class RenderStats:
         """The line the command line and Blender both print: "kernels cache 0.12 s | render
         1.52 s | 3.1 M rays (1.2 M shadow), 2.04 M rays/s | 4 threads"."""
         rate = self.rays_cast / self.render_s / 1e6 if self.render_s > 0 else 0.0
+        # a photon may be stored at more than one surface: "traced, stored", not "of"
         caustics = (
-            f"caustics {self.photon_s:.2f} s, {self.photons_stored} of {self.photons_traced} "
-            "photons stored | "
+            f"caustics {self.photon_s:.2f} s, {self.photons_traced:,} photons traced, "
+            f"{self.photons_stored:,} stored | "
             if self.photons_traced
             else ""
         )

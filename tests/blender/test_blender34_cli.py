@@ -278,4 +278,4 @@ def test_the_caustic_photon_pass_shows_its_progress_in_the_log(tmp_path):
     tiles = [i for i, line in enumerate(lines) if "| Whitted | Tile " in line]
     assert len(passes) > 1 and tiles and max(passes) < min(tiles), run.stdout[-3000:]
     assert re.search(r"Caustic photons ([\d,]+)/\1", lines[passes[-1]]), lines[passes[-1]]
-    assert "photons stored" in run.stdout
+    assert "photons traced" in run.stdout

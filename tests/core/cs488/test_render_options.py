@@ -93,11 +93,11 @@ def test_the_command_line_options_override_the_script(tmp_path, capsys):
     assert "caustic photons" in captured.err  # the pass's progress bar, before the tiles'
     assert captured.err.index("caustic photons") < captured.err.index(" tiles ")
     assert "Caustics: reflective (20,000 photons)" not in out  # the script's line is its own
-    assert "photons stored" in out, out  # the render's summary: the pass ran
+    assert "photons traced" in out, out  # the render's summary: the pass ran
     # and none when the command line turns them off over a script asking for them
     script.write_text(MIRROR_SCENE + _render_line(", {caustics = 'both'}"))
     assert main(["render", str(script), "--caustics", "none", "--threads", "1"]) == 0
-    assert "photons stored" not in capsys.readouterr().out
+    assert "photons traced" not in capsys.readouterr().out
 
 
 @pytest.mark.parametrize(

@@ -112,7 +112,7 @@ def test_a_caustic_scene_splits_with_the_same_photons_on_every_worker(cluster, t
                         say=lambda line: None)  # fmt: skip
     single = [sys.executable, "-m", "core", "render", script, "-o", tmp_path / "single.png"]
     run = subprocess.run(single, check=True, capture_output=True, text=True, cwd=ROOT)
-    assert "photons stored" in run.stdout  # the pass ran
+    assert "photons traced" in run.stdout  # the pass ran
     np.testing.assert_array_equal(pixels(tmp_path / "farm.png"), pixels(tmp_path / "single.png"))
 
 
