@@ -68,6 +68,7 @@ from .light_mesh import SHORT_OF_SURFACE
 from .light_pyramid import TRAVERSE_ALL
 from .options import EMITTER_MESH, EMITTER_SUN_CONE
 from .rng import PURPOSE_PHOTON, chain, uniform2
+from .shading import AreaLight, square_to_light
 from .shadow_log import begin_point
 from .surface import surface_at
 from .surface_terms import table_surface
@@ -108,9 +109,9 @@ def _report_light_sample(lights, light, x, a, b):
         position = row(lights.point_position, j)
         intensity, falloff = row(lights.point_intensity, j), row(lights.point_attenuation, j)
     else:
-        u = scale(row(lights.area_edge_u, j), a - 0.5)
-        v = scale(row(lights.area_edge_v, j), b - 0.5)
-        position = add(row(lights.area_centre, j), add(u, v))
+        area = AreaLight(row(lights.area_centre, j), row(lights.area_edge_u, j),
+                         row(lights.area_edge_v, j))  # fmt: skip
+        position = square_to_light(area, a, b)  # as its shadow rays' points
         intensity, falloff = row(lights.area_intensity, j), row(lights.area_attenuation, j)
     gap = sub(position, x)
     t = math.sqrt(dot(gap, gap))

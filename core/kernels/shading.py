@@ -157,7 +157,7 @@ def light_candidates(geo, stacks, origin, area):
 
 
 @inlined_kernel
-def _square_to_light(area, a, b):
+def square_to_light(area, a, b):
     """The area light's point for the unit square's (a, b)."""
     return add(area.centre, add(scale(area.edge_u, a - 0.5), scale(area.edge_v, b - 0.5)))
 
@@ -214,7 +214,7 @@ def local_colour(frame, lights, geo, stacks, point, phong, key, event, split):
                 a, b = square_point(pattern, samples, j, key, stream, shift, spread)
             else:
                 a, b = probe_square(-1, j - samples)
-            _aim(targets, j, _square_to_light(area, a, b), origin)
+            _aim(targets, j, square_to_light(area, a, b), origin)
         listed = TRAVERSE_ALL
         if frame.options[OPTION_SHADOW_CULLING]:
             listed = light_candidates(geo, stacks, origin, area)
