@@ -31,7 +31,7 @@ from .cs488.sandbox import (
 )
 from .errors import SceneError
 from .farm import command as farm_command
-from .model.settings import DEFAULT_CAUSTIC_PHOTONS, MAX_CAUSTIC_PHOTONS
+from .model.settings import AUTO_PHOTONS, DEFAULT_CAUSTIC_PHOTONS, MAX_CAUSTIC_PHOTONS
 from .output_file import OutputError, check_writable, write_whole
 from .passes import PASS_NAMES, check_passes, crypto_names
 from .vocabulary import GLASS_SHADOWS
@@ -81,8 +81,10 @@ def main(argv: list[str] | None = None) -> int:
         "script's; the report's scripts: none)",
     )  # fmt: skip
     render_command.add_argument(
-        "--photons", type=_bounded(int, 0, MAX_CAUSTIC_PHOTONS, "photons"), default=None,
-        metavar="N", help=f"caustic photons traced (default {DEFAULT_CAUSTIC_PHOTONS:,})",
+        "--photons", type=_auto_or(_bounded(int, 0, MAX_CAUSTIC_PHOTONS, "photons")),
+        default=None, metavar="N|auto",
+        help=f"caustic photons traced (default {DEFAULT_CAUSTIC_PHOTONS}: as many as the "
+        "caustics in the frame need)",
     )  # fmt: skip
     render_command.add_argument(
         "--glass-shadows", choices=tuple(GLASS_SHADOWS), default=None,
@@ -143,6 +145,16 @@ def _bounded(kind, low, high, unit: str):
 
     parse.__name__ = kind.__name__  # argparse names the type in its messages
     return parse
+
+
+def _auto_or(parse):
+    """An argparse type: "auto", or what `parse` takes."""
+
+    def parse_or_auto(text: str):
+        return AUTO_PHOTONS if text.strip().lower() == AUTO_PHOTONS else parse(text)
+
+    parse_or_auto.__name__ = parse.__name__
+    return parse_or_auto
 
 
 def _pass_list(text: str) -> tuple[str, ...]:

@@ -70,6 +70,7 @@ class RenderStats:
     photons_traced: int = 0
     photons_stored: int = 0
     photon_s: float = 0.0
+    photons_automatic: bool = False  # the count was the automatic budget's
 
     @property
     def rays_cast(self) -> int:
@@ -81,7 +82,8 @@ class RenderStats:
         rate = self.rays_cast / self.render_s / 1e6 if self.render_s > 0 else 0.0
         # a photon may be stored at more than one surface: "traced, stored", not "of"
         caustics = (
-            f"caustics {self.photon_s:.2f} s, {self.photons_traced:,} photons traced, "
+            f"caustics {self.photon_s:.2f} s, {self.photons_traced:,} photons traced"
+            f"{' (automatic)' if self.photons_automatic else ''}, "
             f"{self.photons_stored:,} stored | "
             if self.photons_traced
             else ""
@@ -223,6 +225,7 @@ def render_compiled(
         stats.photons_traced = compiled.caustics.traced
         stats.photons_stored = compiled.caustics.stored
         stats.photon_s = compiled.caustics.seconds
+        stats.photons_automatic = compiled.caustics.budget is not None
     warnings = list(compiled.warnings)
     if tally.csg_overflows:
         warnings.append(

@@ -70,12 +70,9 @@ class ViewportSession:
             return
         self.scene, self.settings, self.compiled = scene, settings, compiled
         self.error, self.warnings = None, warnings + compiled.warnings
-        if compiled.caustics is not None and render.caustic_photons > settings.caustic_photons:
-            # last: what Whitted cannot honour comes first in the header
-            self.warnings.append(
-                f"caustics from {settings.caustic_photons:,} photons here, "
-                f"F12 traces {render.caustic_photons:,}"
-            )
+        note = _photon_note(render, compiled.caustics)
+        if note:  # last: what Whitted cannot honour comes first in the header
+            self.warnings.append(note)
         self.exports += 1
         self.renderer.submit(compiled, scene, settings)
         keep_redrawing()
@@ -200,3 +197,17 @@ def unregister() -> None:
         bpy.app.timers.unregister(_redraw_rendered_views)
     for session in list(_sessions):
         session.close()
+
+
+def _photon_note(render: core.RenderSettings, caustics) -> str:
+    """What the header says when F12 traces more caustic photons than the view did (at
+    most VIEWPORT_PHOTONS), or "" when it traces no more."""
+    if caustics is None:
+        return ""
+    here = f"caustics from {caustics.traced:,} photons here"
+    if render.caustic_photons == "auto":
+        capped = caustics.budget is not None and caustics.budget.reason == "most"
+        return f"{here}, F12 traces more (automatic)" if capped else ""
+    if render.caustic_photons > caustics.traced:
+        return f"{here}, F12 traces {render.caustic_photons:,}"
+    return ""

@@ -40,7 +40,7 @@ def convert(scene) -> core.RenderSettings:
         seed=settings.seed,
         glass_shadows=settings.glass_shadows.lower(),
         caustics=_caustics(settings),
-        caustic_photons=settings.caustic_photons,
+        caustic_photons="auto" if settings.use_auto_photons else settings.caustic_photons,
         transparent=render.film_transparent,
     )
 

@@ -77,10 +77,12 @@ VIEWPORT_PHOTONS = 50_000
 
 def settings(render: core.RenderSettings, view: View) -> core.RenderSettings:
     """The scene's Whitted settings (bounces, samples) at the region's size and border,
-    with at most VIEWPORT_PHOTONS caustic photons."""
-    photons = min(render.caustic_photons, VIEWPORT_PHOTONS)
+    with at most VIEWPORT_PHOTONS caustic photons (the automatic budget's cap)."""
+    photons = render.caustic_photons
+    if photons != "auto":
+        photons = min(photons, VIEWPORT_PHOTONS)
     return replace(render, width=view.width, height=view.height, region=view.border,
-                   caustic_photons=photons)  # fmt: skip
+                   caustic_photons=photons, caustic_photons_max=VIEWPORT_PHOTONS)  # fmt: skip
 
 
 def _border(context, width: int, height: int):

@@ -174,7 +174,9 @@ def _configure(scene, call) -> None:
     whitted.glass_shadows = settings.glass_shadows.upper()
     whitted.use_caustics_reflective = "reflective" in settings.caustics
     whitted.use_caustics_refractive = "refractive" in settings.caustics
-    whitted.caustic_photons = settings.caustic_photons
+    whitted.use_auto_photons = settings.caustic_photons == "auto"
+    if not whitted.use_auto_photons:
+        whitted.caustic_photons = settings.caustic_photons
     world = bpy.data.worlds.new(f"{call.output.stem} ambient")
     give_nodes(world)
     background = next(n for n in world.node_tree.nodes if n.type == "BACKGROUND")

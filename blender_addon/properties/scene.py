@@ -64,11 +64,19 @@ class WhittedSceneSettings(bpy.types.PropertyGroup):
         "Blocked",
         default=True,
     )
+    use_auto_photons: BoolProperty(
+        name="Automatic Photons",
+        description="Trace as many caustic photons as the caustics in the camera's frame need "
+        "(a pilot pass measures them: a caustic filling the frame gets more than a glint), "
+        "at most one per camera ray, so the pass costs no more than the rest of the render",
+        default=True,
+    )
     caustic_photons: IntProperty(
         name="Caustic Photons",
-        description="Photons traced for caustics, shared among the lights, mirrors and glass "
-        "by the power each sends: more give a smoother, sharper caustic (both errors fall as "
-        "the fourth root). No photon is traced in a scene without mirrors or glass",
+        description="Photons traced for caustics (Automatic off), shared among the lights, "
+        "mirrors and glass by the power each sends: more give a smoother, sharper caustic "
+        "(both errors fall as the fourth root). No photon is traced in a scene without "
+        "mirrors or glass",
         min=0,
         soft_max=2_000_000,
         max=10_000_000,

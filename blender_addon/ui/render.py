@@ -89,7 +89,11 @@ class WHITTED_PT_light_paths_caustics(_RenderPanel, bpy.types.Panel):
         refractive = column.row()
         refractive.active = settings.glass_shadows == "BLOCKED"
         refractive.prop(settings, "use_caustics_refractive", text="Glass")
-        layout.prop(settings, "caustic_photons", text="Photons")
+        photons = layout.column(heading="Photons")
+        photons.prop(settings, "use_auto_photons", text="Automatic")
+        count = photons.row()
+        count.active = not settings.use_auto_photons
+        count.prop(settings, "caustic_photons", text="Photons")
 
 
 class WHITTED_PT_film(_RenderPanel, bpy.types.Panel):

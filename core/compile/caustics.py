@@ -7,25 +7,24 @@ surfaces), some shape's material reflects (reflective caustics) or refracts (ref
 caustics, which need the "blocked" glass-shadow rule: under "attenuated" shadow rays bring
 that light already), and some material has a diffuse part to receive them.
 
-The budget. `RenderSettings.caustic_photons` photons are shared among the rows (light,
-caster hull) in proportion to the power each row sends into its hull, measured first
-with PILOT photons a row, so that every photon carries about the same power wherever it
-lands. The radii: each photon's disk holds about k of its fellows at their density about
-it (core.kernels.caustics), k the square root of the photons stored (NEIGHBOURS), at most
-REACH of the photons' extent. Memory: 88 bytes a stored photon (position, direction,
-power, radius, its bucket), at most twice the budget.
+The budget. `RenderSettings.caustic_photons` photons ("auto": as many as the caustics in
+the frame need, from a pilot pass of PILOT_PHOTONS, core.compile.photon_budget) are shared
+among the rows (light, caster hull) in proportion to the power each row sends into its
+hull, measured first with PILOT photons a row, so that every photon carries about the same
+power wherever it lands. The radii: each photon's disk holds about k of its fellows at
+their density about it (core.kernels.caustics), k the square root of the photons stored
+(core.compile.photon_grid), at most REACH of the photons' extent. Memory: 88 bytes a
+stored photon (position, direction, power, radius, its bucket), at most twice the budget.
 """
 
 from __future__ import annotations
 
-import math
 import time
 from typing import NamedTuple
 
 import numpy as np
 
 from ..kernels.caster_hulls import HULL_BOX, HULL_SPHERE
-from ..kernels.caustics import neighbour_radii, photon_buckets
 from ..kernels.layout import EMITS_DIFFUSE, EMITS_SHADOW, PackedScene
 from ..kernels.options import EMITTER_MESH, EMITTER_SUN_CONE
 from ..kernels.photons import (
@@ -41,15 +40,10 @@ from ..kernels.workspace import new_workspace
 from ..model import RenderSettings
 from ..model.shader import sends_caustics
 from ..vocabulary import SHAPE_SPHERE
+from .photon_budget import PILOT_PHOTONS, Budget, automatic_budget
+from .photon_grid import hashed_grid, neighbour_distances, radius_levels
 
 PILOT = 256  # photons a row, to share out the budget
-# A photon's disk holds about k of its fellows, k = sqrt(m) for m stored photons within
-# these bounds: the estimate's noise falls as 1 / sqrt(k) and its blur grows as sqrt(k / m),
-# so both fall as m^(-1/4)
-NEIGHBOURS = (32, 1024)
-REACH = 0.125  # a lone photon's disk: this share of the photons' extent
-MAX_LEVELS = 24
-SPACING_SHARE = 64
 MARGIN = 1e-6  # relative: how far outside its shape a caster hull lies
 MAX_HULLS = 64
 STORED_PER_PHOTON = 2  # room for stored photons, per photon traced
@@ -64,6 +58,7 @@ class CausticReport(NamedTuple):
     stored: int  # photons stored on diffuse surfaces
     radius: float  # the median photon's disk radius, in scene units
     seconds: float
+    budget: Budget | None = None  # the automatic budget's figures; None for a count asked for
 
 
 def branches_of(settings: RenderSettings) -> int:
@@ -151,38 +146,31 @@ def add_caustics(packed: PackedScene, settings: RenderSettings, on_photons=None,
     start = time.perf_counter()
     rows = np.array([(light, k, PILOT) for light in lit for k in range(len(casters))], np.int64)
     stacks = new_workspace(0).stacks
-    geo, surf, mats = packed.geometry, packed.surfaces, packed.materials
+    geo = packed.geometry
     containing = lights_inside(lights, casters)
     power = np.zeros(len(rows))
     row_power(geo, lights, casters, containing, rows, settings.seed, stacks, power)
     if power.sum() <= 0.0:
         return packed, warnings, None
-    share = np.floor(settings.caustic_photons * power / power.sum()).astype(np.int64)
-    plan = np.column_stack([rows[:, :2], share])[share > 0]
-    total = int(share.sum())
-    room = STORED_PER_PHOTON * total
-    position, direction, power_out = (np.zeros((room, 3)) for _ in range(3))
-    tally = np.zeros(TALLY_SLOTS, np.int64)
-    stored, done = 0, 0
-    for part in photon_parts(plan, total):
-        if should_cancel is not None and should_cancel():
+    trace = _Tracer(packed, settings, branches, casters, containing, rows, power, stacks)
+    budget = None
+    if settings.caustic_photons == "auto":
+        pilot = trace(PILOT_PHOTONS, should_cancel=should_cancel)
+        if pilot is None:
             return packed, warnings, None
-        stored += trace_photons(geo, surf, mats, lights, casters, containing, part,
-                                settings.seed, branches, max(settings.max_depth, 1),
-                                settings.glossy_samples > 0, position[stored:],
-                                direction[stored:], power_out[stored:], stacks,
-                                tally)  # fmt: skip
-        done += int(part[:, 5].sum())
-        if on_photons is not None:
-            on_photons(done, total)
-    if tally[TALLY_DROPPED]:
-        warnings.append(f"caustics: {tally[TALLY_DROPPED]} photons found no room and were dropped")
-    position, direction, power_out = position[:stored], direction[:stored], power_out[:stored]
-    if stored == 0:
-        return packed, warnings, CausticReport(total, 0, 0.0, 0.0)
+        budget = automatic_budget(packed.frame, settings, pilot.position, pilot.traced)
+    total = budget.photons if budget is not None else settings.caustic_photons
+    traced = trace(total, on_photons, should_cancel)
+    if traced is None:
+        return packed, warnings, None
+    if traced.dropped:
+        warnings.append(f"caustics: {traced.dropped} photons found no room and were dropped")
+    position, direction, power_out = traced.position, traced.direction, traced.power
+    if len(position) == 0:
+        return packed, warnings, CausticReport(traced.traced, 0, 0.0, 0.0, budget)
     radius = neighbour_distances(position)
-    levels = _levels(radius)
-    order, cells = _hashed_grid(position, radius, levels)
+    levels = radius_levels(radius)
+    order, cells = hashed_grid(position, radius, levels)
     lights = lights._replace(
         photon_position=np.ascontiguousarray(position[order]),
         photon_direction=np.ascontiguousarray(direction[order]),
@@ -193,8 +181,52 @@ def add_caustics(packed: PackedScene, settings: RenderSettings, on_photons=None,
     )
     seconds = time.perf_counter() - start
     median = float(np.median(radius))
-    report = CausticReport(total, int(tally[TALLY_STORED]), median, seconds)
+    report = CausticReport(traced.traced, traced.stored, median, seconds, budget)
     return packed._replace(lights=lights), warnings, report
+
+
+class Traced(NamedTuple):
+    traced: int
+    stored: int
+    dropped: int  # found no room (at most STORED_PER_PHOTON a photon traced)
+    position: np.ndarray  # float64 (stored, 3)
+    direction: np.ndarray  # float64 (stored, 3): the way each arrived
+    power: np.ndarray  # float64 (stored, 3)
+
+
+class _Tracer:
+    """Traces a count of photons shared among the rows (light, hull) by the power each sends
+    (the pilot's and the pass's budget alike), in parts (photon_parts)."""
+
+    def __init__(self, packed, settings, branches, casters, containing, rows, power, stacks):
+        self.packed, self.settings, self.branches = packed, settings, branches
+        self.casters, self.containing, self.stacks = casters, containing, stacks
+        self.rows, self.power = rows, power
+
+    def __call__(self, count: int, on_photons=None, should_cancel=None) -> Traced | None:
+        """The photons, or None once should_cancel() says True between parts."""
+        share = np.floor(count * self.power / self.power.sum()).astype(np.int64)
+        plan = np.column_stack([self.rows[:, :2], share])[share > 0]
+        total = int(share.sum())
+        room = STORED_PER_PHOTON * total
+        position, direction, power = (np.zeros((room, 3)) for _ in range(3))
+        tally = np.zeros(TALLY_SLOTS, np.int64)
+        packed, settings = self.packed, self.settings
+        geo, surf, mats, lights = packed.geometry, packed.surfaces, packed.materials, packed.lights
+        stored, done = 0, 0
+        for part in photon_parts(plan, total):
+            if should_cancel is not None and should_cancel():
+                return None
+            stored += trace_photons(geo, surf, mats, lights, self.casters, self.containing,
+                                    part, settings.seed, self.branches,
+                                    max(settings.max_depth, 1), settings.glossy_samples > 0,
+                                    position[stored:], direction[stored:], power[stored:],
+                                    self.stacks, tally)  # fmt: skip
+            done += int(part[:, 5].sum())
+            if on_photons is not None:
+                on_photons(done, total)
+        return Traced(total, int(tally[TALLY_STORED]), int(tally[TALLY_DROPPED]),
+                      position[:stored], direction[:stored], power[:stored])  # fmt: skip
 
 
 def light_centres(lights) -> np.ndarray:
@@ -245,48 +277,3 @@ def photon_parts(plan: np.ndarray, total: int) -> list[np.ndarray]:
     if part:
         parts.append(np.array(part, np.int64))
     return parts
-
-
-def neighbour_distances(position: np.ndarray) -> np.ndarray:
-    """Each photon's disk radius: one that holds about k of its fellows (NEIGHBOURS) at
-    their density about it, at most REACH of the photons' extent (a lone photon's disk):
-    found in passes of doubling cells, each pass settling the photons whose 27 cells hold k
-    (core.kernels.caustics.neighbour_radii)."""
-    m = len(position)
-    extent = float(np.linalg.norm(position.max(axis=0) - position.min(axis=0)))
-    cap = max(REACH * extent, 1e-9)
-    radius = np.full(m, cap)
-    todo = np.ones(m, bool)
-    wanted = min(int(np.clip(math.sqrt(m), *NEIGHBOURS)), m - 1)
-    if wanted < 1:
-        return radius
-    # from cells finer than the photons' mean spacing (were they all on one square), so
-    # that crowded photons are settled on cells their size
-    edge = max(extent / math.sqrt(m) / SPACING_SHARE, 1e-9)
-    while todo.any() and edge < cap:
-        levels = np.array([edge])
-        _, cells = _hashed_grid(position, np.full(m, edge), levels)
-        neighbour_radii(position, cells, edge, len(cells) - 2, wanted, radius, todo)
-        edge *= 2.0
-    return np.minimum(radius, cap)
-
-
-def _levels(radius: np.ndarray) -> np.ndarray:
-    """The levels' cell edges: the smallest radius, doubling up to the largest."""
-    low, high = float(radius.min()), float(radius.max())
-    count = min(MAX_LEVELS, int(math.ceil(math.log2(high / low))) + 1 if high > low else 1)
-    levels = low * 2.0 ** np.arange(count)
-    levels[-1] = max(levels[-1], high)
-    return levels
-
-
-def _hashed_grid(position: np.ndarray, radius: np.ndarray, levels: np.ndarray):
-    """(the photons' order by bucket, Lights.photon_cells) for the levels' grids."""
-    buckets = 1 << max(4, int(2 * len(position) - 1).bit_length())
-    bucket = np.empty(len(position), np.int64)
-    photon_buckets(position, radius, levels, buckets - 1, bucket)
-    order = np.argsort(bucket, kind="stable")
-    counts = np.bincount(bucket, minlength=buckets)
-    cells = np.zeros(buckets + 1, np.int64)
-    np.cumsum(counts, out=cells[1:])
-    return order, cells

@@ -7,7 +7,8 @@ picture bit for bit.
 
 caustics       -- 'none' (the report's), 'reflective' (light off mirrors), 'refractive'
                   (light through glass) or 'both'; true means 'both', false 'none'
-photons        -- caustic photons traced (core.model.settings' default and limit)
+photons        -- caustic photons traced, or 'auto' (the default): as many as the
+                  caustics in the frame need (core.model.settings' limit)
 glass_shadows  -- 'attenuated' (the report's pale shadow through glass) or 'blocked' (a
                   full shadow, the light behind glass coming as caustics); by default
                   'blocked' where refractive caustics are asked for, else 'attenuated'
@@ -17,7 +18,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..model.settings import DEFAULT_CAUSTIC_PHOTONS, MAX_CAUSTIC_PHOTONS
+from ..model.settings import AUTO_PHOTONS, DEFAULT_CAUSTIC_PHOTONS, MAX_CAUSTIC_PHOTONS
 from ..vocabulary import GLASS_SHADOWS
 from .sandbox import ArgumentError
 
@@ -29,7 +30,7 @@ CAUSTICS = {
 }
 OPTION_NAMES = ("caustics", "photons", "glass_shadows")
 USAGE = (
-    "{caustics = 'none'|'reflective'|'refractive'|'both', photons = N, "
+    "{caustics = 'none'|'reflective'|'refractive'|'both', photons = N|'auto', "
     "glass_shadows = 'attenuated'|'blocked'}"
 )
 
@@ -39,7 +40,7 @@ class RenderOptions:
     """The extension's settings; None where neither the script nor the command line set it."""
 
     caustics: tuple[str, ...] | None = None
-    photons: int | None = None
+    photons: int | str | None = None
     glass_shadows: str | None = None
 
     def over(self, script: RenderOptions) -> RenderOptions:
@@ -65,7 +66,9 @@ class RenderOptions:
         kinds = " and ".join(fields["caustics"]) or "off"
         lines = [f"Caustics: {kinds}"]
         if fields["caustics"]:
-            lines[0] += f" ({fields['caustic_photons']:,} photons)"
+            photons = fields["caustic_photons"]
+            counted = "automatic" if photons == AUTO_PHOTONS else f"{photons:,}"
+            lines[0] += f" ({counted} photons)"
         lines.append(f"Glass shadows: {fields['glass_shadows']}")
         return lines
 
@@ -90,11 +93,14 @@ def glass_rule_named(value, what: str) -> str:
     raise ArgumentError(f"{what} must be {names}; got {value!r}")
 
 
-def photons_named(value, what: str) -> int:
+def photons_named(value, what: str) -> int | str:
+    if isinstance(value, str) and value.strip().lower() == AUTO_PHOTONS:
+        return AUTO_PHOTONS
     number = value if isinstance(value, (int, float)) and not isinstance(value, bool) else None
     if number is None or not 0 <= number <= MAX_CAUSTIC_PHOTONS or number != int(number):
         raise ArgumentError(
-            f"{what} must be a whole number from 0 to {MAX_CAUSTIC_PHOTONS:,}; got {value!r}"
+            f"{what} must be a whole number from 0 to {MAX_CAUSTIC_PHOTONS:,} or "
+            f"'{AUTO_PHOTONS}'; got {value!r}"
         )
     return int(number)
 

@@ -13,9 +13,11 @@ PIXEL_SAMPLINGS = tuple(PIXEL_PATTERNS)
 SHADOW_SAMPLINGS = tuple(SHADOW_PATTERNS)
 GLASS_SHADOW_RULES = tuple(GLASS_SHADOWS)
 CAUSTIC_KINDS = ("reflective", "refractive")
-# Photons traced for caustics by default, when asked for (core.compile.caustics), and at most
-# (88 bytes a stored photon, up to two stored a photon traced: 1.8 GB)
-DEFAULT_CAUSTIC_PHOTONS = 200_000
+# Photons traced for caustics by default, when asked for: as many as the caustics in the frame
+# need (core.compile.photon_budget); and at most (88 bytes a stored photon, up to two stored
+# a photon traced: 1.8 GB)
+AUTO_PHOTONS = "auto"
+DEFAULT_CAUSTIC_PHOTONS = AUTO_PHOTONS
 MAX_CAUSTIC_PHOTONS = 10_000_000
 # The defaults a new render starts with, from the speed-against-accuracy charts
 # (tests/benchmarks: bench_sampling, bench_whole_scene): 3 x 3 grid camera rays cut the edge
@@ -104,7 +106,10 @@ class RenderSettings:
                         units (core.compile.caustics); refractive caustics need
                         glass_shadows "blocked". () traces none (the report's pictures)
     caustic_photons  -- photons traced for caustics, shared among the lights and the
-                        mirrors and glass by the power each sends; 0 to 10 million
+                        mirrors and glass by the power each sends; 0 to 10 million, or
+                        "auto": as many as the caustics the camera sees need, from a pilot
+                        pass, within the full frame's camera rays (core.compile.photon_budget)
+    caustic_photons_max -- the most "auto" traces (the viewport's cap), 1 to 10 million
     shadow_culling   -- an area light's shadow rays test only the shapes in the pyramid from
                         the shading point to the light, from 8 shadow rays per light up
                         (below, it costs more than it saves): exact, the same pixels either
@@ -129,7 +134,8 @@ class RenderSettings:
     shadow_culling: bool = True
     glass_shadows: str = "attenuated"
     caustics: tuple[str, ...] = ()
-    caustic_photons: int = DEFAULT_CAUSTIC_PHOTONS
+    caustic_photons: int | str = DEFAULT_CAUSTIC_PHOTONS
+    caustic_photons_max: int = MAX_CAUSTIC_PHOTONS
     transparent: bool = False
     passes: tuple[str, ...] = ()
     crypto_levels: int = DEFAULT_CRYPTO_LEVELS
@@ -163,7 +169,14 @@ class RenderSettings:
         self.caustics = tuple(self.caustics)
         for kind in self.caustics:
             check_choice(owner, "caustics", kind, CAUSTIC_KINDS)
-        check_count(owner, "caustic_photons", self.caustic_photons, high=MAX_CAUSTIC_PHOTONS)
+        if self.caustic_photons != AUTO_PHOTONS:
+            if isinstance(self.caustic_photons, str):
+                valid = f'a count from 0 to {MAX_CAUSTIC_PHOTONS:,} or "{AUTO_PHOTONS}"'
+                got = f"got {self.caustic_photons!r}; use {valid}"
+                raise SceneError(owner, "caustic_photons", got)
+            check_count(owner, "caustic_photons", self.caustic_photons, high=MAX_CAUSTIC_PHOTONS)
+        check_count(owner, "caustic_photons_max", self.caustic_photons_max, low=1,
+                    high=MAX_CAUSTIC_PHOTONS)  # fmt: skip
         check_flag(owner, "adaptive_shadows", self.adaptive_shadows)
         check_number(owner, "adaptive_threshold", self.adaptive_threshold, low=0.0, high=1.0)
         check_flag(owner, "transparent", self.transparent)

@@ -6,9 +6,10 @@ surface); the peak error is the brightest 0.2 m square's against the same pictur
 3.2 million photons. Time is the whole render: the photon pass plus the tiles.
 
 Prints ball_lens_caustic_s (the fastest photon budget whose energy is within 2% and peak
-within 20%), its photons, and caustic_pass_share_default: the photon pass's time over the
-tiles' at the default budget (the issue: no more than the rest of the render). Writes
-results/caustics.png and .csv."""
+within 20%), its photons, and at the default, automatic budget (core.compile.photon_budget):
+its photons, errors and time, and caustic_pass_share_default: the photon pass's time over
+the tiles' (the issue: no more than the rest of the render). Writes results/caustics.png
+and .csv."""
 
 import math
 import time
@@ -17,7 +18,6 @@ import numpy as np
 
 from core import Camera, Material, RenderSettings, Scene, Sphere, render
 from core.compile import compile_scene
-from core.model.settings import DEFAULT_CAUSTIC_PHOTONS
 from tests.benchmarks.bench_sampling import write_chart
 from tests.core.test_caustics import (
     CAUSTICS,
@@ -100,10 +100,18 @@ def main():
               f"energy {energy:.4f}, peak {peak:.4f}")  # fmt: skip
         if reached is None and energy < 0.02 and peak < 0.2:
             reached = (photons, seconds)
-        if photons == DEFAULT_CAUSTIC_PHOTONS:
-            print(f"caustic_pass_share_default: {photon_s / tiles_s:.2f}")
+    image, seconds, photon_s, tiles_s = _timed(scene, "auto")
+    traced = compile_scene(scene, _settings("auto")).caustics.traced
+    energy = abs(image.mean() / open_floor - exact) / exact
+    peak = abs(_peak(image) / open_floor - peak_converged) / peak_converged
+    print(f"caustic_photons_automatic: {traced}")
+    print(f"caustic_automatic_s: {seconds:.2f}")
+    print(f"caustic_automatic_energy_error: {energy:.4f}")
+    print(f"caustic_automatic_peak_error: {peak:.4f}")
+    print(f"caustic_pass_share_default: {photon_s / tiles_s:.2f}")
+    automatic = [("automatic budget", traced // 1000, seconds, energy)]
     write_chart("caustics", "Ball lens caustic: error against time (labels: k photons)",
-                energy_rows + peak_rows, ("energy (vs exact)", DEFAULT_CAUSTIC_PHOTONS // 1000),
+                energy_rows + peak_rows + automatic, ("automatic budget", traced // 1000),
                 "k photons", "caustics", xlabel="whole render time (s), 500 x 500",
                 ylabel="relative error")  # fmt: skip
     if reached:

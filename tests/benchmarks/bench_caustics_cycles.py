@@ -104,6 +104,7 @@ def main():
         image, seconds = _timed(bpy, scene, "CYCLES", samples=samples, diffuse_bounces=1)
         record("Cycles", samples, image, seconds)
     for photons in PHOTONS:
+        scene.whitted.use_auto_photons = False
         scene.whitted.caustic_photons = photons
         image, seconds = _timed(bpy, scene, "WHITTED")
         record("Whitted", photons // 1000, image, seconds)

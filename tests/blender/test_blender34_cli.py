@@ -266,7 +266,7 @@ def test_the_caustic_photon_pass_shows_its_progress_in_the_log(tmp_path):
     tiles; the summary line names it."""
     turn_on = (
         "import bpy; s = bpy.context.scene; w = s.whitted; w.use_caustics_reflective = True; "
-        "w.caustic_photons = 40000; s.render.resolution_percentage = 25"
+        "w.use_auto_photons = False; w.caustic_photons = 40000; s.render.resolution_percentage = 25"
     )
     run = blender_34(
         str(SAMPLE.parent / "mirror.blend"), "--addons", "whitted", "-E", "WHITTED",

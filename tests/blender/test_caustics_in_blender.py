@@ -102,6 +102,7 @@ def test_a_glass_balls_caustic_under_a_large_area_light_agrees_with_cycles(
     scene.whitted.shadow_samples = 64
     # the focus's photon noise: 4-7% in a 1 m block at the default 200 000 photons, 3-6%
     # here (measured over seeds; the blocks about it within 1.5%)
+    scene.whitted.use_auto_photons = False
     scene.whitted.caustic_photons = 800_000
     cycles = render_with(bpy, scene, "CYCLES", tmp_path / "cycles.exr", samples=2048,
                          diffuse_bounces=1)  # fmt: skip

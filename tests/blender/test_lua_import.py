@@ -206,3 +206,20 @@ def test_into_the_current_scene_adds_objects_and_changes_no_setting(sample_scene
     added = set(after.pop("objects")) - set(before.pop("objects"))
     assert after == before  # the camera, World, colour and render settings as they were
     assert any(name.startswith("Camera") for name in added) and len(added) > 5
+
+
+@pytest.mark.parametrize("photons, automatic, count", [(", photons = 5000", False, 5000),
+                                                       ("", True, None)])  # fmt: skip
+def test_a_scripts_photon_budget_reaches_the_caustics_panel(
+    imported, bpy_with_whitted, tmp_path, photons, automatic, count
+):
+    """gr.render's {photons = N} as Light Paths > Caustics > Photons with Automatic off; no
+    count (or 'auto') leaves Automatic on, as the command line renders it."""
+    from tests.core.cs488.test_render_options import MIRROR_SCENE, _render_line
+
+    script = tmp_path / "mirror.lua"
+    script.write_text(MIRROR_SCENE + _render_line(f", {{caustics = 'both'{photons}}}"))
+    settings = imported(script).whitted
+    assert settings.use_caustics_reflective and settings.use_auto_photons == automatic
+    if count is not None:
+        assert settings.caustic_photons == count

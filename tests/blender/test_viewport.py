@@ -189,6 +189,7 @@ def test_the_views_status_says_when_f12_traces_more_caustic_photons(session, bpy
 
     bpy = bpy_with_whitted
     scene = _mirror_scene(bpy)
+    scene.whitted.use_auto_photons = False
     session.update(bpy.context.evaluated_depsgraph_get(), camera_view(bpy, scene))
     finish(session)
     assert "caustics from 50,000 photons here, F12 traces 200,000" in session.status()
@@ -196,6 +197,15 @@ def test_the_views_status_says_when_f12_traces_more_caustic_photons(session, bpy
     session.update(bpy.context.evaluated_depsgraph_get(), camera_view(bpy, scene))
     finish(session)
     assert "F12 traces" not in session.status()
+    # Automatic: the view's budget is capped at 50,000; the header says F12 may trace more
+    # only where the cap cut it
+    scene.whitted.use_auto_photons = True
+    session.update(bpy.context.evaluated_depsgraph_get(), camera_view(bpy, scene))
+    finish(session)
+    budget = session.compiled.caustics.budget
+    assert budget is not None and budget.photons <= 50_000
+    capped = "F12 traces more (automatic)" in session.status()
+    assert capped == (budget.reason == "most"), (budget, session.status())
 
 
 def test_a_final_render_while_the_viewport_renders_completes_and_both_are_right(

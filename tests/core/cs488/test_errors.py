@@ -34,9 +34,9 @@ CASES = [
      "gr.render: options.caustics must be one of 'none', 'reflective', 'refractive', 'both', "
      "true or false; got 'mirrors'"),
     ("r = gr.node('r') " + RENDER + ", {photons = 2.5})",
-     "gr.render: options.photons must be a whole number from 0 to 10,000,000; got 2.5"),
+     "gr.render: options.photons must be a whole number from 0 to 10,000,000 or 'auto'; got 2.5"),
     ("r = gr.node('r') " + RENDER + ", {photons = 1/0})",
-     "gr.render: options.photons must be a whole number from 0 to 10,000,000; got inf"),
+     "gr.render: options.photons must be a whole number from 0 to 10,000,000 or 'auto'; got inf"),
     ("r = gr.node('r') " + RENDER + ", {glass_shadows = 'none'})",
      "gr.render: options.glass_shadows must be 'attenuated' or 'blocked'; got 'none'"),
     ("r = gr.node('r') " + RENDER + ", 4, 1, {})",

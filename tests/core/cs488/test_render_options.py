@@ -44,13 +44,13 @@ def test_without_options_a_script_keeps_the_reports_settings(tmp_path):
 @pytest.mark.parametrize(
     "table, caustics, rule, photons",
     [
-        ("{caustics = 'both'}", ("reflective", "refractive"), "blocked", 200_000),
+        ("{caustics = 'both'}", ("reflective", "refractive"), "blocked", "auto"),
         ("{caustics = true, photons = 5000}", ("reflective", "refractive"), "blocked", 5000),
-        ("{caustics = 'reflective'}", ("reflective",), "attenuated", 200_000),
+        ("{caustics = 'reflective'}", ("reflective",), "attenuated", "auto"),
         ("{caustics = 'refractive', glass_shadows = 'attenuated'}", ("refractive",),
-         "attenuated", 200_000),
-        ("{glass_shadows = 'blocked'}", (), "blocked", 200_000),
-        ("{}", (), "attenuated", 200_000),
+         "attenuated", "auto"),
+        ("{glass_shadows = 'blocked'}", (), "blocked", "auto"),
+        ("{}", (), "attenuated", "auto"),
     ],
 )  # fmt: skip
 def test_the_options_table_sets_caustics_photons_and_the_glass_rule(
