@@ -59,14 +59,20 @@ import math
 import numpy as np
 
 from ..jit.decorators import kernel
-from .caster_hulls import hull_centre, hull_point, hull_start, hulls_entered
+from .caster_hulls import hull_centre, hull_point, hull_start, hulls_entered, start_density
 from .emitters import emitter_sample
 from .glossy import visible_normal
 from .integrator import channel_mean, fresnel_dielectric, mirror_tint, refract
 from .layout import EMITS_FROM_SURFACE
 from .light_mesh import SHORT_OF_SURFACE
 from .light_pyramid import TRAVERSE_ALL
-from .options import EMITTER_MESH, EMITTER_SUN_CONE
+from .options import (
+    EMITTER_FACING_DISK,
+    EMITTER_MESH,
+    EMITTER_SPHERE,
+    EMITTER_SUN_CONE,
+    EMITTER_SUN_DISK,
+)
 from .rng import PURPOSE_PHOTON, chain, uniform2
 from .shading import AreaLight, square_to_light
 from .shadow_log import begin_point
@@ -79,6 +85,10 @@ from .vec import add, dot, mul, normalize, row, scale, sub
 TALLY_STORED = 0  # photons stored on diffuse surfaces
 TALLY_DROPPED = 1  # stored photons beyond the arrays' room
 TALLY_SLOTS = 2
+
+# A light with extent (`_has_extent`) draws this share of its photons' starts facing its
+# centre, the rest over the whole hull (core.kernels.caster_hulls.start_density)
+FACING_SHARE = 0.75
 
 NO_FALLOFF = (0.0, 0.0, 1.0)  # c0 c1 c2 of a light whose photons carry its falloff already
 
@@ -157,6 +167,20 @@ def _light_axis(lights, light, centre):
 
 
 @kernel
+def _has_extent(lights, light):
+    """Whether the light's rays reach a hull from more than one point (an area light, a
+    sphere with a radius, a sun with an angle, a glowing surface): then a hull's points
+    facing away from the light's centre may be lit."""
+    if light >= lights.emitter_kind.shape[0]:
+        kind, _ = _report_light(lights, light)
+        return kind == 1  # the report's area light
+    kind = lights.emitter_kind[light]
+    if kind in (EMITTER_SPHERE, EMITTER_FACING_DISK, EMITTER_SUN_CONE, EMITTER_SUN_DISK):
+        return lights.emitter_param[light, 0] > 0.0  # a radius; a sun's 1 - cos(half angle)
+    return True  # a panel, a glowing surface
+
+
+@kernel
 def photon_start(geo, lights, casters, containing, light, k, key, photons, stacks):
     """(start point, unit direction of travel, distance from the light to the hull, power,
     falloff) of one photon of row (light, hull k) of `photons` photons, before the share of
@@ -166,13 +190,20 @@ def photon_start(geo, lights, casters, containing, light, k, key, photons, stack
     a light inside the hull (`containing`), over the whole hull, and the photon starts at
     the light, its path to the hull traced rather than shadow-tested."""
     a, b = uniform2(key, PURPOSE_PHOTON, 0, 0)
-    pick, _ = uniform2(key, PURPOSE_PHOTON, 0, 1)
+    pick, choose = uniform2(key, PURPOSE_PHOTON, 0, 1)
     inside = containing[light, k] != 0
     if inside:
         x, n, density = hull_point(casters, k, a, b, pick)
     else:
         axis = _light_axis(lights, light, hull_centre(casters, k))
-        x, n, density = hull_start(casters, k, axis, a, b, pick)
+        if not _has_extent(lights, light):
+            x, n, density = hull_start(casters, k, axis, a, b, pick)
+        else:  # it lights points facing away from its centre too (core.kernels.caster_hulls)
+            if choose < FACING_SHARE:
+                x, n, _ = hull_start(casters, k, axis, a, b, pick)
+            else:
+                x, n, _ = hull_point(casters, k, a, b, pick)
+            density = start_density(casters, k, axis, n, FACING_SHARE)
     a, b = uniform2(key, PURPOSE_PHOTON, 1, 0)
     short = 1.0
     if light < lights.emitter_kind.shape[0]:
