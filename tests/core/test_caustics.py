@@ -12,6 +12,7 @@ closed forms and an independent tracer, not against Whitted's own pictures:
 """
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -276,6 +277,41 @@ def test_a_glass_balls_light_from_a_large_area_light_matches_an_exact_tracer(mad
     exact = _panel_through_ball(centre, radius, height, side, watts / (math.pi * side**2), region)
     print(f"area light through the ball, floor region: photons {stored:.4f}, exact {exact:.4f}")
     assert exact > 10.0  # the premise: the focused light
+    assert math.isclose(stored, exact, rel_tol=0.005)
+
+
+def test_a_wide_suns_light_through_the_ball_matches_the_exact_tracer_over_its_cone():
+    """The issue's ball under a sun 10 degrees across (Blender 4's cone of directions, of
+    equal radiance): the photons' power on the floor around the ball equals the exact
+    tracer's beams, averaged over 8 x 8 directions stratified over the cone's solid angle,
+    each weighted by its share of the irradiance (dw / (pi sin^2 h), h the half angle)."""
+    angle, centre, region = 10.0, (0.0, 0.0, 1.5), (-3.5, 0.5, -2.0, 2.0)
+    ball = _hidden(Sphere("Ball", Material(diffuse=(0.0, 0.0, 0.0), transparency=1.0,
+                                           inner_ior=N), _placed(*centre)))  # fmt: skip
+    sun = replace(_sun(45.0), angle=angle)
+    camera = Camera(eye=(0.0, 0.0, 10.0), view=(0.0, 0.0, -1.0), up=(0.0, 1.0, 0.0))
+    scene = Scene(shapes=[_floor(), ball], lights=[sun], camera=camera)
+    photons = compile_scene(scene, _settings(16, 400_000)).packed.lights
+    p = photons.photon_position
+    there = ((p[:, 0] > region[0]) & (p[:, 0] < region[1]) & (np.abs(p[:, 1]) < region[3])
+             & (np.abs(p[:, 2]) < 1e-6))  # fmt: skip
+    stored = photons.photon_power[there].mean(axis=1).sum()
+    axis = np.asarray(sun.direction, float)
+    across = np.cross(axis, [0.0, 1.0, 0.0])
+    across /= np.linalg.norm(across)
+    other = np.cross(axis, across)
+    half, m = math.radians(angle) / 2.0, 8
+    arrived = 0.0
+    for i in range(m):
+        cos_t = 1.0 - (i + 0.5) / m * (1.0 - math.cos(half))
+        sin_t = math.sqrt(1.0 - cos_t * cos_t)
+        for j in range(m):
+            phi = 2.0 * math.pi * (j + 0.5) / m
+            d = cos_t * axis + sin_t * (math.cos(phi) * across + math.sin(phi) * other)
+            arrived += _ball_on_floor_light(centre, 1.0, d, region, rays=40_000)[0]
+    cone = 2.0 * math.pi * (1.0 - math.cos(half))
+    exact = arrived * cone / (m * m) / (math.pi * math.sin(half) ** 2)
+    print(f"10 degree sun through the ball, floor region: photons {stored:.4f}, exact {exact:.4f}")
     assert math.isclose(stored, exact, rel_tol=0.005)
 
 
