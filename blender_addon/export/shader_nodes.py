@@ -197,12 +197,6 @@ class GraphReader:
             self.note(f"{node_label(node)}'s Roughness is not modelled (used: Lambert, 0)")
         if kind == "BSDF_METALLIC" and getattr(node, "fresnel_type", "F82") != "F82":
             self.note(f"{node_label(node)}'s Physical Conductor Fresnel (used: F82 Tint)")
-        if kind == "BSDF_TRANSPARENT":
-            colour = made.inputs["Color"]
-            if not isinstance(colour, core.Link) and np.ptp(colour) > 1e-6:
-                self.note(f"{node_label(node)}'s colour tints what is seen through it, not "
-                          f"the shadows it casts (used: its mean, {float(np.mean(colour)):.3g}, "
-                          "for shadows)")  # fmt: skip
         self._normal(made, node, groups)
         return made
 

@@ -8,6 +8,7 @@ a Transparent BSDF passes its colour at each crossing in both. The classic rule
 (Attenuated) lets light through glass and disagrees with Cycles there: the test can tell."""
 
 import math
+import sys
 
 import numpy as np
 import pytest
@@ -114,3 +115,7 @@ def test_a_coloured_transparent_balls_shadow_has_cycles_colour(bpy_with_whitted,
         share = shadow / open_plane
         print(f"{name}: shadow / open plane per channel {np.round(share, 4)}")
         np.testing.assert_allclose(share, np.square(colour), atol=TOLERANCE)
+    # and nothing warns of a grey shadow (the export once noted "used: its mean")
+    export = sys.modules["whitted.export"]
+    _, _, warnings = export.convert(bpy.context.evaluated_depsgraph_get())
+    assert not any("Red veil" in warning for warning in warnings), warnings
