@@ -89,11 +89,8 @@ def compile_scene(scene: Scene, settings: RenderSettings, on_photons=None,
     glowing = glowing_shapes(scene.shapes, materials, material_of)
     lights = pack_lights(scene.lights, scene.environment, glowing)
     packed = kernel_ready(PackedScene(frame, geometry, surfaces, materials, lights))
-    names = [""] * len(materials.ior)
-    for shape in shapes:
-        names[material_of[id(shape.material)]] = shape.material.name
     packed, caustic_warnings, caustics = add_caustics(packed, settings, on_photons,
-                                                      should_cancel, names, graphs)  # fmt: skip
+                                                      should_cancel, graphs)  # fmt: skip
     packed = kernel_ready(packed)
     warnings = (
         [

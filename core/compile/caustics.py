@@ -69,14 +69,17 @@ def branches_of(settings: RenderSettings) -> int:
     return bits
 
 
-def caster_hulls(packed: PackedScene, branches: int) -> np.ndarray:
+def caster_hulls(packed: PackedScene, branches: int, varying=None) -> np.ndarray:
     """float64 (k, 7): the hull (core.kernels.caster_hulls) of each shape row whose material
-    may send light on by the branches asked for: an analytic sphere's own, else its box,
-    each a little outside the shape (photons must never start on its surface, where the
-    first hit could be missed)."""
+    may send light on by the branches asked for (a constant one by its terms; a node
+    material varying over the surface where `varying`, bool per material row, says so):
+    an analytic sphere's own, else its box, each a little outside the shape (photons must
+    never start on its surface, where the first hit could be missed)."""
     mats, geo = packed.materials, packed.geometry
     mirror = mats.reflectivity > 0.0 if branches & REFLECTIVE else np.zeros(len(mats.ior), bool)
     specular = (mirror | (mats.transparency > 0.0)) & (mats.shader_range[:, 0] < 0)
+    if varying is not None:
+        specular |= varying
     rows = []
     for k in np.flatnonzero(specular[packed.surfaces.shape_material]):
         lo, hi = geo.shape_bounds[k, :3], geo.shape_bounds[k, 3:]
@@ -102,28 +105,20 @@ def caster_hulls(packed: PackedScene, branches: int) -> np.ndarray:
 
 
 def add_caustics(packed: PackedScene, settings: RenderSettings, on_photons=None,
-                 should_cancel=None, names=(), graphs=()):  # fmt: skip
+                 should_cancel=None, graphs=()):  # fmt: skip
     """(packed with its lights' photon arrays filled, warnings, CausticReport or None).
     on_photons(done, total) is called after each part of the pass; once should_cancel()
     says True no part starts and the scene gets no photons (the render that follows stops
-    too, polling the same). names and graphs: the material table's rows' names and node
-    graphs (None for a constant row), for the warnings."""
+    too, polling the same). graphs: the material table's rows' node graphs (None for a
+    constant row): those varying over the surface that may reflect or refract are casters."""
     branches = branches_of(settings)
     warnings = []
-    unfollowed = [
-        names[k]
-        for k in np.flatnonzero(packed.materials.shader_range[:, 0] >= 0)
-        if k < len(graphs) and graphs[k] is not None
-        and sends_caustics(graphs[k], bool(branches & REFLECTIVE), bool(branches & REFRACTIVE))
-    ]  # fmt: skip
-    if unfollowed:
-        listed = ", ".join(f"'{name}'" for name in unfollowed[:5])
-        more = f" and {len(unfollowed) - 5} more" if len(unfollowed) > 5 else ""
-        warnings.append(
-            f"caustics: node material(s) {listed}{more} vary over the surface (textures, "
-            "procedurals): the light they reflect or refract onto other surfaces is not "
-            "drawn; caustics come from mirrors and glass whose terms are constant"
-        )
+    # node materials varying over the surface that may reflect or refract: casters too
+    varying = np.zeros(len(packed.materials.ior), bool)
+    for k in np.flatnonzero(packed.materials.shader_range[:, 0] >= 0):
+        if k < len(graphs) and graphs[k] is not None:
+            varying[k] = sends_caustics(graphs[k], bool(branches & REFLECTIVE),
+                                        bool(branches & REFRACTIVE))  # fmt: skip
     has_glass = bool((packed.materials.transparency > 0.0).any())
     if "refractive" in settings.caustics and not branches & REFRACTIVE and has_glass:
         warnings.append(
@@ -139,20 +134,20 @@ def add_caustics(packed: PackedScene, settings: RenderSettings, on_photons=None,
     lit = np.concatenate([lit, len(flags) + np.arange(reported)])
     if not branches or settings.caustic_photons == 0 or lit.size == 0:
         return packed, warnings, None
-    casters = caster_hulls(packed, branches)
+    casters = caster_hulls(packed, branches, varying)
     receives = packed.materials.transparency < 1.0
     if casters.shape[0] == 0 or not receives.any():
         return packed, warnings, None
     start = time.perf_counter()
     rows = np.array([(light, k, PILOT) for light in lit for k in range(len(casters))], np.int64)
-    stacks = new_workspace(0).stacks
+    workspace = new_workspace(0)
     geo = packed.geometry
     containing = lights_inside(lights, casters)
     power = np.zeros(len(rows))
-    row_power(geo, lights, casters, containing, rows, settings.seed, stacks, power)
+    row_power(geo, lights, casters, containing, rows, settings.seed, workspace.stacks, power)
     if power.sum() <= 0.0:
         return packed, warnings, None
-    trace = _Tracer(packed, settings, branches, casters, containing, rows, power, stacks)
+    trace = _Tracer(packed, settings, branches, casters, containing, rows, power, workspace)
     budget = None
     if settings.caustic_photons == "auto":
         pilot = trace(PILOT_PHOTONS, should_cancel=should_cancel)
@@ -198,9 +193,9 @@ class _Tracer:
     """Traces a count of photons shared among the rows (light, hull) by the power each sends
     (the pilot's and the pass's budget alike), in parts (photon_parts)."""
 
-    def __init__(self, packed, settings, branches, casters, containing, rows, power, stacks):
+    def __init__(self, packed, settings, branches, casters, containing, rows, power, workspace):
         self.packed, self.settings, self.branches = packed, settings, branches
-        self.casters, self.containing, self.stacks = casters, containing, stacks
+        self.casters, self.containing, self.workspace = casters, containing, workspace
         self.rows, self.power = rows, power
 
     def __call__(self, count: int, on_photons=None, should_cancel=None) -> Traced | None:
@@ -213,7 +208,7 @@ class _Tracer:
         tally = np.zeros(TALLY_SLOTS, np.int64)
         packed, settings = self.packed, self.settings
         geo, surf, mats, lights = packed.geometry, packed.surfaces, packed.materials, packed.lights
-        stored, done = 0, 0
+        stored, done, ws = 0, 0, self.workspace
         for part in photon_parts(plan, total):
             if should_cancel is not None and should_cancel():
                 return None
@@ -221,7 +216,7 @@ class _Tracer:
                                     part, settings.seed, self.branches,
                                     max(settings.max_depth, 1), settings.glossy_samples > 0,
                                     position[stored:], direction[stored:], power[stored:],
-                                    self.stacks, tally)  # fmt: skip
+                                    ws.stacks, ws.shader_stack, ws.lobes, tally)  # fmt: skip
             done += int(part[:, 5].sum())
             if on_photons is not None:
                 on_photons(done, total)

@@ -36,8 +36,10 @@ least once is stored where it meets a surface with a diffuse part (its incident 
 position and direction); the shading point multiplies in its own colour
 (core.kernels.caustics). Light that passes straight (Transparent BSDF, Alpha) is not a
 caustic: shadow rays see it. A node material whose terms vary over the surface (a textured
-floor) stores a photon that came by a mirror or glass and ends it: its reflection or
-refraction is not followed (the compile warns of those that may reflect or refract).
+chrome, a glass whose colour or mix follows Fresnel or Layer Weight, a textured floor) has
+them from its program at each hit, as camera rays do: its reflection and refraction carry
+photons on, and a photon it receives is stored with the incident power, the shading point's
+program giving the diffuse colour.
 
 The report's lights (CS488 point and area lights with their falloff 1 / (c0 + c1 d + c2 d^2),
 and directional lights) send photons too, numbered after the lights in Blender's units:
@@ -74,10 +76,11 @@ from .options import (
     EMITTER_SUN_DISK,
 )
 from .rng import PURPOSE_PHOTON, chain, uniform2
+from .shader_program import run_program
 from .shading import AreaLight, square_to_light
 from .shadow_log import begin_point
-from .surface import surface_at
-from .surface_terms import table_surface
+from .surface import hit_frame, normal_rows, surface_at
+from .surface_terms import table_surface, terms_from_lobes
 from .trace import closest_hit, spawn_point, transmittance
 from .vec import add, dot, mul, normalize, row, scale, sub
 
@@ -247,14 +250,15 @@ def row_power(geo, lights, casters, containing, plan, seed, stacks, out):
 @kernel
 def trace_photons(geo, surf, mats, lights, casters, containing, plan, seed, branches,
                   max_bounces, spread, out_position, out_direction, out_power, stacks,
-                  tally):  # fmt: skip
+                  shader_stack, lobes, tally):  # fmt: skip
     """Trace photons of rows of `plan` (light, caster hull, the row's photons, the row's
     number, first, count: photons first to first + count - 1 of the row, so that a pass can
     be traced in parts, the same photons whatever the parts), storing those that reach a
     diffuse surface by way of a mirror or glass into the out_* arrays (position, direction
     of travel, power), in order; returns how many were stored. `branches`: REFLECTIVE |
     REFRACTIVE, the specular events a photon may take; `spread`: rough surfaces scatter
-    photons over their lobes (RenderSettings.glossy_samples > 0), else they are sharp."""
+    photons over their lobes (RenderSettings.glossy_samples > 0), else they are sharp;
+    `shader_stack` and `lobes`: a workspace's, for node materials' programs."""
     stored = 0
     for r in range(plan.shape[0]):
         light, k, photons, number = plan[r, 0], plan[r, 1], plan[r, 2], plan[r, 3]
@@ -280,17 +284,28 @@ def trace_photons(geo, surf, mats, lights, casters, containing, plan, seed, bran
                 travelled += t
                 material = surf.shape_material[shape]
                 programmed = mats.shader_range[material, 0] >= 0
-                if programmed and not specular:
-                    break  # light reaching it straight from the light: no caustic
-                p, n_geometric, n_shading, _, _ = surface_at(geo, surf, shape, part, b1, b2, o,
-                                                             d, t, False)  # fmt: skip
-                here = table_surface(mats, material, row(mats.diffuse, material))
+                p, n_geometric, n_shading, u, v = surface_at(geo, surf, shape, part, b1, b2, o,
+                                                             d, t, programmed)  # fmt: skip
+                if programmed:
+                    # a node material varying over the surface: its program's terms here, as
+                    # a camera ray's (core.kernels.integrator); Light Path: neither a camera
+                    # nor a shadow ray, `bounce` bounces
+                    with_frame = mats.shader_frame[material] != 0
+                    hit, across = hit_frame(geo, surf, shape, part, p, n_shading, u, v,
+                                            with_frame)  # fmt: skip
+                    rows = normal_rows(geo.shape_object_from_world, shape)
+                    run_program(mats, material, shader_stack, lobes, hit, across, rows,
+                                (0.0, 0.0, float(bounce)))  # fmt: skip
+                    here = terms_from_lobes(lobes)
+                    if here.normal[0] != 0.0 or here.normal[1] != 0.0 or here.normal[2] != 0.0:
+                        n_shading = here.normal  # Bump, Normal Map
+                else:
+                    here = table_surface(mats, material, row(mats.diffuse, material))
                 tau, rho = here.transparency, here.reflectivity
                 diffuse = mats.texture[material] >= 0 or channel_mean(here.kd) > 0.0
-                # a node material varying over the surface (a textured floor): its terms are
-                # its program's at each shading point, which multiplies in its own diffuse
-                # colour (none: nothing); the photon ends there
-                if specular and (programmed or tau < 1.0 and diffuse):
+                # a varying material's diffuse colour is its program's at each shading point,
+                # which multiplies it in (core.kernels.caustics)
+                if specular and tau < 1.0 and (diffuse or programmed):
                     if stored < out_power.shape[0]:
                         share = falloff_share(falloff, travelled)
                         for a in range(3):
@@ -301,8 +316,6 @@ def trace_photons(geo, surf, mats, lights, casters, containing, plan, seed, bran
                         tally[TALLY_STORED] += 1
                     else:
                         tally[TALLY_DROPPED] += 1
-                if programmed:
-                    break
                 entering = dot(d, n_geometric) < 0.0
                 if not entering:
                     n_geometric = scale(n_geometric, -1.0)
