@@ -90,6 +90,9 @@ def test_no_budget_passes_the_camera_rays_or_the_ceiling():
     assert capped.traced == 40_000 and capped.budget.reason == "camera rays"
     ceiling = compile_scene(_seen_from(4.0), _settings(200, caustic_photons_max=30_000)).caustics
     assert ceiling.traced <= 30_000 and ceiling.budget.reason == "most"
+    # rounded to two figures, but never past the cap: 180 x 180 rays are 32,400, not 33,000
+    odd = compile_scene(_seen_from(4.0), _settings(180)).caustics
+    assert odd.traced == 180 * 180 and odd.budget.reason == "camera rays"
 
 
 def test_the_budget_and_photons_are_the_same_for_any_border_tiles_and_threads():
