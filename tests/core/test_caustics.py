@@ -568,14 +568,14 @@ def test_a_light_inside_a_glass_ball_lights_the_floor_as_if_bare(kind):
     assert dark.max() < 0.01 * expected.min()
 
 
-def _varying(closure_a, closure_b, slope=0.4):
-    """A Mix Shader of two closures by 0.5 + slope X (object X): terms that vary over the
-    surface, so that the material is a program run at each hit."""
+def _varying(closure_a, closure_b, slope=0.4, axis="X"):
+    """A Mix Shader of two closures by 0.5 + slope X (object X, or the `axis` given): terms
+    that vary over the surface, so that the material is a program run at each hit."""
     from core import Link, ShaderNode
 
     coords = ShaderNode("tex_coord")
     separate = ShaderNode("separate", {"Vector": Link(coords, "Object")})
-    factor = ShaderNode("math", {"A": Link(separate, "X"), "B": slope, "C": 0.5},
+    factor = ShaderNode("math", {"A": Link(separate, axis), "B": slope, "C": 0.5},
                         {"operation": "MULTIPLY_ADD"})  # fmt: skip
     return ShaderNode("mix_shader", {"Fac": Link(factor, "Value"),
                                      "Shader A": Link(closure_a, "BSDF"),
@@ -614,18 +614,11 @@ def test_a_node_mirror_whose_reflectance_varies_throws_a_patch_that_varies_with_
     photons on, so the floor's patch is (1 + 0.5 + 0.4 y) of the open floor, band by band
     along y (the sun comes in the x-z plane: a floor point's light left the mirror at its
     own y)."""
-    from core import Link, ShaderNode
+    from core import ShaderNode
 
-    coords = ShaderNode("tex_coord")
-    along = ShaderNode("separate", {"Vector": Link(coords, "Object")})
-    factor = ShaderNode("math", {"A": Link(along, "Y"), "B": 0.4, "C": 0.5},
-                        {"operation": "MULTIPLY_ADD"})  # fmt: skip
-    surface = ShaderNode("mix_shader", {
-        "Fac": Link(factor, "Value"),
-        "Shader A": Link(ShaderNode("diffuse", {"Color": (0.0, 0.0, 0.0)}), "BSDF"),
-        "Shader B": Link(ShaderNode("glossy", {"Color": (1.0, 1.0, 1.0), "Roughness": 0.0}),
-                         "BSDF"),
-    })  # fmt: skip
+    black = ShaderNode("diffuse", {"Color": (0.0, 0.0, 0.0)})
+    white = ShaderNode("glossy", {"Color": (1.0, 1.0, 1.0), "Roughness": 0.0})
+    surface = _varying(black, white, 0.4, axis="Y")
     mirror = _hidden(Box("Mirror", Material(name="Graded chrome", surface=surface),
                          _placed(x=-0.01, z=1.0, size=(0.01, 1.0, 1.0))))  # fmt: skip
     compiled = compile_scene(Scene(shapes=[_floor(), mirror], lights=[_sun(45.0)]),
