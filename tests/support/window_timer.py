@@ -27,3 +27,16 @@ def register_step(step, out_path: str, first_interval: float = 2.0) -> None:
             os._exit(1)
 
     bpy.app.timers.register(guarded, first_interval=first_interval)
+
+
+# Blender refuses writes to its data from Python while any thread is inside a render
+# engine's callback or a draw (a global flag), so a timer step that starts the next
+# preview can meet a refusal while the last preview's render thread is still finishing
+# (seen in a fresh-clone run under load): such a step is tried again at the next tick
+REFUSED = ("can't modify blend data in this state", "is not allowed")
+
+
+def writes_refused(error: BaseException) -> bool:
+    return isinstance(error, (RuntimeError, AttributeError)) and any(
+        words in str(error) for words in REFUSED
+    )
