@@ -151,7 +151,12 @@ def _auto_or(parse):
     """An argparse type: "auto", or what `parse` takes."""
 
     def parse_or_auto(text: str):
-        return AUTO_PHOTONS if text.strip().lower() == AUTO_PHOTONS else parse(text)
+        if text.strip().lower() == AUTO_PHOTONS:
+            return AUTO_PHOTONS
+        try:
+            return parse(text)
+        except argparse.ArgumentTypeError as error:
+            raise argparse.ArgumentTypeError(f"{error}, or {AUTO_PHOTONS}") from None
 
     parse_or_auto.__name__ = parse.__name__
     return parse_or_auto

@@ -98,13 +98,18 @@ def test_the_command_line_options_override_the_script(tmp_path, capsys):
     script.write_text(MIRROR_SCENE + _render_line(", {caustics = 'both'}"))
     assert main(["render", str(script), "--caustics", "none", "--threads", "1"]) == 0
     assert "photons traced" not in capsys.readouterr().out
+    # --photons auto over a script's count: the automatic budget's
+    script.write_text(MIRROR_SCENE + _render_line(", {caustics = 'both', photons = 5000}"))
+    assert main(["render", str(script), "--photons", "auto", "--threads", "1"]) == 0
+    assert "photons traced (automatic)" in capsys.readouterr().out
 
 
 @pytest.mark.parametrize(
     "args, message",
     [
         (["--caustics", "mirrors"], "argument --caustics: invalid choice: 'mirrors'"),
-        (["--photons", "-5"], "give a whole number of photons from 0 to 10,000,000"),
+        (["--photons", "-5"], "give a whole number of photons from 0 to 10,000,000, or auto"),
+        (["--photons", "lots"], "got 'lots'; give a whole number of photons from 0 to 10,000,"),
         (["--glass-shadows", "grey"], "argument --glass-shadows: invalid choice: 'grey'"),
     ],
 )
