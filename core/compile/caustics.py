@@ -113,12 +113,6 @@ def add_caustics(packed: PackedScene, settings: RenderSettings, on_photons=None,
     constant row): those varying over the surface that may reflect or refract are casters."""
     branches = branches_of(settings)
     warnings = []
-    # node materials varying over the surface that may reflect or refract: casters too
-    varying = np.zeros(len(packed.materials.ior), bool)
-    for k in np.flatnonzero(packed.materials.shader_range[:, 0] >= 0):
-        if k < len(graphs) and graphs[k] is not None:
-            varying[k] = sends_caustics(graphs[k], bool(branches & REFLECTIVE),
-                                        bool(branches & REFRACTIVE))  # fmt: skip
     has_glass = bool((packed.materials.transparency > 0.0).any())
     if "refractive" in settings.caustics and not branches & REFRACTIVE and has_glass:
         warnings.append(
@@ -134,6 +128,12 @@ def add_caustics(packed: PackedScene, settings: RenderSettings, on_photons=None,
     lit = np.concatenate([lit, len(flags) + np.arange(reported)])
     if not branches or settings.caustic_photons == 0 or lit.size == 0:
         return packed, warnings, None
+    # node materials varying over the surface that may reflect or refract: casters too
+    varying = np.zeros(len(packed.materials.ior), bool)
+    for k in np.flatnonzero(packed.materials.shader_range[:, 0] >= 0):
+        if k < len(graphs) and graphs[k] is not None:
+            varying[k] = sends_caustics(graphs[k], bool(branches & REFLECTIVE),
+                                        bool(branches & REFRACTIVE))  # fmt: skip
     casters = caster_hulls(packed, branches, varying)
     receives = packed.materials.transparency < 1.0
     if casters.shape[0] == 0 or not receives.any():

@@ -29,7 +29,7 @@ from typing import NamedTuple
 import numpy as np
 
 from ..kernels.options import OPTION_PROJECTION, PROJECTION_ORTHOGRAPHIC
-from .photon_grid import NEIGHBOURS, neighbour_distances
+from .photon_grid import neighbour_distances, neighbours_wanted
 
 PILOT_PHOTONS = 8192  # traced by the pilot pass, shared among the rows as the budget is
 NOISE = 0.05
@@ -65,7 +65,7 @@ def screen_points(frame, width: int, height: int, position: np.ndarray) -> np.nd
 
 def _blur_at(photons: float, pilot_radius: float, pilot_k: float, pilot: int, stored_share):
     """The median disk radius in pixels with `photons` traced: sqrt(k / m) from the pilot's."""
-    k = float(np.clip(math.sqrt(stored_share * photons), *NEIGHBOURS))
+    k = neighbours_wanted(int(stored_share * photons))
     return pilot_radius * math.sqrt(k / pilot_k * pilot / photons)
 
 
@@ -88,7 +88,7 @@ def automatic_budget(frame, settings, pilot_position: np.ndarray, pilot_traced: 
     stored_share = len(pilot_position) / pilot_traced
     noise = (1.0 / NOISE**2) ** 2 / stored_share  # k = sqrt(m) >= 1 / NOISE^2
     flat = np.column_stack([seen, np.zeros(len(seen))])
-    pilot_k = min(float(np.clip(math.sqrt(len(seen)), *NEIGHBOURS)), len(seen) - 1)
+    pilot_k = neighbours_wanted(len(seen))  # as neighbour_distances holds them
     pilot_radius = float(np.median(neighbour_distances(flat)))
 
     def blur(n):

@@ -20,6 +20,11 @@ MAX_LEVELS = 24
 SPACING_SHARE = 64
 
 
+def neighbours_wanted(stored: int) -> int:
+    """k: the fellows a photon's disk holds among `stored` photons (NEIGHBOURS' rule)."""
+    return min(int(np.clip(math.sqrt(stored), *NEIGHBOURS)), stored - 1)
+
+
 def neighbour_distances(position: np.ndarray) -> np.ndarray:
     """Each photon's disk radius: one that holds about k of its fellows (NEIGHBOURS) at
     their density about it, at most REACH of the photons' extent (a lone photon's disk):
@@ -30,7 +35,7 @@ def neighbour_distances(position: np.ndarray) -> np.ndarray:
     cap = max(REACH * extent, 1e-9)
     radius = np.full(m, cap)
     todo = np.ones(m, bool)
-    wanted = min(int(np.clip(math.sqrt(m), *NEIGHBOURS)), m - 1)
+    wanted = neighbours_wanted(m)
     if wanted < 1:
         return radius
     # from cells finer than the photons' mean spacing (were they all on one square), so

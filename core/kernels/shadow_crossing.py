@@ -1,6 +1,6 @@
 """The answers to a shading point's listed crossings of surfaces whose share varies
 (`core.kernels.shadow_log`): the crossed surface's material program run at each, by the
-integrator, the one place that program is compiled in."""
+integrator (the photon pass, core.kernels.photons, compiles its own call)."""
 
 from ..jit.decorators import inlined_kernel, kernel
 from ..vocabulary import GLASS_SHADOWS_ATTENUATED

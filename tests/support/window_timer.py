@@ -36,7 +36,12 @@ def register_step(step, out_path: str, first_interval: float = 2.0) -> None:
 REFUSED = ("can't modify blend data in this state", "is not allowed")
 
 
-def writes_refused(error: BaseException) -> bool:
-    return isinstance(error, (RuntimeError, AttributeError)) and any(
-        words in str(error) for words in REFUSED
-    )
+def written(action) -> bool:
+    """Run action(); False if Blender refused its writes (try it at the next tick)."""
+    try:
+        action()
+    except (RuntimeError, AttributeError) as error:
+        if not any(words in str(error) for words in REFUSED):
+            raise
+        return False
+    return True

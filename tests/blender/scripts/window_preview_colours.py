@@ -14,7 +14,7 @@ import time
 import bpy
 
 from tests.support.preview_pixels import rgb_rows
-from tests.support.window_timer import register_step, writes_refused
+from tests.support.window_timer import register_step, written
 
 OUT = sys.argv[sys.argv.index("--") + 1]
 TIMEOUT_S = 90
@@ -61,6 +61,12 @@ def f12():
         seen["f12"][material.name] = path
 
 
+def start_preview(engine, material):
+    bpy.context.scene.render.engine = engine
+    with bpy.context.temp_override(id=material):
+        bpy.ops.ed.lib_id_generate_preview()
+
+
 def tick():
     if sys.modules["whitted.core"].jit.warmup_process.shared_warmup().status().state == "running":
         return 0.25
@@ -82,14 +88,7 @@ def tick():
             json.dump(seen, f)
         bpy.ops.wm.quit_blender()
         return None
-    engine, material = queue[0]
-    try:
-        bpy.context.scene.render.engine = engine
-        with bpy.context.temp_override(id=material):
-            bpy.ops.ed.lib_id_generate_preview()
-    except (RuntimeError, AttributeError) as error:
-        if not writes_refused(error):
-            raise
+    if not written(lambda: start_preview(*queue[0])):
         state["job"] = None  # the last one is recorded: try this one at the next tick
         return 0.25
     state["job"] = queue.pop(0)

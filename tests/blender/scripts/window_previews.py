@@ -10,7 +10,7 @@ import time
 import bpy
 
 from tests.support.preview_pixels import rgb_rows
-from tests.support.window_timer import register_step, writes_refused
+from tests.support.window_timer import register_step, written
 
 OUT = sys.argv[sys.argv.index("--") + 1]
 TIMEOUT_S = 60
@@ -33,6 +33,11 @@ queue = list(bpy.data.materials)
 state = {"material": None, "since": 0.0}
 
 
+def generate_preview(material):
+    with bpy.context.temp_override(id=material):
+        bpy.ops.ed.lib_id_generate_preview()
+
+
 def tick():
     if sys.modules["whitted.core"].jit.warmup_process.shared_warmup().status().state == "running":
         return 0.25
@@ -48,13 +53,7 @@ def tick():
             json.dump(seen, f)
         bpy.ops.wm.quit_blender()
         return None
-    material = queue[0]
-    try:
-        with bpy.context.temp_override(id=material):
-            bpy.ops.ed.lib_id_generate_preview()
-    except (RuntimeError, AttributeError) as error:
-        if not writes_refused(error):
-            raise
+    if not written(lambda: generate_preview(queue[0])):
         state["material"] = None  # the last one is recorded: try this one at the next tick
         return 0.25
     state["material"] = queue.pop(0)
