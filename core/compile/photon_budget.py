@@ -64,8 +64,10 @@ def screen_points(frame, width: int, height: int, position: np.ndarray) -> np.nd
 
 
 def _blur_at(photons: float, pilot_radius: float, pilot_k: float, pilot: int, stored_share):
-    """The median disk radius in pixels with `photons` traced: sqrt(k / m) from the pilot's."""
-    k = neighbours_wanted(int(stored_share * photons))
+    """The median disk radius in pixels with `photons` traced: sqrt(k / m) from the pilot's.
+    The bisection tries counts down to one photon, so a sharp glint's would store none: a
+    disk holds one fellow at least (k = 1 of 2 stored)."""
+    k = neighbours_wanted(max(int(stored_share * photons), 2))
     return pilot_radius * math.sqrt(k / pilot_k * pilot / photons)
 
 

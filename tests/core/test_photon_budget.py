@@ -18,7 +18,7 @@ import pytest
 
 from core import Camera, RenderSettings, SceneError
 from core.compile import compile_scene
-from core.compile.photon_budget import FEWEST, NOISE, screen_points
+from core.compile.photon_budget import FEWEST, NOISE, PILOT_PHOTONS, automatic_budget, screen_points
 from core.driver import render
 from core.kernels.camera import ray_through
 from tests.benchmarks.bench_caustics import ball_lens_scene
@@ -79,6 +79,21 @@ def test_a_caustic_filling_the_frame_gets_more_photons_than_one_seen_small():
     stored = (1.0 / NOISE**2) ** 2
     assert stored <= far.stored <= 1.1 * stored
     assert near.budget.reason == "blur" and near.traced > 1.5 * far.traced
+
+
+def test_a_glint_too_sharp_to_blur_gets_the_noise_rules_photons():
+    """A pilot whose photons land within a millimetre (a mirror's glint seen from afar): its
+    disks blur under a pixel at any count, so the bisection on the blur runs down to a
+    single photon traced; the budget is still the noise rule's (a math domain error once,
+    seen in four Blender tests)."""
+    settings = _settings(200, pixel_samples=4)
+    frame = compile_scene(_seen_from(4.0), settings).packed.frame
+    rng = np.random.default_rng(3)
+    glint = np.array([-1.5, 0.0, 0.0]) + rng.normal(0.0, 1e-4, size=(8000, 3))
+    budget = automatic_budget(frame, settings, glint, PILOT_PHOTONS)
+    stored = (1.0 / NOISE**2) ** 2 * PILOT_PHOTONS / 8000
+    assert budget.reason == "noise" and stored <= budget.photons <= 1.1 * stored
+    assert budget.pilot_seen == 8000 and budget.blur_pixels < 0.1
 
 
 def test_no_budget_passes_the_camera_rays_or_the_ceiling():
