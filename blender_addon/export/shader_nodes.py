@@ -46,6 +46,8 @@ OUTPUTS = {
             "Ray Depth": "Ray Depth",
         },
     ),  # fmt: skip
+    "FRESNEL": ("fresnel", {"Fac": "Fac"}),
+    "LAYER_WEIGHT": ("layer_weight", {"Fresnel": "Fresnel", "Facing": "Facing"}),
     "MAPPING": ("mapping", {"Vector": "Vector"}),
     "MATH": ("math", {"Value": "Value"}),
     "MIX_RGB": ("mix_color", {"Color": "Color"}),
@@ -323,6 +325,10 @@ class GraphReader:
                 self.note(f"{node_label(node)}'s Object (used: the surface's own object)")
         elif t == "UVMAP":
             pass  # the active UV map is exported
+        elif t in ("FRESNEL", "LAYER_WEIGHT"):
+            name = "IOR" if t == "FRESNEL" else "Blend"
+            made.inputs[name] = v(node, groups, name)
+            self._normal(made, node, groups)  # linked, or the displacement's bump normal
         elif t == "MAPPING":
             made.settings["type"] = node.vector_type
             for name in ("Vector", "Location", "Rotation", "Scale"):

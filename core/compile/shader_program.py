@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..kernels import shader_program as sp
+from ..kernels.facing_values import FACING_FRESNEL, FACING_LAYER_FACING, FACING_LAYER_FRESNEL
 from ..model.shader import (
     EXTENSIONS,
     GRADIENT_TYPES,
@@ -37,6 +38,10 @@ COORDS = {"UV": sp.COORD_UV, "Generated": sp.COORD_GENERATED, "Object": sp.COORD
           "Normal": sp.COORD_NORMAL}  # fmt: skip
 RAY_COORDS = {"Is Camera Ray": sp.COORD_IS_CAMERA, "Is Shadow Ray": sp.COORD_IS_SHADOW,
               "Ray Depth": sp.COORD_RAY_DEPTH}  # fmt: skip
+FACING_OUTPUTS = {
+    "fresnel": {"Fac": FACING_FRESNEL},
+    "layer_weight": {"Fresnel": FACING_LAYER_FRESNEL, "Facing": FACING_LAYER_FACING},
+}
 # Outputs that are colours (as numbers: their luminance) rather than vectors (their mean)
 COLOUR_OUTPUTS = {"Color"}
 
@@ -224,6 +229,12 @@ class ProgramBuilder:
         elif kind == "light_path":
             for name, which in RAY_COORDS.items():
                 p.step(sp.OP_COORD, slots[name], which, self.where)
+            p.varying = True
+        elif kind in ("fresnel", "layer_weight"):
+            value = v(node.input("IOR" if kind == "fresnel" else "Blend"), "value")
+            normal = self._normal(node)
+            for name, which in FACING_OUTPUTS[kind].items():
+                p.step(sp.OP_FACING, slots[name], value, normal, which)
             p.varying = True
         elif kind == "bump":
             heights = []

@@ -62,7 +62,7 @@ from .pass_record import (
     record_lighting,
 )
 from .rng import PURPOSE_GLOSSY, uniform2
-from .shader_program import run_program
+from .shader_program import ray_at, run_program
 from .shading import Phong, ShadingPoint, local_colour
 from .shadow_crossing import answer_crossings
 from .shadow_log import begin_point
@@ -261,7 +261,7 @@ def trace_ray(ps, o, d, key, ws):
             rows = normal_rows(geo.shape_object_from_world, shape)
             # Light Path: a camera ray until it reflects or refracts (passing a transparent
             # surface keeps it one, as in Cycles)
-            ray = (1.0 if depth == 0 else 0.0, 0.0, float(depth))
+            ray = ray_at(1.0 if depth == 0 else 0.0, 0.0, depth, d, n_geometric)
             run_program(mats, material, ws.shader_stack, ws.lobes, hit, across, rows, ray)
             here = terms_from_lobes(ws.lobes)
             if here.normal[0] != 0.0 or here.normal[1] != 0.0 or here.normal[2] != 0.0:

@@ -76,7 +76,7 @@ from .options import (
     EMITTER_SUN_DISK,
 )
 from .rng import PURPOSE_PHOTON, chain, uniform2
-from .shader_program import run_program
+from .shader_program import ray_at, run_program
 from .shading import AreaLight, square_to_light
 from .shadow_log import begin_point
 from .surface import hit_frame, normal_rows, surface_at
@@ -294,8 +294,8 @@ def trace_photons(geo, surf, mats, lights, casters, containing, plan, seed, bran
                     hit, across = hit_frame(geo, surf, shape, part, p, n_shading, u, v,
                                             with_frame)  # fmt: skip
                     rows = normal_rows(geo.shape_object_from_world, shape)
-                    run_program(mats, material, shader_stack, lobes, hit, across, rows,
-                                (0.0, 0.0, float(bounce)))  # fmt: skip
+                    ray = ray_at(0.0, 0.0, bounce, d, n_geometric)
+                    run_program(mats, material, shader_stack, lobes, hit, across, rows, ray)
                     here = terms_from_lobes(lobes)
                     if here.normal[0] != 0.0 or here.normal[1] != 0.0 or here.normal[2] != 0.0:
                         n_shading = here.normal  # Bump, Normal Map

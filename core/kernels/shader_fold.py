@@ -29,8 +29,9 @@ def fold_surfaces(mats, rows, out):
     rows3 = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
     for k in range(rows.shape[0]):
         # (A program that reads the ray is varying, never folded: the ray here is nobody's)
+        nobody = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
         run_program(
-            mats, rows[k], stack, lobes, (here, here, here), (zero, zero, zero), rows3, zero
+            mats, rows[k], stack, lobes, (here, here, here), (zero, zero, zero), rows3, nobody
         )
         s = terms_from_lobes(lobes)
         o = out[k]

@@ -14,6 +14,7 @@ blender_addon/export/shader_lobes.py documents it.
 import math
 
 from ..jit.decorators import kernel
+from .facing_values import facing_value
 from .noise import noise_texture
 from .shader_values import (
     brick,
@@ -65,6 +66,7 @@ OP_NOISE = 31
 # out colour, out distance, out position, vector, scale, detail, roughness; its next row
 # (OP_MORE): lacunarity, randomness, exponent, feature + 2 metric + 8 normalize + 16 hash
 OP_VORONOI = 32
+OP_FACING = 33  # out, IOR or Blend, normal (-1 the surface's), which (facing_values.FACING_*)
 # Closures take their Normal input's slot in the last column (f), or -1 for the surface's
 OP_DIFFUSE = 20  # weight, colour
 OP_GLOSSY = 21  # weight, colour, roughness
@@ -80,6 +82,9 @@ OP_MORE = 28  # transmission, emission colour, emission strength, specular level
 COORD_UV, COORD_GENERATED, COORD_OBJECT, COORD_NORMAL = 0, 1, 2, 3
 # What the ray that met the surface is (OP_COORD too; Light Path's outputs), from `ray`
 COORD_IS_CAMERA, COORD_IS_SHADOW, COORD_RAY_DEPTH = 4, 5, 6
+# The rest of `ray`: its direction (3 numbers from RAY_DIRECTION) and 1 where it met the
+# surface's back (RAY_BACKFACING), for Fresnel and Layer Weight (OP_FACING)
+RAY_DIRECTION, RAY_BACKFACING = 3, 6
 # Normal Map spaces (OP_NORMAL_MAP)
 NORMAL_MAP_TANGENT, NORMAL_MAP_OBJECT, NORMAL_MAP_WORLD = 0, 1, 2
 
@@ -295,13 +300,22 @@ def _add_normal(lobes, stack, weight, slot):
 
 
 @kernel
+def ray_at(is_camera, is_shadow, depth, d, n_geometric):
+    """`ray` for run_program: what the ray o + t d is, having met a surface of geometric
+    normal n_geometric."""
+    back = 1.0 if dot(d, n_geometric) > 0.0 else 0.0
+    return (is_camera, is_shadow, float(depth), d[0], d[1], d[2], back)
+
+
+@kernel
 def run_program(mats, material, stack, lobes, hit, frame, normal_rows, ray):
     """Run the material's program with `hit` = the texture coordinates (uv, generated,
     object, normal) at the hit and a step along u and v (core.kernels.surface.hit_frame),
     `frame` = (step along u, step along v, normal) in world space, `normal_rows` the rows
     of the object-to-world normal transform, `ray` = (1 for a camera ray, 1 for a shadow
-    ray, its bounces) for Light Path, leaving its lobes in `lobes` (LOBE_COUNT zeroed
-    first)."""
+    ray, its bounces) for Light Path, then its unit direction and 1 if it met the
+    surface's back (dot with the geometric normal > 0) for Fresnel and Layer Weight (see
+    `ray_at`), leaving its lobes in `lobes` (LOBE_COUNT zeroed first)."""
     lobes[:] = 0.0
     first, end = mats.shader_range[material, 0], mats.shader_range[material, 1]
     c0, c1 = mats.shader_constant_range[material, 0], mats.shader_constant_range[material, 1]
@@ -325,6 +339,10 @@ def run_program(mats, material, stack, lobes, hit, frame, normal_rows, ray):
             _bump(s, out, s[a], s[b], s[c], s[d], s[e], f != 0, frame)
         elif op == OP_NORMAL_MAP:
             _normal_map(s, out, _triple(s, a), s[b], c, frame, normal_rows)
+        elif op == OP_FACING:
+            normal = frame[2] if b < 0 else _triple(s, b)
+            towards = (-ray[RAY_DIRECTION], -ray[RAY_DIRECTION + 1], -ray[RAY_DIRECTION + 2])
+            s[out] = facing_value(c, s[a], towards, normal, ray[RAY_BACKFACING] != 0.0)
         elif op == OP_MAPPING:
             v = mapping(f, _triple(s, a), _triple(s, b), _triple(s, c), _triple(s, d))
             _put(s, out, v)

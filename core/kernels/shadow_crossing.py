@@ -6,7 +6,7 @@ from ..jit.decorators import inlined_kernel, kernel
 from ..vocabulary import GLASS_SHADOWS_ATTENUATED
 from .light_pyramid import TRAVERSE_ALL
 from .options import OPTION_GLASS_SHADOWS
-from .shader_program import run_program
+from .shader_program import ray_at, run_program
 from .shadow_log import STATE_CROSSINGS, STATE_RAY, STATE_REPLAY, begin_point
 from .surface import hit_frame, normal_rows, surface_at
 from .surface_terms import terms_from_lobes
@@ -21,12 +21,13 @@ def crossing_share(geo, surf, mats, ws, shape, part, b1, b2, o, d, t, refraction
     plus, if `refraction_passes`, its transparency, at most 1, with the terms its program
     gives there; and its colour, per channel over that share."""
     material = surf.shape_material[shape]
-    p, _, n_shading, u, v = surface_at(geo, surf, shape, part, b1, b2, o, d, t, True)
+    p, n_geometric, n_shading, u, v = surface_at(geo, surf, shape, part, b1, b2, o, d, t, True)
     with_frame = mats.shader_frame[material] != 0
     hit, across = hit_frame(geo, surf, shape, part, p, n_shading, u, v, with_frame)
     rows = normal_rows(geo.shape_object_from_world, shape)
     # Light Path: a shadow ray (its depth is not known here: read as 0)
-    run_program(mats, material, ws.shader_stack, ws.lobes, hit, across, rows, (0.0, 1.0, 0.0))
+    ray = ray_at(0.0, 1.0, 0, d, n_geometric)
+    run_program(mats, material, ws.shader_stack, ws.lobes, hit, across, rows, ray)
     here = terms_from_lobes(ws.lobes)
     clear = here.transparent
     straight = (clear[0] + clear[1] + clear[2]) / 3.0

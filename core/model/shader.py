@@ -70,6 +70,13 @@ SHADER_NODES = {
         inputs={},
         outputs={"Is Camera Ray": "value", "Is Shadow Ray": "value", "Ray Depth": "value"},
     ),  # fmt: skip
+    # How squarely the ray meets the surface (Blender's Fresnel and Layer Weight nodes,
+    # core.kernels.facing_values); Normal None: the surface's shading normal
+    "fresnel": dict(inputs={"IOR": 1.5, "Normal": None}, outputs={"Fac": "value"}),
+    "layer_weight": dict(
+        inputs={"Blend": 0.5, "Normal": None},
+        outputs={"Fresnel": "value", "Facing": "value"},
+    ),  # fmt: skip
     "mapping": dict(
         inputs={
             "Vector": (0.0, 0.0, 0.0),
