@@ -16,7 +16,7 @@ the glass was a half mirror, the paint a flat mix."""
 import numpy as np
 import pytest
 
-from tests.blender.test_cycles_materials import TOLERANCE, ball_on_floor, disagreement
+from tests.blender.test_cycles_materials import assert_renders_as_in_cycles
 from tests.support.cycles import SIZE, VIEW, add_ball, new_scene, side_by_side
 
 pytestmark = pytest.mark.bpy
@@ -80,10 +80,7 @@ GRAPHS = {
 
 
 def _glowing_ball(bpy, scene, build):
-    material = bpy.data.materials.new("Facing")
-    material.use_nodes = True
-    tree = material.node_tree
-    tree.nodes.clear()
+    material, tree = _empty_material(bpy, "Facing")
     emission = tree.nodes.new("ShaderNodeEmission")
     role, socket = build(tree)
     tree.links.new(socket, emission.inputs[role])
@@ -109,30 +106,30 @@ def test_a_facing_graph_gives_cycles_pixels_on_a_ball(bpy_with_whitted, tmp_path
     assert stray <= STRAY_SHARE and off.max() <= STRAY_LARGEST, (stray, off.max())
 
 
+def _empty_material(bpy, name):
+    material = bpy.data.materials.new(name)
+    material.use_nodes = True
+    material.node_tree.nodes.clear()
+    return material, material.node_tree
+
+
 def _library_glass(bpy):
     """The glass of old tutorials and asset packs: Refraction and Glossy mixed by Fresnel."""
-    material = bpy.data.materials.new("Fresnel glass")
-    material.use_nodes = True
-    tree = material.node_tree
-    tree.nodes.clear()
+    material, tree = _empty_material(bpy, "Fresnel glass")
     fresnel = tree.nodes.new("ShaderNodeFresnel")
     fresnel.inputs["IOR"].default_value = 1.45
     refraction = tree.nodes.new("ShaderNodeBsdfRefraction")
     refraction.inputs["IOR"].default_value = 1.45
-    refraction.inputs["Roughness"].default_value = 0.0
     glossy = tree.nodes.new("ShaderNodeBsdfGlossy")
-    glossy.inputs["Roughness"].default_value = 0.0
     for node in (refraction, glossy):
         node.inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
+        node.inputs["Roughness"].default_value = 0.0
     return _mixed(material, fresnel.outputs["Fac"], refraction, glossy)
 
 
 def _car_paint(bpy):
     """A red Diffuse under a clear Glossy coat, mixed by Layer Weight's Fresnel."""
-    material = bpy.data.materials.new("Car paint")
-    material.use_nodes = True
-    tree = material.node_tree
-    tree.nodes.clear()
+    material, tree = _empty_material(bpy, "Car paint")
     weight = tree.nodes.new("ShaderNodeLayerWeight")
     weight.inputs["Blend"].default_value = 0.2
     paint = tree.nodes.new("ShaderNodeBsdfDiffuse")
@@ -159,9 +156,4 @@ MATERIALS = {"fresnel_glass": _library_glass, "car_paint": _car_paint}
 
 @pytest.mark.parametrize("kind", list(MATERIALS))
 def test_a_library_material_mixed_by_facing_renders_as_in_cycles(bpy_with_whitted, tmp_path, kind):
-    bpy = bpy_with_whitted
-    ball_on_floor(bpy, MATERIALS[kind])
-    cycles, whitted = side_by_side(bpy, bpy.context.scene, tmp_path, samples=512)
-    error = disagreement(cycles, whitted)
-    print(f"{kind}: {error:.4f}")
-    assert error < TOLERANCE, error
+    assert_renders_as_in_cycles(bpy_with_whitted, tmp_path, kind, MATERIALS[kind])

@@ -264,14 +264,18 @@ def disagreement(cycles, whitted, block=4):
     return float((np.abs(w - c) / scale).max())
 
 
-@pytest.mark.parametrize("kind", list(MATERIALS))
-def test_a_node_material_renders_as_in_cycles(bpy_with_whitted, tmp_path, kind):
-    bpy = bpy_with_whitted
-    ball_on_floor(bpy, MATERIALS[kind])
+def assert_renders_as_in_cycles(bpy, tmp_path, kind, make_material):
+    """The ball of make_material(bpy) over the floor: every block within TOLERANCE."""
+    ball_on_floor(bpy, make_material)
     cycles, whitted = side_by_side(bpy, bpy.context.scene, tmp_path, samples=512)
     error = disagreement(cycles, whitted)
     print(f"{kind}: {error:.4f}")
     assert error < TOLERANCE, error
+
+
+@pytest.mark.parametrize("kind", list(MATERIALS))
+def test_a_node_material_renders_as_in_cycles(bpy_with_whitted, tmp_path, kind):
+    assert_renders_as_in_cycles(bpy_with_whitted, tmp_path, kind, MATERIALS[kind])
 
 
 @pytest.mark.parametrize("kind", list(ROUGH))
