@@ -200,7 +200,7 @@ class _Tracer:
 
     def __call__(self, count: int, on_photons=None, should_cancel=None) -> Traced | None:
         """The photons, or None once should_cancel() says True between parts."""
-        share = np.floor(count * self.power / self.power.sum()).astype(np.int64)
+        share = shares(count, self.power)
         plan = np.column_stack([self.rows[:, :2], share])[share > 0]
         total = int(share.sum())
         room = STORED_PER_PHOTON * total
@@ -222,6 +222,18 @@ class _Tracer:
                 on_photons(done, total)
         return Traced(total, int(tally[TALLY_STORED]), int(tally[TALLY_DROPPED]),
                       position[:stored], direction[:stored], power[:stored])  # fmt: skip
+
+
+def shares(count: int, power: np.ndarray) -> np.ndarray:
+    """int64: `count` photons shared among rows by their power, summing to `count` exactly
+    (each row's share rounded down, the rest given to the largest remainders, in order):
+    the summary's count is the count the budget set."""
+    exact = count * power / power.sum()
+    share = np.floor(exact).astype(np.int64)
+    rest = count - int(share.sum())
+    if rest > 0:
+        share[np.argsort(-(exact - share), kind="stable")[:rest]] += 1
+    return share
 
 
 def light_centres(lights) -> np.ndarray:
