@@ -13,7 +13,8 @@ orthographically (each pixel's |I . N| known exactly), shows at each pixel
 And the library glass (a Mix Shader of Refraction and Glossy by a Fresnel node of the same
 IOR) renders as the Glass BSDF, whose Fresnel test_node_material_terms checks against the
 closed form, inside reflections and all; and under a sun it casts the ball lens's caustic
-as the exact tracer of tests/core/test_caustics.py draws it. Side by side with Cycles:
+as the exact tracer of tests/core/test_caustics.py draws it; a veil mixed by Facing
+shadows by each shadow ray's own angle. Side by side with Cycles:
 tests/blender/test_cycles_textures.py and test_cycles_materials.py."""
 
 import math
@@ -24,6 +25,7 @@ import pytest
 from core import Camera, Environment, Link, Material, RenderSettings, Scene, ShaderNode, render
 from core.model.materials import Texture
 from tests.core.test_caustics import N, ball_lens_region
+from tests.core.test_coloured_shadows import LIGHTS, _floor_under
 from tests.core.test_environment import ball, hits, look_at_ball
 from tests.core.test_node_material_terms import _fresnel
 
@@ -132,3 +134,20 @@ def test_the_library_glass_casts_the_ball_lenss_caustic():
     print(f"library glass: region {measured:.4f} against {expected:.4f}")
     assert math.isclose(measured, expected, rel_tol=0.03)
     assert measured > bare + 0.5 * (expected - bare)  # the premise: not the bare shadow
+
+
+def test_a_veil_mixed_by_facing_shadows_by_the_shadow_rays_own_angle():
+    """A ball of Transparent (white) mixed into black Diffuse by Layer Weight's Facing (Blend
+    0.5: 1 - |I . N|): under a sun straight down, each shadow ray crosses the ball where
+    |I . N| = sqrt(1 - r^2), twice, so the floor gets (1 - r^2) of the open floor's light:
+    the shadow crossings read their own ray's direction."""
+    facing = ShaderNode("layer_weight", {"Blend": 0.5})
+    clear, black = ShaderNode("transparent", {}), ShaderNode("diffuse", {"Color": (0.0,) * 3})
+    veil = ShaderNode("mix_shader", {"Fac": Link(facing, "Facing"), "Shader A": Link(clear),
+                                     "Shader B": Link(black)})  # fmt: skip
+    out, _, radius = _floor_under(Material(name="Veil", surface=veil), LIGHTS["sun"])
+    image = out.image[..., :3].astype(float)
+    lit = image[radius > 1.1].mean(axis=0)
+    under = radius < 0.95
+    expected = lit[None, :] * (1.0 - radius[under] ** 2)[:, None]
+    np.testing.assert_allclose(image[under], expected, rtol=1e-5, atol=1e-6)
