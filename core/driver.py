@@ -11,7 +11,6 @@ stop within a pixel's rays, not at their end.
 
 from __future__ import annotations
 
-import os
 import threading
 import time
 from collections.abc import Callable
@@ -36,6 +35,7 @@ from .kernels.workspace import (
 )
 from .model import RenderSettings, Scene
 from .passes import CRYPTO_PASSES, layout, split
+from .threads import available_threads
 
 # How often the driver asks "cancelled?" while tiles are still running.
 _CANCEL_POLL_S = 0.05
@@ -125,10 +125,6 @@ def split_into_tiles(region: tuple[int, int, int, int], tile_size: int) -> list[
         for y in range(y0, y0 + height, tile_size)
         for x in range(x0, x0 + width, tile_size)
     ]
-
-
-def available_threads() -> int:
-    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
 
 
 def prepare_kernels(packed: PackedScene) -> tuple[float, str]:

@@ -27,29 +27,18 @@ import numpy as np
 from ..kernels.caster_hulls import HULL_BOX, HULL_SPHERE
 from ..kernels.layout import EMITS_DIFFUSE, EMITS_SHADOW, PackedScene
 from ..kernels.options import EMITTER_MESH, EMITTER_SUN_CONE
-from ..kernels.photons import (
-    REFLECTIVE,
-    REFRACTIVE,
-    TALLY_DROPPED,
-    TALLY_SLOTS,
-    TALLY_STORED,
-    row_power,
-    trace_photons,
-)
+from ..kernels.photons import REFLECTIVE, REFRACTIVE, row_power
 from ..kernels.workspace import new_workspace
 from ..model import RenderSettings
 from ..model.shader import sends_caustics
 from ..vocabulary import SHAPE_SPHERE
 from .photon_budget import PILOT_PHOTONS, Budget, automatic_budget
 from .photon_grid import hashed_grid, neighbour_distances, radius_levels
+from .photon_tracer import PhotonTracer
 
 PILOT = 256  # photons a row, to share out the budget
 MARGIN = 1e-6  # relative: how far outside its shape a caster hull lies
 MAX_HULLS = 64
-STORED_PER_PHOTON = 2  # room for stored photons, per photon traced
-# The pass is traced in about this many parts (of at least PART_PHOTONS photons), between
-# which its progress is shown and a cancel is heard
-PARTS, PART_PHOTONS = 32, 2048
 BYTES_PER_PHOTON = 88  # stated in the module's docstring and the settings' limit
 
 
@@ -147,7 +136,7 @@ def add_caustics(packed: PackedScene, settings: RenderSettings, on_photons=None,
     row_power(geo, lights, casters, containing, rows, settings.seed, workspace.stacks, power)
     if power.sum() <= 0.0:
         return packed, warnings, None
-    trace = _Tracer(packed, settings, branches, casters, containing, rows, power, workspace)
+    trace = PhotonTracer(packed, settings, branches, casters, containing, rows, power)
     budget = None
     if settings.caustic_photons == "auto":
         pilot = trace(PILOT_PHOTONS, should_cancel=should_cancel)
@@ -180,62 +169,6 @@ def add_caustics(packed: PackedScene, settings: RenderSettings, on_photons=None,
     return packed._replace(lights=lights), warnings, report
 
 
-class Traced(NamedTuple):
-    traced: int
-    stored: int
-    dropped: int  # found no room (at most STORED_PER_PHOTON a photon traced)
-    position: np.ndarray  # float64 (stored, 3)
-    direction: np.ndarray  # float64 (stored, 3): the way each arrived
-    power: np.ndarray  # float64 (stored, 3)
-
-
-class _Tracer:
-    """Traces a count of photons shared among the rows (light, hull) by the power each sends
-    (the pilot's and the pass's budget alike), in parts (photon_parts)."""
-
-    def __init__(self, packed, settings, branches, casters, containing, rows, power, workspace):
-        self.packed, self.settings, self.branches = packed, settings, branches
-        self.casters, self.containing, self.workspace = casters, containing, workspace
-        self.rows, self.power = rows, power
-
-    def __call__(self, count: int, on_photons=None, should_cancel=None) -> Traced | None:
-        """The photons, or None once should_cancel() says True between parts."""
-        share = shares(count, self.power)
-        plan = np.column_stack([self.rows[:, :2], share])[share > 0]
-        total = int(share.sum())
-        room = STORED_PER_PHOTON * total
-        position, direction, power = (np.zeros((room, 3)) for _ in range(3))
-        tally = np.zeros(TALLY_SLOTS, np.int64)
-        packed, settings = self.packed, self.settings
-        geo, surf, mats, lights = packed.geometry, packed.surfaces, packed.materials, packed.lights
-        stored, done, ws = 0, 0, self.workspace
-        for part in photon_parts(plan, total):
-            if should_cancel is not None and should_cancel():
-                return None
-            stored += trace_photons(geo, surf, mats, lights, self.casters, self.containing,
-                                    part, settings.seed, self.branches,
-                                    max(settings.max_depth, 1), settings.glossy_samples > 0,
-                                    position[stored:], direction[stored:], power[stored:],
-                                    ws.stacks, ws.shader_stack, ws.lobes, tally)  # fmt: skip
-            done += int(part[:, 5].sum())
-            if on_photons is not None:
-                on_photons(done, total)
-        return Traced(total, int(tally[TALLY_STORED]), int(tally[TALLY_DROPPED]),
-                      position[:stored], direction[:stored], power[:stored])  # fmt: skip
-
-
-def shares(count: int, power: np.ndarray) -> np.ndarray:
-    """int64: `count` photons shared among rows by their power, summing to `count` exactly
-    (each row's share rounded down, the rest given to the largest remainders, in order):
-    the summary's count is the count the budget set."""
-    exact = count * power / power.sum()
-    share = np.floor(exact).astype(np.int64)
-    rest = count - int(share.sum())
-    if rest > 0:
-        share[np.argsort(-(exact - share), kind="stable")[:rest]] += 1
-    return share
-
-
 def light_centres(lights) -> np.ndarray:
     """float64 (lights, 3): where each light (numbered as core.kernels.photons numbers them)
     is, NaN for suns (never inside anything): an emissive surface's triangles' mean corner."""
@@ -263,24 +196,3 @@ def lights_inside(lights, casters: np.ndarray) -> np.ndarray:
             else:
                 inside[:, k] = np.all((centres > hull[1:4]) & (centres < hull[4:7]), axis=1)
     return inside
-
-
-def photon_parts(plan: np.ndarray, total: int) -> list[np.ndarray]:
-    """The rows (light, hull, photons) of `plan` as trace_photons' parts: rows (light, hull,
-    photons, the row's number, first, count), each part about total / PARTS photons."""
-    size = max(PART_PHOTONS, -(-total // PARTS))
-    pieces = [
-        (light, k, n, number, first, min(size, n - first))
-        for number, (light, k, n) in enumerate(plan.tolist())
-        for first in range(0, n, size)
-    ]
-    parts, part, held = [], [], 0
-    for piece in pieces:  # small rows share a part
-        part.append(piece)
-        held += piece[5]
-        if held >= size:
-            parts.append(np.array(part, np.int64))
-            part, held = [], 0
-    if part:
-        parts.append(np.array(part, np.int64))
-    return parts

@@ -505,12 +505,12 @@ def _mirror_scene():
 def test_the_pass_in_parts_traces_the_same_photons_and_shows_its_progress(monkeypatch):
     """Traced in one part or in many (between which progress shows and a cancel is heard),
     the photons are the same, bit for bit."""
-    from core.compile import caustics
+    from core.compile import photon_tracer
 
     shown = []
     settings = _settings(8, 30_000)
     many = compile_scene(_mirror_scene(), settings, on_photons=lambda *a: shown.append(a))
-    monkeypatch.setattr(caustics, "PART_PHOTONS", 10**9)
+    monkeypatch.setattr(photon_tracer, "PART_PHOTONS", 10**9)
     one = compile_scene(_mirror_scene(), settings)
     a, b = many.packed.lights, one.packed.lights
     assert a.photon_position.shape[0] > 1000
