@@ -4,6 +4,7 @@ it is back, and on Ctrl-C or a failed task cancel everything still running."""
 
 from __future__ import annotations
 
+import contextlib
 import os
 import shutil
 import tempfile
@@ -150,8 +151,11 @@ def run_job(job: Job, say: Callable[[str], None] = print) -> JobReport:
         except BaseException:
             cancel.set()
             # The running tasks see the flag within a poll and end by themselves: waited
-            # for, a local cluster's workers then close with nothing in flight
-            wait(list(submitting.futures), timeout=CANCEL_WAIT_S)
+            # for, a local cluster's workers then close with nothing in flight. A task not
+            # yet polling (its Blender starting, or compiling kernels on a cold cache) is
+            # cancelled by force past the wait: Dask's timeout must not hide the cause
+            with contextlib.suppress(TimeoutError):
+                wait(list(submitting.futures), timeout=CANCEL_WAIT_S)
             client.cancel(list(submitting.futures), force=True)
             raise
         report.wall_s = time.perf_counter() - started

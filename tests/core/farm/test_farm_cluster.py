@@ -212,12 +212,31 @@ def test_a_failing_scene_fails_the_job_with_the_workers_message(cluster, tmp_pat
     assert list((tmp_path / "tmp").iterdir()) == []  # a failed job leaves nothing there
 
 
-def test_a_split_finer_than_the_frames_pixels_is_a_clear_error(cluster, tmp_path):
+def _tiny_blend(tmp_path):
+    """The sample scene at 4 x 4 pixels."""
     tiny = tmp_path / "tiny.blend"
     shrink = ("import bpy; r = bpy.context.scene.render; r.resolution_percentage = 100; "
               "r.resolution_x, r.resolution_y = 4, 4; "
               f"bpy.ops.wm.save_as_mainfile(filepath={str(tiny)!r})")  # fmt: skip
     assert blender_34(str(SAMPLE), "--python-expr", shrink).returncode == 0
+    return tiny
+
+
+@pytest.mark.parametrize("fellows", ["stop in time", "outlast the wait"])
+def test_a_split_finer_than_the_frames_pixels_is_a_clear_error(cluster, tmp_path, monkeypatch,
+                                                               fellows):  # fmt: skip
+    """One task's error ends the job, the others cancelled: whether they stop within the
+    client's wait or not (still starting, or compiling kernels on a cold cache: Dask's
+    TimeoutError once took the error's place, seen in a fresh clone's run), the user reads
+    the error."""
+    if fellows == "outlast the wait":
+        import distributed
+
+        def outlasted(futures, timeout=None, **_):
+            raise TimeoutError
+
+        monkeypatch.setattr(distributed, "wait", outlasted)
+    tiny = _tiny_blend(tmp_path)
     with pytest.raises(FarmError) as error:
         farm_client.run_job(job(cluster, tiny, tmp_path / "out_####.png", frames=(1,),
                                 split=(5, 1)), say=lambda line: None)  # fmt: skip
