@@ -93,9 +93,7 @@ def cell_counts(position: np.ndarray, edge: float) -> np.ndarray:
     buckets = _bucket_count(len(position))
     bucket = np.empty(len(position), np.int64)
     photon_buckets(position, np.full(len(position), edge), np.array([edge]), buckets - 1, bucket)
-    cells = np.zeros(buckets + 1, np.int64)
-    np.cumsum(np.bincount(bucket, minlength=buckets), out=cells[1:])
-    return cells
+    return _bucket_starts(bucket, buckets)
 
 
 def _bucket_count(photons: int) -> int:
@@ -116,8 +114,11 @@ def hashed_grid(position: np.ndarray, radius: np.ndarray, levels: np.ndarray):
     buckets = _bucket_count(len(position))
     bucket = np.empty(len(position), np.int64)
     photon_buckets(position, radius, levels, buckets - 1, bucket)
-    order = np.argsort(bucket, kind="stable")
-    counts = np.bincount(bucket, minlength=buckets)
+    return np.argsort(bucket, kind="stable"), _bucket_starts(bucket, buckets)
+
+
+def _bucket_starts(bucket: np.ndarray, buckets: int) -> np.ndarray:
+    """Lights.photon_cells: where each bucket's photons start, once ordered by bucket."""
     cells = np.zeros(buckets + 1, np.int64)
-    np.cumsum(counts, out=cells[1:])
-    return order, cells
+    np.cumsum(np.bincount(bucket, minlength=buckets), out=cells[1:])
+    return cells

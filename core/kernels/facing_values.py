@@ -15,40 +15,24 @@ Only |I . N| is read, so the normal may face either way (Whitted's shading norma
 out of the surface; Cycles' faces the ray).
 """
 
-import math
-
 from ..jit.decorators import kernel
+from .fresnel import fresnel_dielectric
 from .vec import dot
 
 FACING_FRESNEL, FACING_LAYER_FRESNEL, FACING_LAYER_FACING = 0, 1, 2
 
 
 @kernel
-def dielectric_reflectance(cos_i, eta):
-    """Fresnel's unpolarised reflectance at |cos_i| for relative index eta (1 past the
-    critical angle)."""
-    c = abs(cos_i)
-    g = eta * eta - 1.0 + c * c
-    if g <= 0.0:
-        return 1.0
-    g = math.sqrt(g)
-    a = (g - c) / (g + c)
-    b = (c * (g + c) - 1.0) / (c * (g - c) + 1.0)
-    return 0.5 * a * a * (1.0 + b * b)
-
-
-@kernel
 def facing_value(which, value, incoming, normal, backfacing):
     """The node's output `which` (FACING_*) for its IOR or Blend `value`, `incoming` the
     unit vector I and `normal` a unit normal."""
-    cos_i = dot(incoming, normal)
+    facing = min(abs(dot(incoming, normal)), 1.0)
     if which == FACING_FRESNEL:
-        eta = max(value, 1e-5)
-        return dielectric_reflectance(cos_i, 1.0 / eta if backfacing else eta)
+        eta = max(value, 1e-5)  # the index beyond the surface over the one the ray is in
+        return fresnel_dielectric(facing, 1.0, 1.0 / eta if backfacing else eta)[0]
     if which == FACING_LAYER_FRESNEL:
         eta = max(1.0 - value, 1e-5)
-        return dielectric_reflectance(cos_i, eta if backfacing else 1.0 / eta)
-    facing = abs(cos_i)
+        return fresnel_dielectric(facing, 1.0, eta if backfacing else 1.0 / eta)[0]
     if value != 0.5:
         blend = min(max(value, 0.0), 1.0 - 1e-5)
         power = 2.0 * blend if blend < 0.5 else 0.5 / (1.0 - blend)

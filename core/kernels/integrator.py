@@ -31,6 +31,7 @@ from .caustics import caustic_irradiance
 from .emitters import emitted_colour
 from .emitters_seen import emitters_seen
 from .environment import environment_light, environment_seen
+from .fresnel import fresnel_dielectric
 from .glossy import visible_normal
 from .layout import (
     ENVIRONMENT_NONE,
@@ -76,21 +77,6 @@ MIN_WEIGHT = 1e-6
 # How a ray left its last surface (RayStack.refracted): the lights in Blender's units it
 # sees depend on it (a rough mirror's highlight holds their light already)
 RAY_REFLECTED, RAY_REFRACTED, RAY_ROUGH_REFLECTED = 0, 1, 2
-
-
-@kernel
-def fresnel_dielectric(cos_i, n1, n2):
-    """(reflectance F, cos of the refracted angle) for light going from index n1 into n2 at
-    incidence cos_i in [0, 1]: the unpolarised average of the exact s and p reflectances.
-    Total internal reflection gives (1, 0)."""
-    eta = n1 / n2
-    sin2_t = eta * eta * max(0.0, 1.0 - cos_i * cos_i)
-    if sin2_t >= 1.0:
-        return 1.0, 0.0
-    cos_t = math.sqrt(1.0 - sin2_t)
-    rs = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t)
-    rp = (n1 * cos_t - n2 * cos_i) / (n1 * cos_t + n2 * cos_i)
-    return 0.5 * (rs * rs + rp * rp), cos_t
 
 
 @kernel

@@ -63,8 +63,9 @@ import numpy as np
 from ..jit.decorators import kernel
 from .caster_hulls import hull_centre, hull_point, hull_start, hulls_entered, start_density
 from .emitters import emitter_sample
+from .fresnel import fresnel_dielectric
 from .glossy import visible_normal
-from .integrator import channel_mean, fresnel_dielectric, mirror_tint, refract
+from .integrator import channel_mean, mirror_tint, refract
 from .layout import EMITS_FROM_SURFACE
 from .light_mesh import SHORT_OF_SURFACE
 from .light_pyramid import TRAVERSE_ALL
