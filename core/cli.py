@@ -212,18 +212,18 @@ def _render_script(script: Path, output: Path | None, threads: int, anywhere: bo
             ) from None
     # Here, not at the top: the farm command, which renders nothing itself, starts without
     # numba's import (a quarter of a second)
-    from .driver import render
-    from .jit.warmup import kernels_ready, warm_kernels
+    from .compile import compile_scene
+    from .driver import kernel_compile_note, render_compiled
 
-    if not kernels_ready():
-        # The first render on a machine: say what it is waiting for, step by step
-        warm_kernels(lambda line: print(line, file=sys.stderr, flush=True))
     for call in calls:
         for warning in call.warnings:
             print(f"warning: {warning}", file=sys.stderr)
         target, label = _target(script, output, call)
-        result = render(call.scene, call.settings, on_tile=_tile_bar(),
-                        on_photons=_progress_bar("caustic photons"))  # fmt: skip
+        compiled = compile_scene(call.scene, call.settings, _progress_bar("caustic photons"))
+        note = kernel_compile_note(compiled.packed)
+        if note:  # the first render of such a scene on a machine: say what it waits for
+            print(f"Whitted: {note}", file=sys.stderr, flush=True)
+        result = render_compiled(compiled, call.settings, on_tile=_tile_bar())
         print(result.stats.summary())
         for warning in result.warnings:
             print(f"warning: {warning}", file=sys.stderr)

@@ -11,6 +11,7 @@ stop within a pixel's rays, not at their end.
 
 from __future__ import annotations
 
+import os
 import threading
 import time
 from collections.abc import Callable
@@ -21,7 +22,9 @@ import numba
 import numpy as np
 
 from .compile import CompiledScene, compile_scene
+from .compile.features import left_out, used_features
 from .jit.cache_folder import load_or_rebuild, note_use
+from .jit.variants import variant
 from .kernels.csg import CROSSING_CAPACITY, SPAN_CAPACITY
 from .kernels.layout import PackedScene
 from .kernels.render_tile import render_tile
@@ -37,6 +40,8 @@ from .model import RenderSettings, Scene
 from .passes import CRYPTO_PASSES, layout, split
 from .threads import available_threads
 
+# Set (=1): every scene renders with the full kernel, for comparison (core.jit.variants)
+FULL_KERNEL_SWITCH = "WHITTED_FULL_KERNEL"
 # How often the driver asks "cancelled?" while tiles are still running.
 _CANCEL_POLL_S = 0.05
 # The final render, the viewport and previews each render on threads of their own: the first
@@ -127,31 +132,74 @@ def split_into_tiles(region: tuple[int, int, int, int], tile_size: int) -> list[
     ]
 
 
+def tile_kernel(packed: PackedScene):
+    """The tile kernel that renders `packed`: the variant compiled without the features it
+    does not use (core.kernels.features), which compiles in about half the time and renders
+    faster; the full kernel instead when the variant is not compiled yet and the full one
+    is (the warm-up's, or the extension's), which is loaded rather than compiled."""
+    if os.environ.get(FULL_KERNEL_SWITCH, "") not in ("", "0"):
+        return render_tile
+    chosen = variant(render_tile, left_out(packed))
+    if chosen is render_tile or chosen.signatures or _in_cache(chosen):
+        return chosen
+    return render_tile if render_tile.signatures or _in_cache(render_tile) else chosen
+
+
+def kernel_compile_note(packed: PackedScene) -> str:
+    """What a render of `packed` will compile first, "" when its kernel is ready (in this
+    process or the cache): "compiling the kernel for this scene (first use: ...)"."""
+    if numba.config.DISABLE_JIT:
+        return ""
+    kernel = tile_kernel(packed)
+    if kernel.signatures or _in_cache(kernel):
+        return ""
+    features = ", ".join(sorted(used_features(packed))) or "none beyond the basics"
+    return (
+        f"compiling the render kernel for this scene's features ({features}); first use "
+        "on this machine, not render time"
+    )
+
+
+def _in_cache(kernel) -> bool:
+    """Whether numba's cache holds machine code of `kernel` for this source (its index file
+    lists an overload): a call then loads it rather than compiles. numba's private index,
+    read with care: any surprise says no, and the call compiles as it would."""
+    try:
+        return bool(kernel._cache._cache_file._load_index())
+    except Exception:
+        return False
+
+
 def prepare_kernels(packed: PackedScene) -> tuple[float, str]:
-    """Compile the kernels for `packed`'s array types, or load them from the cache.
+    """Compile the kernels for `packed` (`tile_kernel`), or load them from the cache.
 
     Returns (seconds, source). Done once on the calling thread so that worker threads never
     compile concurrently and so that compile time is reported apart from render time.
     """
+    seconds, source, _ = _ready_kernel(packed)
+    return seconds, source
+
+
+def _ready_kernel(packed: PackedScene):
+    """(seconds, source, the tile kernel) of `prepare_kernels`."""
     if numba.config.DISABLE_JIT:  # NUMBA_DISABLE_JIT=1: the kernels run as Python
-        return 0.0, "python"
+        return 0.0, "python", render_tile
     with _KERNELS_LOCK:
-        return _prepare_kernels(packed)
+        kernel = tile_kernel(packed)
+        return (*_prepare_kernels(packed, kernel), kernel)
 
 
-def _prepare_kernels(packed: PackedScene) -> tuple[float, str]:
-    already = bool(render_tile.signatures)
-    hits_before = sum(render_tile.stats.cache_hits.values())
+def _prepare_kernels(packed: PackedScene, kernel) -> tuple[float, str]:
+    already = bool(kernel.signatures)
+    hits_before = sum(kernel.stats.cache_hits.values())
     start = time.perf_counter()
     empty = np.empty((0, 0, 4), np.float32)
-    _, rebuilt = load_or_rebuild(
-        lambda: render_tile(packed, 1, 1, 0, 0, 0, 0, empty, new_workspace(0))
-    )
+    _, rebuilt = load_or_rebuild(lambda: kernel(packed, 1, 1, 0, 0, 0, 0, empty, new_workspace(0)))
     seconds = time.perf_counter() - start
     if already:
         return seconds, "memory"
     note_use()  # once a process: what keeps this cache folder from being pruned
-    loaded = sum(render_tile.stats.cache_hits.values()) > hits_before
+    loaded = sum(kernel.stats.cache_hits.values()) > hits_before
     return seconds, "cache" if loaded and not rebuilt else "compiled"
 
 
@@ -191,7 +239,7 @@ def render_compiled(
 ) -> RenderOutput:
     """`render` of a scene compiled already (`compile_scene`, `compile.with_frame`) for
     `settings`: the viewport compiles once and renders it at several sizes."""
-    kernel_s, kernel_source = prepare_kernels(compiled.packed)
+    kernel_s, kernel_source, kernel = _ready_kernel(compiled.packed)
     threads = settings.threads or available_threads()
     tiles = split_into_tiles(settings.pixel_region(), settings.tile_size)
     _, pass_channels = layout(settings.passes, settings.crypto_levels)
@@ -205,7 +253,8 @@ def render_compiled(
             on_tile(tile, pixels, tally.tiles_done, len(tiles))
 
     start = time.perf_counter()
-    cancelled = _run_tiles(compiled.packed, settings, tiles, threads, finished, should_cancel)
+    cancelled = _run_tiles(compiled.packed, kernel, settings, tiles, threads, finished,
+                           should_cancel)  # fmt: skip
     stats = RenderStats(
         kernel_s=kernel_s,
         kernel_source=kernel_source,
@@ -264,7 +313,7 @@ class _Tally:
         return pixels
 
 
-def _render_one(packed: PackedScene, settings: RenderSettings, tile: Tile, stop: np.ndarray):
+def _render_one(packed: PackedScene, kernel, settings: RenderSettings, tile: Tile, stop):
     """One tile on a worker thread: (pixels, rays whose CSG spans overflowed, shadow rays
     whose varying crossings did not fit, ray counts)."""
     _, pass_channels = layout(settings.passes, settings.crypto_levels)
@@ -278,14 +327,14 @@ def _render_one(packed: PackedScene, settings: RenderSettings, tile: Tile, stop:
         settings.max_depth, max(settings.shadow_samples, settings.environment_samples), stop,
         crypto_rays, settings.glossy_samples, tile.width + 1 if adaptive else 1,
     )  # fmt: skip
-    render_tile(packed, settings.width, settings.height, tile.x, tile.y, tile.width,
-                tile.height, pixels, workspace)  # fmt: skip
+    kernel(packed, settings.width, settings.height, tile.x, tile.y, tile.width, tile.height,
+           pixels, workspace)  # fmt: skip
     stacks = workspace.stacks
     shadow_overflows = int(stacks.shadow_state[STATE_OVERFLOWED])
     return pixels, int(stacks.csg.overflow[0]), shadow_overflows, stacks.ray_counts
 
 
-def _run_tiles(packed, settings, tiles, threads, finished, should_cancel) -> bool:
+def _run_tiles(packed, kernel, settings, tiles, threads, finished, should_cancel) -> bool:
     """Render `tiles` on `threads` workers, calling finished(tile, result) on this thread as
     each completes, at most `threads` in flight; True if should_cancel() stopped it."""
     stop = np.zeros(1, np.int64)  # the kernels' cancel flag (Workspace.cancel)
@@ -297,7 +346,7 @@ def _run_tiles(packed, settings, tiles, threads, finished, should_cancel) -> boo
         def start_next() -> None:
             tile = next(queue, None)
             if tile is not None:
-                running[pool.submit(_render_one, packed, settings, tile, stop)] = tile
+                running[pool.submit(_render_one, packed, kernel, settings, tile, stop)] = tile
 
         try:
             for _ in range(threads):

@@ -14,6 +14,7 @@ from .flag_values import read_options_at_once
 from .healing import heal_damaged_loads
 from .never_inlined import never_inlined  # noqa: F401 (kernels take it here)
 from .relocatable import choose_cpu_target, use_relocatable_cache_folders
+from .variants import MADE_BY
 
 numba.config.CACHE_DIR = str(kernel_cache_dir())
 # A damaged cache file of any kernel is removed and that kernel compiled again, not raised
@@ -111,6 +112,7 @@ _compile = numba.njit(cache=True, nogil=True, error_model="numpy", _nrt=False)
 
 
 def kernel(function):
+    MADE_BY[function] = kernel
     return _one_signature_for_constants(_compile(function))
 
 
@@ -133,6 +135,7 @@ _compile_inlined = numba.njit(
 
 
 def inlined_kernel(function):
+    MADE_BY[function] = inlined_kernel
     return _one_signature_for_constants(_compile_inlined(function))
 
 
@@ -143,9 +146,14 @@ def inlined_kernel(function):
 # mesh shadow rays per second than inlined by numba). Only small bodies: numba types an
 # inlined body again at every call site and every call inside it (inlining the box test's
 # eight calls too added 20 s to a cold compile).
-ir_inlined_kernel = numba.njit(
+_compile_ir_inlined = numba.njit(
     cache=True, nogil=True, error_model="numpy", _nrt=False, inline="always"
 )
+
+
+def ir_inlined_kernel(function):
+    MADE_BY[function] = ir_inlined_kernel
+    return _compile_ir_inlined(function)
 
 
 # The kernels that build the packed scene from Python, once a scene (the BVH builder, its
@@ -153,4 +161,9 @@ ir_inlined_kernel = numba.njit(
 # they return, so numba counts their references. Their callees are plain kernels, which
 # may read and write the arrays these pass them but must not return one (a test checks
 # that no kernel without reference counting returns an array).
-allocating_kernel = numba.njit(cache=True, nogil=True, error_model="numpy")
+_compile_allocating = numba.njit(cache=True, nogil=True, error_model="numpy")
+
+
+def allocating_kernel(function):
+    MADE_BY[function] = allocating_kernel
+    return _compile_allocating(function)

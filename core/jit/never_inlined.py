@@ -27,6 +27,8 @@ from __future__ import annotations
 
 import warnings
 
+from .variants import MARKS
+
 
 def install() -> set[tuple[str, str]]:
     """numba's declare_function and module optimisation wrapped once per process; returns
@@ -81,6 +83,7 @@ def never_inlined(dispatcher):
     call it."""
     function = getattr(dispatcher, "py_func", dispatcher)
     _MARKED.add((function.__module__, function.__qualname__))
+    MARKS.setdefault(function, []).append(never_inlined)  # its variants too (core.jit.variants)
     if hasattr(getattr(dispatcher, "_compiler", None), "targetoptions"):
         # Said outright: numba otherwise passes a caller's `forceinline` on to the callees
         # it compiles (an option "inherited if not set"), and this one, first compiled from

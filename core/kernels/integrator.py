@@ -31,6 +31,16 @@ from .caustics import caustic_irradiance
 from .emitters import emitted_colour
 from .emitters_seen import emitters_seen
 from .environment import environment_light, environment_seen
+from .features import (
+    WITH_CAUSTICS,
+    WITH_EMITTERS,
+    WITH_EMITTERS_SEEN,
+    WITH_ENVIRONMENT,
+    WITH_GLOSSY,
+    WITH_NODES,
+    WITH_PASSES,
+    WITH_VARYING_SHADOWS,
+)
 from .fresnel import fresnel_dielectric
 from .glossy import visible_normal
 from .layout import (
@@ -135,7 +145,7 @@ def _leave_surface(rays, top, here, sample, samples, spread, key, event, o, d, w
     cost the render kernel's cold compile 11 s more (183 s against 172)."""
     share = 1.0 / samples
     m, cos_m = n_shading, cos_i
-    if spread:
+    if WITH_GLOSSY and spread:
         a, b = uniform2(key, PURPOSE_GLOSSY, event, sample)
         x0, y0, cell_w, cell_h = stratified_cell(sample, samples)
         alpha_m = max(here.roughness * here.roughness, 1e-6)
@@ -178,16 +188,19 @@ def trace_ray(ps, o, d, key, ws):
     0 for a camera ray that meets nothing under Film > Transparent, or meets a holdout,
     else 1). When passes are made, ws.record gets what they need of this camera ray
     (core.kernels.pass_record): each ray's colour goes to the term of its branch, the
-    camera ray's own hit is split into ambient, diffuse and specular."""
+    camera ray's own hit is split into ambient, diffuse and specular.
+
+    Each feature's code is behind its constant (core.kernels.features), tested where the
+    code is called: a variant without it never compiles that code."""
     frame, geo, surf, mats, lights = ps
     stacks, rays, record = ws.stacks, ws.rays, ws.record
     max_depth = frame.options[OPTION_MAX_DEPTH]
-    passes = frame.options[OPTION_PASSES]
+    passes = frame.options[OPTION_PASSES] if WITH_PASSES else 0
     recording = passes != 0
     split = (passes & PASSES_LIGHT_SPLIT) != 0
     with_uv = (passes & PASSES_UV) != 0
     refraction_passes = frame.options[OPTION_GLASS_SHADOWS] == GLASS_SHADOWS_ATTENUATED
-    if recording:
+    if WITH_PASSES and recording:
         clear(record, 0.0)
     colour = (0.0, 0.0, 0.0)
     alpha = 1.0
@@ -205,13 +218,13 @@ def trace_ray(ps, o, d, key, ws):
         stacks.ray_counts[RAYS_TRACED] += 1
         shape, t, part, b1, b2 = closest_hit(geo, o, d, math.inf, stacks)
         lit_seen = refracted_before != RAY_ROUGH_REFLECTED
-        if depth > 0 and lit_seen and lights.emitter_kind.shape[0] > 0:
+        if WITH_EMITTERS_SEEN and depth > 0 and lit_seen and lights.emitter_kind.shape[0] > 0:
             # Lights in Blender's units, seen in mirrors and through glass
             glimpse = emitters_seen(lights, o, d, t if shape >= 0 else math.inf, came_through)
             if glimpse[0] > 0.0 or glimpse[1] > 0.0 or glimpse[2] > 0.0:
                 seen = mul(w, glimpse)
                 colour = add(colour, seen)
-                if recording:
+                if WITH_PASSES and recording:
                     add_to(record, branch, seen)
         if shape < 0:
             if depth == 0 and frame.options[OPTION_TRANSPARENT] != 0:
@@ -221,7 +234,7 @@ def trace_ray(ps, o, d, key, ws):
             else:
                 seen = mul(w, environment_seen(frame, lights, d, depth, came_through))
                 colour = add(colour, seen)
-                if recording:
+                if WITH_PASSES and recording:
                     add_to(record, branch, seen)
             continue
         if not _sees(surf.shape_visibility[shape], depth, came_through):
@@ -241,7 +254,7 @@ def trace_ray(ps, o, d, key, ws):
         p, n_geometric, n_shading, u, v = surface_at(
             geo, surf, shape, part, b1, b2, o, d, t, textured or (first and with_uv)
         )
-        if programmed:  # a node material whose terms vary over the surface
+        if WITH_NODES and programmed:  # a node material whose terms vary over the surface
             with_frame = mats.shader_frame[material] != 0
             hit, across = hit_frame(geo, surf, shape, part, p, n_shading, u, v, with_frame)
             rows = normal_rows(geo.shape_object_from_world, shape)
@@ -277,16 +290,16 @@ def trace_ray(ps, o, d, key, ws):
                 kd = scale(kd, 1.0 - coat_reflects)  # the diffuse seen through the coat
         if depth == 0 and here.holdout > 0.0:
             alpha -= channel_mean(w) * here.holdout
-        if first:
+        if WITH_PASSES and first:
             hit_recorded = True
             record_hit(record, surf, mats, shape, material, p, n_shading, u, v, 1.0 - tau, kd)
         emission = here.emission
         if emission[0] > 0.0 or emission[1] > 0.0 or emission[2] > 0.0:
             seen = mul(w, emission)
             colour = add(colour, seen)
-            if first:
+            if WITH_PASSES and first:
                 add_to(record, REC_EMISSION, seen)
-            elif recording:
+            elif WITH_PASSES and recording:
                 add_to(record, branch, seen)
         if tau < 1.0:
             point = ShadingPoint(outside, n_shading, scale(d, -1.0))
@@ -298,21 +311,24 @@ def trace_ray(ps, o, d, key, ws):
                 local = local_colour(
                     frame, lights, geo, stacks, point, phong, key, event, splitting
                 )
-                if lights.emitter_kind.shape[0] > 0:  # lights in Blender's units
+                if WITH_EMITTERS and lights.emitter_kind.shape[0] > 0:  # Blender's lights
                     emitted = emitted_colour(
                         frame, lights, geo, stacks, point, phong, key, event, splitting
                     )
                     local = add(local, emitted)
-                if frame.options[OPTION_ENVIRONMENT] != ENVIRONMENT_NONE:  # the World's light
+                # the World's light
+                if WITH_ENVIRONMENT and frame.options[OPTION_ENVIRONMENT] != ENVIRONMENT_NONE:
                     sky = environment_light(
                         frame, lights, geo, stacks, point, kd, key, event, splitting
                     )
                     local = add(local, sky)
                 # shadow rays that crossed surfaces whose share varies: their shares, then
                 # the lights once more with the answered visibilities (core.kernels.shadow_log)
-                if not answer_crossings(geo, surf, mats, ws, refraction_passes):
-                    break
-            if lights.photon_cells.shape[0] > 0:
+                if WITH_VARYING_SHADOWS and answer_crossings(geo, surf, mats, ws,
+                                                             refraction_passes):  # fmt: skip
+                    continue
+                break
+            if WITH_CAUSTICS and lights.photon_cells.shape[0] > 0:
                 # light brought by mirrors and glass (core.kernels.caustics)
                 falling = scale(caustic_irradiance(lights, p, n_geometric), 1.0 / math.pi)
                 local = add(local, mul(kd, falling))
@@ -322,10 +338,10 @@ def trace_ray(ps, o, d, key, ws):
                         stacks.terms[TERM_ROW_UNSHADOWED, a] += falling[a]
             seen = mul(w, scale(local, 1.0 - tau))
             colour = add(colour, seen)
-            if first:
+            if WITH_PASSES and first:
                 terms = stacks.terms
                 record_lighting(record, terms, local, kd, ks, frame.ambient, 1.0 - tau, split)
-            elif recording:
+            elif WITH_PASSES and recording:
                 add_to(record, branch, seen)
         event += 1
         straight = here.transparent
@@ -342,10 +358,13 @@ def trace_ray(ps, o, d, key, ws):
             continue
         # A rough surface's rays: by the shading normal (sharp), or spread over its lobe
         # by sampled microfacet normals (core.kernels.glossy)
-        glossy = frame.options[OPTION_GLOSSY_SAMPLES]
-        spread = glossy > 0 and here.roughness > 0.0 and (rho > 0.0 or coat_reflects > 0.0
-                                                          or tau > 0.0)  # fmt: skip
-        samples = (glossy if depth == 0 else 1) if spread else 1
+        spread = False
+        samples = 1
+        if WITH_GLOSSY:
+            glossy = frame.options[OPTION_GLOSSY_SAMPLES]
+            spread = glossy > 0 and here.roughness > 0.0 and (rho > 0.0 or coat_reflects > 0.0
+                                                              or tau > 0.0)  # fmt: skip
+            samples = (glossy if depth == 0 else 1) if spread else 1
         for sample in range(samples):
             top = _leave_surface(
                 rays, top, here, sample, samples, spread, key, event, o, d, w, p, n_shading,

@@ -1,0 +1,61 @@
+"""Which render features (core.kernels.features) a packed scene uses: the kernel variant that
+renders it leaves out the rest (core.jit.variants).
+
+Each test reads the packed arrays the kernels read, with the kernels' own condition for
+running the feature's code, so a variant without a feature renders the scene to the same
+bits as the full kernel (tests/core/test_kernel_variants.py checks it scene by scene).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..kernels.features import FEATURES
+from ..kernels.layout import ENVIRONMENT_NONE, PackedScene
+from ..kernels.options import (
+    OPTION_ENVIRONMENT,
+    OPTION_GLOSSY_SAMPLES,
+    OPTION_MAX_DEPTH,
+    OPTION_PASSES,
+    OPTION_PIXEL_SAMPLES,
+)
+from ..kernels.shadow_log import SHADOW_VARIES
+
+
+def used_features(packed: PackedScene) -> frozenset[str]:
+    """The names of the features `packed` uses (FEATURES' names)."""
+    frame, geo, mats, lights = packed.frame, packed.geometry, packed.materials, packed.lights
+    options = frame.options
+    nodes = bool(np.any(mats.shader_range[:, 0] >= 0))
+    emitters = lights.emitter_kind.shape[0] > 0
+    used = {
+        # the integrator runs a material's program where its range starts at a row
+        "nodes": nodes,
+        "emitters": emitters,
+        # seen by rays after a bounce, which only reflecting or refracting surfaces send
+        "emitters_seen": emitters and options[OPTION_MAX_DEPTH] > 0 and _may_bounce(mats, nodes),
+        "environment": options[OPTION_ENVIRONMENT] != ENVIRONMENT_NONE,
+        # a shadow ray lists crossings only of surfaces whose share varies
+        "varying_shadows": bool(np.any(geo.shape_transparency == SHADOW_VARIES)),
+        "caustics": lights.photon_cells.shape[0] > 0,
+        "passes": options[OPTION_PASSES] != 0,
+        "adaptive": frame.sampling[0] > 0.0 and options[OPTION_PIXEL_SAMPLES] > 1,
+        "glossy": options[OPTION_GLOSSY_SAMPLES] > 0,
+    }
+    return frozenset(name for name in FEATURES if used[name])
+
+
+def left_out(packed: PackedScene) -> frozenset[str]:
+    """The features `packed` does not use: what its kernel variant leaves out."""
+    return frozenset(FEATURES) - used_features(packed)
+
+
+def _may_bounce(mats, nodes: bool) -> bool:
+    """Whether any material may send a reflected or refracted ray: a mirror, glass, a coat,
+    or a program whose terms are known only per hit."""
+    return bool(
+        nodes
+        or np.any(mats.reflectivity > 0.0)
+        or np.any(mats.transparency > 0.0)
+        or np.any(mats.coat[:, 0] > 0.0)
+    )
