@@ -33,9 +33,9 @@ from core import (
     Texture,
     Torus,
     TriangleMesh,
+    driver,
     render,
 )
-from core import driver
 from core.compile import compile_scene
 from core.compile.features import left_out, used_features
 from core.jit import variants
@@ -61,14 +61,24 @@ def _basics():
     triangles = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
     return [
         Box("Floor", Material(texture=Texture(pixels=checker)), _placed(z=-1.1, size=(4, 4, 0.1))),
-        Sphere("Glass", Material(transparency=0.8, reflectivity=0.1), _placed(-1.0, 0.0, -0.5, 0.6)),
+        Sphere(
+            "Glass", Material(transparency=0.8, reflectivity=0.1), _placed(-1.0, 0.0, -0.5, 0.6)
+        ),  # fmt: skip
         Box("Mirror", Material(diffuse=(0.1, 0.1, 0.1), reflectivity=0.8), _placed(0, 3, 0, 0.8)),
         Torus("Torus", Material(diffuse=(0.8, 0.3, 0.2)), _placed(1.2, 0.0, -0.5, 0.5)),
-        Mesh("Mesh", Material(diffuse=(0.2, 0.8, 0.3)), _placed(0.0, -1.0, 0.3, 0.8),
-             mesh=TriangleMesh(vertices, triangles)),  # fmt: skip
-        Csg("Csg", operation="difference", left=Box("Block", world_from_object=_placed(size=0.4)),
+        Mesh(
+            "Mesh",
+            Material(diffuse=(0.2, 0.8, 0.3)),
+            _placed(0.0, -1.0, 0.3, 0.8),
+            mesh=TriangleMesh(vertices, triangles),
+        ),  # fmt: skip
+        Csg(
+            "Csg",
+            operation="difference",
+            left=Box("Block", world_from_object=_placed(size=0.4)),
             right=Cylinder("Bore", world_from_object=_placed(size=0.3)),
-            world_from_object=_placed(0.0, 1.0, 0.8)),  # fmt: skip
+            world_from_object=_placed(0.0, 1.0, 0.8),
+        ),  # fmt: skip
         Cone("Cone", Material(diffuse=(0.3, 0.3, 0.9)), _placed(-1.2, 1.2, 0.0, 0.4)),
     ]
 
