@@ -11,12 +11,14 @@ stop within a pixel's rays, not at their end.
 
 from __future__ import annotations
 
+import contextlib
 import os
 import threading
 import time
 from collections.abc import Callable
 from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numba
 import numpy as np
@@ -24,7 +26,7 @@ import numpy as np
 from .compile import CompiledScene, compile_scene
 from .compile.features import left_out, used_features
 from .jit.cache_folder import load_or_rebuild, note_use
-from .jit.variants import variant
+from .jit.variants import features_of, made_variants, variant
 from .kernels.csg import CROSSING_CAPACITY, SPAN_CAPACITY
 from .kernels.layout import PackedScene
 from .kernels.render_tile import render_tile
@@ -133,16 +135,46 @@ def split_into_tiles(region: tuple[int, int, int, int], tile_size: int) -> list[
 
 
 def tile_kernel(packed: PackedScene):
-    """The tile kernel that renders `packed`: the variant compiled without the features it
-    does not use (core.kernels.features), which compiles in about half the time and renders
-    faster; the full kernel instead when the variant is not compiled yet and the full one
-    is (the warm-up's, or the extension's), which is loaded rather than compiled."""
+    """The tile kernel that renders `packed`: a variant compiled without features it does not
+    use (core.kernels.features), which compiles in about half the time and renders faster.
+    Of the kernels compiled already (in this process or the cache) that hold every feature
+    it uses, the one with the fewest; the full kernel holds them all (the warm-up's, or the
+    extension's). None compiled: its own variant, which the first call compiles."""
     if os.environ.get(FULL_KERNEL_SWITCH, "") not in ("", "0"):
         return render_tile
-    chosen = variant(render_tile, left_out(packed))
-    if chosen is render_tile or chosen.signatures or _in_cache(chosen):
-        return chosen
-    return render_tile if render_tile.signatures or _in_cache(render_tile) else chosen
+    leave_out = left_out(packed)
+    own = variant(render_tile, leave_out)
+    if own.signatures or _in_cache(own):
+        return own
+    ready = [
+        (len(without), kernel)
+        for without, kernel in compiled_variants()
+        if without <= leave_out and (kernel.signatures or _in_cache(kernel))
+    ]
+    return max(ready, key=lambda entry: entry[0])[1] if ready else own
+
+
+def compiled_variants():
+    """(left out, kernel) of every tile kernel that may be compiled: the full kernel, those
+    made in this process, and those whose cache index files lie in the kernel cache."""
+    found = {frozenset(): render_tile}
+    folder = _cache_folder(render_tile)
+    if folder is not None:
+        for index in folder.glob(f"*.{render_tile.__name__}__without_*.nbi"):
+            bits = index.name.split("__without_")[1].split("-")[0]
+            with contextlib.suppress(ValueError):
+                without = features_of(bits)
+                found[without] = variant(render_tile, without)
+    for without, kernel in made_variants(render_tile):
+        found[without] = kernel
+    return list(found.items())
+
+
+def _cache_folder(kernel) -> Path | None:
+    try:
+        return Path(kernel._cache._cache_path)
+    except Exception:  # numba's private cache object, read with care
+        return None
 
 
 def kernel_compile_note(packed: PackedScene) -> str:
@@ -187,6 +219,12 @@ def _ready_kernel(packed: PackedScene):
     with _KERNELS_LOCK:
         kernel = tile_kernel(packed)
         return (*_prepare_kernels(packed, kernel), kernel)
+
+
+def prepare_kernel(packed: PackedScene, kernel) -> tuple[float, str]:
+    """`prepare_kernels` with a given tile kernel (a variant: the warm-up's)."""
+    with _KERNELS_LOCK:
+        return _prepare_kernels(packed, kernel)
 
 
 def _prepare_kernels(packed: PackedScene, kernel) -> tuple[float, str]:

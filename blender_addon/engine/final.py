@@ -36,7 +36,7 @@ def render(engine, depsgraph):
         timings.export_s = time.perf_counter() - start
         for warning in () if preview else warnings:
             engine.report({"WARNING"}, warning)
-        if not _kernels_ready(engine, timings):
+        if not _kernels_ready(engine, timings, kernel_features_unused(scene, settings)):
             return
         view_layer = depsgraph.view_layer
         layer = view_layer.name
@@ -97,8 +97,18 @@ def register_passes(engine, scene, view_layer) -> None:
         )
 
 
-def _kernels_ready(engine, timings) -> bool:
-    """Wait for the kernel warm-up (started when the add-on loaded, or now), showing its
+def kernel_features_unused(scene, settings) -> frozenset:
+    """The render features (core.kernels.features) the scene cannot use: under `blender -b`
+    the warm-up compiles the render kernel without them, about half the full one's compile."""
+    from ..core.compile.features import expected_features
+    from ..core.kernels.features import FEATURES
+
+    return frozenset(FEATURES) - expected_features(scene, settings)
+
+
+def _kernels_ready(engine, timings, without=frozenset()) -> bool:
+    """Wait for the kernel warm-up (started when the add-on loaded, or now: then of the
+    kernel variant without the features `without`, core.jit.warmup), showing its
     steps in the render's stats and, for `blender -b`, on stdout; the wait goes into
     timings.compile_s when a compile ran (not when the kernels were in the cache already,
     or copied there from the extension's: that check is no compile, however long a busy
@@ -116,7 +126,7 @@ def _kernels_ready(engine, timings) -> bool:
             printed.append(status.text)
             print(f"Whitted: {status.text}", flush=True)
 
-    warmup = shared_warmup()
+    warmup = shared_warmup(without=without)
     start = time.perf_counter()
     warmup.start()
     compiling = warmup.status().state == "running"

@@ -4,6 +4,11 @@ renders it leaves out the rest (core.jit.variants).
 Each test reads the packed arrays the kernels read, with the kernels' own condition for
 running the feature's code, so a variant without a feature renders the scene to the same
 bits as the full kernel (tests/core/test_kernel_variants.py checks it scene by scene).
+
+`expected_features` answers before the scene is packed, from the scene model alone, with
+no kernel run: the warm-up compiles that variant while nothing is packed yet. It may name
+more features than the packed scene uses (a constant node graph folds into the table), never
+fewer; a variant with more features than a scene uses renders it as the full kernel does.
 """
 
 from __future__ import annotations
@@ -20,6 +25,8 @@ from ..kernels.options import (
     OPTION_PIXEL_SAMPLES,
 )
 from ..kernels.shadow_log import SHADOW_VARIES
+from ..model import Csg, RenderSettings, Scene
+from ..model.emitters import Emitter
 
 
 def used_features(packed: PackedScene) -> frozenset[str]:
@@ -59,3 +66,44 @@ def _may_bounce(mats, nodes: bool) -> bool:
         or np.any(mats.transparency > 0.0)
         or np.any(mats.coat[:, 0] > 0.0)
     )
+
+
+def expected_features(scene: Scene, settings: RenderSettings) -> frozenset[str]:
+    """A superset of the features `scene` packed for `settings` uses, from the model alone."""
+    materials = list({id(m): m for m in _materials(scene.shapes)}.values())
+    nodes = any(_varies(m.surface) for m in materials if m.surface is not None)
+    emitters = any(isinstance(light, Emitter) for light in scene.lights) or any(
+        m.surface is not None or max(m.emission) > 0.0 for m in materials
+    )
+    used = {
+        "nodes": nodes,
+        "emitters": emitters,
+        "emitters_seen": emitters and settings.max_depth > 0,
+        "environment": scene.environment is not None,
+        "varying_shadows": nodes,  # only a graph's share varies over a surface
+        "caustics": bool(settings.caustics) and settings.caustic_photons != 0,
+        "passes": bool(settings.passes),
+        "adaptive": settings.adaptive_threshold > 0.0 and settings.pixel_samples > 1,
+        "glossy": settings.glossy_samples > 0,
+    }
+    return frozenset(name for name in FEATURES if used[name])
+
+
+def _materials(shapes):
+    """Every material of these shapes and of their CSG operands."""
+    for shape in shapes:
+        if isinstance(shape, Csg):
+            yield from _materials([s for s in (shape.left, shape.right) if s is not None])
+        else:
+            yield shape.material
+
+
+def _varies(graph) -> bool:
+    """Whether a node graph's program reads the hit (so runs per hit, not folded); a graph
+    the compile will refuse counts as varying, the safe side."""
+    from .shader_program import ProgramBuilder
+
+    try:
+        return ProgramBuilder(lambda texture, owner="": 0).build(graph).varying
+    except Exception:
+        return True

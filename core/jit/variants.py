@@ -25,9 +25,15 @@ from __future__ import annotations
 import threading
 import types
 
-from ..kernels.features import FEATURES, constant_name
 
-_FEATURE_CONSTANTS = frozenset(constant_name(f) for f in FEATURES)
+def _features():
+    """core.kernels.features, imported when first needed: the decorators import this module
+    before the kernels' package exists (a circular import otherwise)."""
+    from ..kernels import features
+
+    return features
+
+
 # The decorator that made each kernel (py_func -> decorator), so a variant is made as its
 # kernel was: `core.jit.decorators` fills it
 MADE_BY: dict = {}
@@ -41,7 +47,14 @@ _READS_FEATURES: dict = {}  # py_func -> bool
 
 def tag(left_out: frozenset[str]) -> str:
     """The left-out features as a hexadecimal bit set, in FEATURES' order."""
-    return format(sum(1 << FEATURES.index(f) for f in left_out), "x")
+    order = _features().FEATURES
+    return format(sum(1 << order.index(f) for f in left_out), "x")
+
+
+def features_of(bits: str) -> frozenset[str]:
+    """The features a tag names (`tag`'s inverse); ValueError for one that is not hexadecimal."""
+    value = int(bits, 16)
+    return frozenset(f for k, f in enumerate(_features().FEATURES) if value >> k & 1)
 
 
 def _names(code: types.CodeType):
@@ -67,9 +80,9 @@ def reads_features(py_func) -> bool:
     if known is not None:
         return known
     _READS_FEATURES[py_func] = False  # a recursive call tree ends here
+    constants = {_features().constant_name(f) for f in _features().FEATURES}
     reads = any(
-        name in _FEATURE_CONSTANTS and name in py_func.__globals__
-        for name in _names(py_func.__code__)
+        name in constants and name in py_func.__globals__ for name in _names(py_func.__code__)
     ) or any(reads_features(callee.py_func) for _, callee in _callees(py_func))
     _READS_FEATURES[py_func] = reads
     return reads
@@ -82,9 +95,10 @@ def variant(dispatcher, left_out: frozenset[str]):
     py_func = getattr(dispatcher, "py_func", None)
     if not left_out or py_func is None or py_func not in MADE_BY:
         return dispatcher
-    unknown = set(left_out) - set(FEATURES)
+    known = _features().FEATURES
+    unknown = set(left_out) - set(known)
     if unknown:
-        raise ValueError(f"no such kernel features: {sorted(unknown)}; known: {FEATURES}")
+        raise ValueError(f"no such kernel features: {sorted(unknown)}; known: {known}")
     with _LOCK:
         return _variant(dispatcher, frozenset(left_out))
 
@@ -99,8 +113,9 @@ def _variant(dispatcher, left_out: frozenset[str]):
         return made
     module_globals = dict(py_func.__globals__)
     for feature in left_out:
-        if constant_name(feature) in module_globals:
-            module_globals[constant_name(feature)] = False
+        name = _features().constant_name(feature)
+        if name in module_globals:
+            module_globals[name] = False
     for name, callee in _callees(py_func):
         module_globals[name] = _variant(callee, left_out)
     copy = types.FunctionType(
@@ -117,3 +132,10 @@ def _variant(dispatcher, left_out: frozenset[str]):
         made = mark(made)
     _VARIANTS[key] = made
     return made
+
+
+def made_variants(dispatcher):
+    """(left out, variant) of `dispatcher`'s variants made in this process so far."""
+    py_func = getattr(dispatcher, "py_func", None)
+    with _LOCK:
+        return [(without, made) for (f, without), made in _VARIANTS.items() if f is py_func]

@@ -13,8 +13,15 @@ steps show where a compile is, and the render kernel finds them done. They are c
 the render kernel's callees (`core.jit.deferred`): optimised and made into machine code once,
 within it, since no render calls them from Python.
 
-A marker file in the cache folder says that all steps finished there, so the add-on starts
-no process when the cache is complete.
+A warm-up compiles the full render kernel, which renders every scene, or a variant without
+some features (core.kernels.features, core.jit.variants): `--without TAG` (a bit set of
+FEATURES, core.jit.variants.tag) compiles that variant, the warm-up scene without a node
+material unless the variant holds node programs, and the photon pass's kernels only if it
+holds caustics. `blender -b` and the command line warm the variant a scene needs (about half
+the compile); Blender's window warms the full kernel at start-up, for every scene after.
+
+A marker file in the cache folder says that all steps of a warm-up finished there (one per
+variant), so the add-on starts no process when the cache holds the kernels a render needs.
 """
 
 from __future__ import annotations
@@ -38,6 +45,7 @@ from .cache_folder import (
 )
 from .decorators import CPU_TARGET
 from .deferred import compile_as_callee
+from .variants import features_of, tag, variant
 
 PROGRESS_PREFIX = "Whitted: compiling kernels: "
 READY_PREFIX = "Whitted: kernels ready"
@@ -47,8 +55,9 @@ LOCK = "warm.lock"
 CACHE_LINE = "Whitted: kernel cache "
 
 
-def warmup_scene():
-    """A small scene with one of everything a packed scene can hold."""
+def warmup_scene(nodes: bool = True):
+    """A small scene with one of everything a packed scene can hold (a node material only
+    when `nodes`: its constant program's fold is a kernel of its own)."""
     from .. import (
         AreaLight,
         Box,
@@ -87,7 +96,7 @@ def warmup_scene():
             Mesh("Mesh", mesh=TriangleMesh(vertices, triangles), world_from_object=moved(4)),
             Csg("Csg", operation="difference", left=Box("Box"), right=Cylinder("Cylinder")),
             Sphere("Textured", Material(texture=Texture(pixels=checker)), moved(6)),
-            Sphere("Node material", node_material, moved(8)),
+            *([Sphere("Node material", node_material, moved(8))] if nodes else []),
         ],
         lights=[
             PointLight((0.0, -4.0, 4.0), (1.0, 1.0, 1.0)),
@@ -98,12 +107,14 @@ def warmup_scene():
     )
 
 
-def warmup_steps() -> list[tuple[str, Callable[[], None]]]:
-    """(what it compiles, how) for each step, in order."""
+def warmup_steps(without: frozenset[str] = frozenset()) -> list[tuple[str, Callable[[], None]]]:
+    """(what it compiles, how) for each step, in order, for the render kernel without the
+    features `without` (none: the full kernel)."""
     from .. import RenderSettings
     from ..compile import compile_scene
-    from ..driver import prepare_kernels
+    from ..driver import prepare_kernel
     from ..kernels.light_pyramid import TRAVERSE_ALL
+    from ..kernels.render_tile import render_tile
     from ..kernels.trace import closest_hit, transmittance
     from ..kernels.workspace import new_workspace
 
@@ -112,12 +123,13 @@ def warmup_steps() -> list[tuple[str, Callable[[], None]]]:
     o, d = (0.0, -5.0, 0.5), (0.0, 1.0, 0.0)
 
     def pack():
-        packed.append(compile_scene(warmup_scene(), RenderSettings(8, 8)).packed)
+        scene = warmup_scene(nodes="nodes" not in without)
+        packed.append(compile_scene(scene, RenderSettings(8, 8)).packed)
 
     def geometry():
         return packed[0].geometry
 
-    return [
+    steps = [
         ("scene packing", pack),
         (
             "nearest hits",
@@ -127,9 +139,10 @@ def warmup_steps() -> list[tuple[str, Callable[[], None]]]:
             "shadow rays",
             lambda: compile_as_callee(transmittance, geometry(), o, d, 9.0, stacks, TRAVERSE_ALL),
         ),
-        ("render kernel", lambda: prepare_kernels(packed[0])),
+        ("render kernel", lambda: prepare_kernel(packed[0], variant(render_tile, without))),
         ("caustic photons", lambda: warm_photon_kernels(packed[0])),
     ]
+    return steps if "caustics" not in without else steps[:-1]
 
 
 def warm_photon_kernels(packed) -> None:
@@ -169,11 +182,13 @@ def progress_fraction(line: str, step_seconds: float) -> float | None:
     found = _PROGRESS.search(line)
     if found is None:
         return None
-    label = found.group(3)
-    done = sum(STEP_SHARES.get(lbl, 0.0) for lbl in list(STEP_SHARES)[: int(found.group(1)) - 1])
+    label, step, steps = found.group(3), int(found.group(1)), int(found.group(2))
+    # a variant's warm-up may run fewer steps (no photons): their shares make the whole
+    whole = sum(list(STEP_SHARES.values())[:steps]) or 1.0
+    done = sum(STEP_SHARES.get(lbl, 0.0) for lbl in list(STEP_SHARES)[: step - 1])
     share = STEP_SHARES.get(label, 0.0)
     within = min(0.95, step_seconds / (share * TYPICAL_WARMUP_S)) if share else 0.0
-    return min(1.0, done + share * within)
+    return min(1.0, (done + share * within) / whole)
 
 
 @contextlib.contextmanager
@@ -202,20 +217,22 @@ def one_warmup_at_a_time(report: Callable[[str], None]):
         yield
 
 
-def warm_kernels(report: Callable[[str], None] = print) -> float:
+def warm_kernels(
+    report: Callable[[str], None] = print, without: frozenset[str] = frozenset()
+) -> float:
     """Run every step in this process, report(line) before each; returns the seconds taken.
     Writes the marker when all are done. If another process is compiling into the same
     cache, waits for it, and compiles nothing if the cache is complete then."""
     with one_warmup_at_a_time(report):
-        if kernels_ready():
+        if kernels_ready(without):
             report(f"{READY_PREFIX}: the cache is complete (compiled before, or elsewhere)")
             return 0.0
-        return _warm_kernels(report)
+        return _warm_kernels(report, without)
 
 
-def _warm_kernels(report: Callable[[str], None]) -> float:
+def _warm_kernels(report: Callable[[str], None], without: frozenset[str]) -> float:
     start = time.perf_counter()
-    steps = warmup_steps()
+    steps = warmup_steps(without)
     took = []
     for number, (label, compile_step) in enumerate(steps, 1):
         report(progress_line(number, len(steps), label))
@@ -223,8 +240,9 @@ def _warm_kernels(report: Callable[[str], None]) -> float:
         compile_step()
         took.append(f"{label} {time.perf_counter() - step_start:.1f} s")
     seconds = time.perf_counter() - start
-    marker_path().parent.mkdir(parents=True, exist_ok=True)
-    marker_path().write_text(f"{seconds:.1f} s: " + ", ".join(took) + "\n")
+    marker = marker_path(without)
+    marker.parent.mkdir(parents=True, exist_ok=True)
+    marker.write_text(f"{seconds:.1f} s: " + ", ".join(took) + "\n")
     report(f"{READY_PREFIX} in {seconds:.1f} s (" + ", ".join(took) + ")")
     for folder in prune_stale():
         report(f"Whitted: removed the kernel cache {folder.name}, unused for {STALE_DAYS} days")
@@ -237,24 +255,39 @@ def own_core() -> str:
     return f"{CORE_PACKAGE} at {Path(__file__).resolve().parent.parent}"
 
 
-def marker_path() -> Path:
-    return kernel_cache_dir() / MARKER
+def marker_path(without: frozenset[str] = frozenset()) -> Path:
+    """The marker of the full kernel's warm-up, or of the variant's without `without`."""
+    if not without:
+        return kernel_cache_dir() / MARKER
+    return kernel_cache_dir() / f"warm-{CPU_TARGET}-without-{tag(without)}.ok"
 
 
-def kernels_ready() -> bool:
+def kernels_ready(without: frozenset[str] = frozenset()) -> bool:
     """Whether a warm-up for this CPU target finished in this version's cache folder, or the
-    extension shipped one that is now copied there."""
+    extension shipped one that is now copied there: of the full kernel, or of a variant
+    holding every feature but `without` (one leaving out fewer serves too)."""
     copy_shipped_kernels(MARKER)
-    return marker_path().is_file()
+    if marker_path().is_file():
+        return True
+    for marker in kernel_cache_dir().glob(f"warm-{CPU_TARGET}-without-*.ok"):
+        bits = marker.name.rsplit("-", 1)[1].removesuffix(".ok")
+        with contextlib.suppress(ValueError):
+            if features_of(bits) <= without:
+                return True
+    return False
 
 
-def main() -> int:
+def main(arguments: list[str]) -> int:
+    """`--without TAG`: the variant without those features (core.jit.variants.tag)."""
+    without = frozenset()
+    if arguments[:1] == ["--without"]:
+        without = features_of(arguments[1])
     # The first line names the package compiled, for the parent to check it is its own
     print(f"Whitted: core {own_core()}", flush=True)
     print(f"{CACHE_LINE}{kernel_cache_dir()}", flush=True)
-    warm_kernels(lambda line: print(line, flush=True))
+    warm_kernels(lambda line: print(line, flush=True), without)
     return 0
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(main(sys.argv[1:]))

@@ -23,6 +23,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from . import child_process
+from .variants import tag
 from .warmup import (
     PROGRESS_PREFIX,
     READY_PREFIX,
@@ -41,11 +42,14 @@ class WarmupStatus:
 
 
 class WarmupProcess:
-    def __init__(self, command: list[str] | None = None):
+    """The warm-up of the full kernel, or of the variant without the features `without`."""
+
+    def __init__(self, command: list[str] | None = None, without: frozenset[str] = frozenset()):
         self.command = command  # None: core.jit.child_process's, decided when it starts
+        self.without = frozenset(without)
         self._lock = threading.Lock()
         self._process: subprocess.Popen | None = None
-        self._state = "ready" if kernels_ready() else "idle"
+        self._state = "ready" if kernels_ready(self.without) else "idle"
         self._text = ""
         self._started = 0.0
         self._line_at = 0.0  # when the last progress line came
@@ -57,10 +61,11 @@ class WarmupProcess:
         with self._lock:
             if self._state != "idle":
                 return
-            if kernels_ready():
+            if kernels_ready(self.without):
                 self._state = "ready"
                 return
-            command = self.command or child_process.command("jit.warmup")
+            variant = ["--without", tag(self.without)] if self.without else []
+            command = self.command or child_process.command("jit.warmup", *variant)
             self._output = []
             self._started = time.perf_counter()
             try:
@@ -134,14 +139,28 @@ class WarmupProcess:
 
 
 _shared: WarmupProcess | None = None
+_variants: dict[frozenset[str], WarmupProcess] = {}
 
 
-def shared_warmup(command: list[str] | None = None) -> WarmupProcess:
-    """The one warm-up of this process (Blender starts it once, every render waits on it);
-    `command`, given before it starts, replaces the child's command line."""
+def shared_warmup(
+    command: list[str] | None = None, without: frozenset[str] = frozenset()
+) -> WarmupProcess:
+    """The one warm-up of the full kernel in this process (Blender's window starts it at
+    load, and every render waits on it while it runs); `command`, given before it starts,
+    replaces the child's command line. With `without`, a render's: the full kernel's when it
+    runs or ran (it serves every scene), else the one of the variant without those features
+    (`blender -b`, where nothing compiles at load)."""
     global _shared
     if _shared is None:
         _shared = WarmupProcess(command)
     elif command and _shared.status().state == "idle":
         _shared.command = command
-    return _shared
+    if not without or _shared.status().state != "idle":
+        return _shared
+    with _LOCK:
+        if without not in _variants:
+            _variants[without] = WarmupProcess(None, without)
+        return _variants[without]
+
+
+_LOCK = threading.Lock()

@@ -63,7 +63,7 @@ def stand_in_warmup(tmp_path, monkeypatch, body):
     """A WarmupProcess running `body` as its child, in place of the shared warm-up, as on a
     machine whose kernel cache is empty."""
     core = sys.modules["whitted.core"]
-    monkeypatch.setattr(core.jit.warmup_process, "kernels_ready", lambda: False)
+    monkeypatch.setattr(core.jit.warmup_process, "kernels_ready", lambda *unused: False)
     script = tmp_path / "warmup.sh"
     script.write_text("#!/bin/sh\n" + body)
     script.chmod(script.stat().st_mode | stat.S_IXUSR)
@@ -113,7 +113,7 @@ def test_the_first_use_compile_drives_the_progress_bar_and_is_kept_out_of_the_re
              "4 of 5 (render kernel)", "5 of 5 (caustic photons)"]  # fmt: skip
     body = "".join(f'echo "Whitted: compiling kernels: {step}"\nsleep 0.7\n' for step in steps)
     warmup = stand_in_warmup(tmp_path, monkeypatch, body)
-    monkeypatch.setattr(final_render(), "shared_warmup", lambda: warmup)
+    monkeypatch.setattr(final_render(), "shared_warmup", lambda **unused: warmup)
     kept = rendered_metadata(bpy_with_whitted, sample_scene, tmp_path / "first.png")
     # Before the first tile: the bar follows the compile, step by step, never backwards
     first_tile = next(i for i, (kind, text) in enumerate(seen) if "Tile" in str(text)) - 1
@@ -139,11 +139,11 @@ def test_a_slow_cache_check_is_no_compile(sample_scene, bpy_with_whitted, tmp_pa
     # shipped kernels) took 0.2 s; the summary called it a "+0 s first-use compile" (the
     # fresh-clone run's extension test)
     core = sys.modules["whitted.core"]
-    monkeypatch.setattr(core.jit.warmup_process, "kernels_ready", lambda: True)
+    monkeypatch.setattr(core.jit.warmup_process, "kernels_ready", lambda *unused: True)
     warmup = core.jit.warmup_process.WarmupProcess(["false"])
     real_start = warmup.start
     monkeypatch.setattr(warmup, "start", lambda: (time.sleep(0.3), real_start()))
-    monkeypatch.setattr(final_render(), "shared_warmup", lambda: warmup)
+    monkeypatch.setattr(final_render(), "shared_warmup", lambda **unused: warmup)
     kept = rendered_metadata(bpy_with_whitted, sample_scene, tmp_path / "slow_check.png")
     assert "compile" not in kept["Whitted"] + kept["Whitted Kernels"], kept
 
@@ -156,7 +156,7 @@ def test_esc_during_the_compile_says_the_render_was_cancelled(
         monkeypatch,
         'echo "Whitted: compiling kernels: 1 of 5 (scene packing)"\nsleep 30\n',
     )
-    monkeypatch.setattr(final_render(), "shared_warmup", lambda: warmup)
+    monkeypatch.setattr(final_render(), "shared_warmup", lambda **unused: warmup)
     pressed = time.monotonic() + 0.5
     monkeypatch.setattr(final_render(), "cancelled", lambda engine: time.monotonic() > pressed)
     try:
