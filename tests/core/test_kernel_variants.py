@@ -37,7 +37,7 @@ from core import (
     render,
 )
 from core.compile import compile_scene
-from core.compile.features import left_out, used_features
+from core.compile.features import expected_features, left_out, used_features
 from core.jit import variants
 from core.kernels.features import FEATURES
 from core.kernels.integrator import trace_ray
@@ -201,3 +201,25 @@ def test_the_driver_takes_a_compiled_full_kernel_over_compiling_a_variant(monkey
     assert driver.tile_kernel(packed) is compiled_variant
     monkeypatch.setenv(driver.FULL_KERNEL_SWITCH, "1")
     assert driver.tile_kernel(packed) is render_tile
+
+
+def constant_nodes_scene():
+    """A Principled-like constant graph (folded into the table: no node programs) and a
+    glowing ball, the CS488 lights only."""
+    diffuse = ShaderNode("diffuse", {"Color": (0.2, 0.6, 0.2)})
+    glow = Material(emission=(2.0, 1.0, 0.5))
+    shapes = [*_basics(), Sphere("Folded", Material(surface=diffuse), _placed(2.0, -1.0, 0.5, 0.4)),
+              Sphere("Glow", glow, _placed(-2.0, -1.0, 0.5, 0.3))]  # fmt: skip
+    return Scene(camera=_camera(), shapes=shapes, lights=_report_lights()), _settings()
+
+
+@pytest.mark.parametrize("make", [*SCENES.values(), constant_nodes_scene])
+def test_the_features_expected_before_packing_hold_those_packing_finds(make):
+    """The warm-up compiles the variant of `expected_features` before the scene is packed:
+    it must hold every feature the packed scene uses, or the render compiles again."""
+    scene, settings = make()
+    expected = expected_features(scene, settings)
+    used = used_features(compile_scene(scene, settings).packed)
+    assert used <= expected, used - expected
+    if make is plain_scene:
+        assert expected == frozenset()  # and not everything: a variant saves a compile

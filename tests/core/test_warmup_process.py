@@ -160,3 +160,38 @@ def test_the_child_imports_core_under_the_parents_name_without_running_its_paren
     assert run.returncode == 0, run.stdout + run.stderr
     assert f"Whitted: core {name} at {staged.resolve()}" in run.stdout
     assert "the cache is complete" in run.stdout
+
+
+def test_a_variants_warmup_serves_the_scenes_that_leave_out_as_much_or_more():
+    """The marker of a variant's warm-up (core.jit.variants) says its kernels are ready for
+    a render that needs fewer features, not for one that needs a feature it left out; the
+    full kernel's serves every render."""
+    without = frozenset({"nodes", "caustics"})
+    assert not kernel_warmup.kernels_ready(without)
+    kernel_warmup.marker_path(without).parent.mkdir(parents=True)
+    kernel_warmup.marker_path(without).write_text("done\n")
+    assert kernel_warmup.kernels_ready(without)
+    assert kernel_warmup.kernels_ready(without | {"passes"})
+    assert not kernel_warmup.kernels_ready(frozenset({"nodes"}))  # it needs caustics
+    assert not kernel_warmup.kernels_ready()
+    kernel_warmup.marker_path().write_text("done\n")
+    assert kernel_warmup.kernels_ready(frozenset({"nodes"})) and kernel_warmup.kernels_ready()
+
+
+def test_a_variants_warmup_child_is_told_what_to_leave_out(tmp_path, monkeypatch):
+    """The child's command line names the variant (`--without TAG`), and its steps leave
+    the photon kernels out when the variant holds no caustics."""
+    from core.jit import child_process
+    from core.jit.variants import tag
+
+    without = frozenset({"caustics", "environment"})
+    said = tmp_path / "arguments"
+    launcher = fake_python(tmp_path, f'echo "$@" > {said}\necho "Whitted: core {OWN_CORE}"\n')
+    monkeypatch.setattr(child_process, "_launcher", launcher)
+    warmup = WarmupProcess(None, without)
+    warmup.start()
+    assert wait_until_done(warmup).state == "ready"
+    assert said.read_text().split()[-2:] == ["--without", tag(without)]
+    steps = [label for label, _ in kernel_warmup.warmup_steps(without)]
+    assert "caustic photons" not in steps and steps[-1] == "render kernel"
+    assert "caustic photons" in [label for label, _ in kernel_warmup.warmup_steps()]
