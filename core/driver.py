@@ -140,7 +140,7 @@ def tile_kernel(packed: PackedScene):
     Of the kernels compiled already (in this process or the cache) that hold every feature
     it uses, the one with the fewest; the full kernel holds them all (the warm-up's, or the
     extension's). None compiled: its own variant, which the first call compiles."""
-    if os.environ.get(FULL_KERNEL_SWITCH, "") not in ("", "0"):
+    if full_kernel_asked():
         return render_tile
     leave_out = left_out(packed)
     own = variant(render_tile, leave_out)
@@ -152,6 +152,11 @@ def tile_kernel(packed: PackedScene):
         if without <= leave_out and (kernel.signatures or _in_cache(kernel))
     ]
     return max(ready, key=lambda entry: entry[0])[1] if ready else own
+
+
+def full_kernel_asked() -> bool:
+    """Whether WHITTED_FULL_KERNEL=1 asks every render to take the full kernel."""
+    return os.environ.get(FULL_KERNEL_SWITCH, "") not in ("", "0")
 
 
 def compiled_variants():

@@ -101,8 +101,11 @@ def kernel_features_unused(scene, settings) -> frozenset:
     """The render features (core.kernels.features) the scene cannot use: under `blender -b`
     the warm-up compiles the render kernel without them, about half the full one's compile."""
     from ..core.compile.features import expected_features
+    from ..core.driver import full_kernel_asked
     from ..core.kernels.features import FEATURES
 
+    if full_kernel_asked():  # WHITTED_FULL_KERNEL=1: every render by the full kernel
+        return frozenset()
     return frozenset(FEATURES) - expected_features(scene, settings)
 
 

@@ -27,6 +27,7 @@ from ..kernels.options import (
 from ..kernels.shadow_log import SHADOW_VARIES
 from ..model import Csg, RenderSettings, Scene
 from ..model.emitters import Emitter
+from ..model.shader import emits, sends_caustics
 
 
 def used_features(packed: PackedScene) -> frozenset[str]:
@@ -71,9 +72,14 @@ def _may_bounce(mats, nodes: bool) -> bool:
 def expected_features(scene: Scene, settings: RenderSettings) -> frozenset[str]:
     """A superset of the features `scene` packed for `settings` uses, from the model alone."""
     materials = list({id(m): m for m in _materials(scene.shapes)}.values())
-    nodes = any(_varies(m.surface) for m in materials if m.surface is not None)
+    graphs = [m.surface for m in materials if m.surface is not None]
+    nodes = any(_varies(graph) for graph in graphs)
     emitters = any(isinstance(light, Emitter) for light in scene.lights) or any(
-        m.surface is not None or max(m.emission) > 0.0 for m in materials
+        max(m.emission) > 0.0 for m in materials
+    ) or any(emits(graph) for graph in graphs)  # fmt: skip
+    # what may send light on: a mirror, glass, or a graph with a mirror's or glass's closure
+    specular = any(m.reflectivity > 0.0 or m.transparency > 0.0 for m in materials) or any(
+        sends_caustics(graph, True, True) for graph in graphs
     )
     used = {
         "nodes": nodes,
@@ -81,7 +87,7 @@ def expected_features(scene: Scene, settings: RenderSettings) -> frozenset[str]:
         "emitters_seen": emitters and settings.max_depth > 0,
         "environment": scene.environment is not None,
         "varying_shadows": nodes,  # only a graph's share varies over a surface
-        "caustics": bool(settings.caustics) and settings.caustic_photons != 0,
+        "caustics": bool(settings.caustics) and settings.caustic_photons != 0 and specular,
         "passes": bool(settings.passes),
         "adaptive": settings.adaptive_threshold > 0.0 and settings.pixel_samples > 1,
         "glossy": settings.glossy_samples > 0,
