@@ -9,7 +9,7 @@ PYTHON313.
 
 `make test` runs the whole suite in the project's `.venv` (bpy 5.0, Blender 3.4's binary),
 then, for each other version, every test that imports `bpy` (tests/blender, marked `bpy`), in
-that version's environment; in 5.2's (numpy 2, Python 3.13) the core's tests too, and in 4.5's
+that version's environment; in 5.2's (numpy 2, Python 3.13) the kernels' tests too, and in 4.5's
 (numba 0.62.1) those of the kernel cache, of the deferred compiles and of the kept calls,
 which patch numba.
 
@@ -53,7 +53,6 @@ class BpyVersion:
 IN_PROJECT_VENV = "5.0"
 # Blender 3.4's binary tests and the zips' wheel checks run in the project's venv only
 ONCE = ("-m", "not blender34", "--ignore=tests/blender/test_platform_zips.py")
-CORE_TOO = (*ONCE, "tests")  # the Blender tests and the core's
 # The Blender tests, those of the kernel cache, whose stamps numba 0.62 makes otherwise,
 # and those of the deferred compiles and the kept calls, which change numba's internals
 CACHE_TOO = (
@@ -66,13 +65,29 @@ CACHE_TOO = (
     "tests/core/test_reference_counting.py",
     "tests/core/test_flag_values.py",
 )
+# Under Python 3.13 and numba's build for it (Blender 5.1 and later), what differs: the
+# kernels (compiled by another numba, the variants pruned from another bytecode), the
+# numba internals the compile patches, the add-on and the zip; the rest of the core is
+# the same Python over numpy and runs once, in the project's venv
+KERNELS_TOO = (
+    *CACHE_TOO,
+    "tests/core/kernels",
+    "tests/core/test_kernel_variants.py",
+    "tests/core/test_kernel_cache.py",
+    "tests/core/test_imports.py",
+    "tests/core/test_driver.py",
+    "tests/core/test_render_accuracy.py",
+    "tests/core/test_lighting.py",
+    "tests/core/test_shader_programs.py",
+    "tests/core/test_photon_grid.py",
+)
 BPY_VERSIONS = (
     BpyVersion("4.2", "3.11", ("bpy==4.2.23", "numpy==1.26.4")),
     # With the numba an Intel Mac gets (the last Blender there)
     BpyVersion("4.5", "3.11", ("bpy==4.5.15", "numpy==1.26.4", *INTEL_MAC_NUMBA), CACHE_TOO),
     BpyVersion("5.0", "3.11", ("bpy==5.0.1", "numpy==1.26.4")),
-    # The one with numpy 2 and Python 3.13: the core's tests run here too
-    BpyVersion("5.2", "3.13", ("bpy==5.2.3", "numpy==2.5.5"), CORE_TOO),
+    # The one with numpy 2 and Python 3.13: the kernels' tests run here too
+    BpyVersion("5.2", "3.13", ("bpy==5.2.3", "numpy==2.5.5"), KERNELS_TOO),
 )
 # Blender's own binary, run with `blender -b`: Debian's package
 BLENDER_BINARY_VERSIONS = ((3, 4),)
