@@ -7,6 +7,12 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 os.environ.setdefault("WHITTED_CACHE_DIR", str(ROOT / ".cache" / "kernels"))
 os.environ.setdefault("BLENDER_USER_SCRIPTS", str(ROOT / ".build" / "blender_scripts"))
+# Every render by the full kernel (core.jit.variants), which one warm-up compiles for all the
+# suite's scenes: by the variant each scene needs, the suite's hundreds of scenes would
+# compile dozens of variants. The variants are tested where they are asked for by name
+# (tests/core/test_kernel_variants.py, the Blender 3.4 render of a variant from an empty
+# cache in tests/blender/test_blender34_cli.py, make bench's bench_cold_render).
+os.environ.setdefault("WHITTED_FULL_KERNEL", "1")
 
 _addon_link = Path(os.environ["BLENDER_USER_SCRIPTS"]) / "addons" / "whitted"
 if not _addon_link.exists():

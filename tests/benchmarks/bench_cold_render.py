@@ -81,14 +81,18 @@ bpy.ops.wm.save_as_mainfile(filepath=path)
 """
 
 
-def blender(*arguments, cache: Path, full: bool):
-    env = {
+def environment(cache: Path, full: bool) -> dict:
+    return {
         **os.environ,
         "PYTHONPATH": f"{ROOT}:{SITE}",
         "WHITTED_CACHE_DIR": str(cache),
         "BLENDER_USER_SCRIPTS": str(ROOT / ".build" / "blender_scripts"),
         "WHITTED_FULL_KERNEL": "1" if full else "0",
     }
+
+
+def blender(*arguments, cache: Path, full: bool):
+    env = environment(cache, full)
     command = ["blender", "-b", "--python-use-system-env", "--addons", "whitted", *arguments]
     start = time.perf_counter()
     run = subprocess.run(command, env=env, capture_output=True, text=True, timeout=1800)
@@ -101,8 +105,10 @@ def blender(*arguments, cache: Path, full: bool):
 
 def build_scene(kind: str, folder: Path) -> Path:
     path = folder / f"{kind}.blend"
-    subprocess.run(["blender", "-b", "--factory-startup", "--python-expr", BUILD, "--", kind,
-                    str(path)], check=True, capture_output=True, timeout=300)  # fmt: skip
+    subprocess.run(["blender", "-b", "--factory-startup", "--python-use-system-env", "--addons",
+                    "whitted", "--python-exit-code", "1", "--python-expr", BUILD, "--", kind,
+                    str(path)], check=True, capture_output=True, timeout=300,
+                   env=environment(folder / "build_cache", False))  # fmt: skip
     return path
 
 

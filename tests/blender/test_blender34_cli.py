@@ -54,6 +54,39 @@ def test_a_first_render_on_a_new_machine_prints_the_kernel_compile_steps(tmp_pat
     seed_shared_cache(tmp_path / "cache", shared)
 
 
+def test_a_first_render_compiles_only_the_kernel_variant_its_scene_needs(tmp_path, monkeypatch):
+    """Without WHITTED_FULL_KERNEL (the suite sets it), `blender -b` from an empty cache warms
+    the render kernel without the features the scene cannot use (core.jit.variants): the
+    sample's spheres under the report's lights need none, so no photon step, and the frame
+    is the full kernel's to the bit (the shared cache's, which the test above filled)."""
+    shared = os.environ["WHITTED_CACHE_DIR"]
+    monkeypatch.setenv("WHITTED_FULL_KERNEL", "0")
+    monkeypatch.setenv("WHITTED_CACHE_DIR", str(tmp_path / "cache"))
+    run = blender_34(
+        str(SAMPLE), "--addons", "whitted", "-E", "WHITTED", "-o", f"{tmp_path}/variant_####",
+        "-F", "OPEN_EXR", "-f", "1",
+    )  # fmt: skip
+    assert run.returncode == 0, run.stdout + run.stderr
+    steps = [line for line in run.stdout.splitlines()
+             if line.startswith("Whitted: compiling kernels: ") and " of " in line]  # fmt: skip
+    assert steps[-1] == "Whitted: compiling kernels: 4 of 4 (render kernel)", run.stdout
+    markers = sorted(p.name for p in (tmp_path / "cache").rglob("warm-*.ok"))
+    assert len(markers) == 1 and "-without-" in markers[0], markers
+    assert "then loaded from the cache" in run.stdout, run.stdout[-2000:]
+    monkeypatch.setenv("WHITTED_FULL_KERNEL", "1")
+    monkeypatch.setenv("WHITTED_CACHE_DIR", shared)  # with the full kernel
+    full = blender_34(
+        str(SAMPLE), "--addons", "whitted", "-E", "WHITTED", "-o", f"{tmp_path}/full_####",
+        "-F", "OPEN_EXR", "-f", "1",
+    )  # fmt: skip
+    assert full.returncode == 0, full.stdout + full.stderr
+    variant, _ = read_exr(tmp_path / "variant_0001.exr")
+    whole, _ = read_exr(tmp_path / "full_0001.exr")
+    assert variant.keys() == whole.keys() and max(c.max() for c in variant.values()) > 0.1
+    for name, channel in whole.items():
+        np.testing.assert_array_equal(variant[name], channel, err_msg=name)
+
+
 def test_headless_command_renders_the_sample(sample_scene, tmp_path):
     run = blender_34(
         str(SAMPLE), "--addons", "whitted", "-E", "WHITTED", "-o", f"{tmp_path}/out_####",

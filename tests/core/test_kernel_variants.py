@@ -192,6 +192,7 @@ def test_an_unknown_feature_is_refused_by_name():
 def test_the_driver_takes_a_compiled_full_kernel_over_compiling_a_variant(monkeypatch):
     """The full kernel compiled (or in the cache) and the scene's variant not: the full one
     renders, rather than a compile; a variant compiled renders its scenes."""
+    monkeypatch.delenv(driver.FULL_KERNEL_SWITCH, raising=False)  # the suite's (conftest)
     packed = compile_scene(*plain_scene()).packed
     compiled_variant = variants.variant(render_tile, left_out(packed))
     monkeypatch.setattr(driver, "_in_cache", lambda kernel: kernel is render_tile)
