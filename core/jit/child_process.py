@@ -11,6 +11,7 @@ Python 3.11 found on PATH, whose packages do not mix with Blender's): the add-on
 
 from __future__ import annotations
 
+import json
 import os
 import subprocess
 import sys
@@ -39,7 +40,9 @@ sys.argv = [module, *sys.argv[at + 4:]]
 runpy.run_module(name + "." + module, run_name="__main__")
 """
 
-_launcher: list[str] | None = None
+# A child's own children start as it was started: the launcher travels in the environment
+LAUNCHER_VARIABLE = "WHITTED_CHILD_LAUNCHER"
+_launcher: list[str] | None = json.loads(os.environ.get(LAUNCHER_VARIABLE) or "null")
 
 
 def use_launcher(prefix: list[str] | None) -> None:
@@ -68,6 +71,8 @@ def environment(**extra: str) -> dict[str, str]:
     packages (numpy, numba, lupa: in Blender, an extension's own wheels)."""
     env = dict(os.environ)
     env["PYTHONPATH"] = os.pathsep.join(p for p in sys.path if p and Path(p).exists())
+    if _launcher:
+        env[LAUNCHER_VARIABLE] = json.dumps(_launcher)
     env.update(extra)
     return env
 

@@ -28,7 +28,9 @@ from __future__ import annotations
 
 import contextlib
 import math
+import os
 import re
+import subprocess
 import sys
 import time
 from collections.abc import Callable
@@ -52,6 +54,9 @@ READY_PREFIX = "Whitted: kernels ready"
 # One for each CPU target: a cache folder can hold the kernels of several (core.jit.relocatable)
 MARKER = f"warm-{CPU_TARGET}.ok"
 LOCK = "warm.lock"
+# The photon kernels compiled beside the rest (in a process of their own), unless this is set
+SERIAL_SWITCH = "WHITTED_SERIAL_WARMUP"
+PHOTONS_ONLY = "--photons-only"
 CACHE_LINE = "Whitted: kernel cache "
 
 
@@ -110,8 +115,6 @@ def warmup_scene(nodes: bool = True):
 def warmup_steps(without: frozenset[str] = frozenset()) -> list[tuple[str, Callable[[], None]]]:
     """(what it compiles, how) for each step, in order, for the render kernel without the
     features `without` (none: the full kernel)."""
-    from .. import RenderSettings
-    from ..compile import compile_scene
     from ..driver import prepare_kernel
     from ..kernels.light_pyramid import TRAVERSE_ALL
     from ..kernels.render_tile import render_tile
@@ -123,8 +126,7 @@ def warmup_steps(without: frozenset[str] = frozenset()) -> list[tuple[str, Calla
     o, d = (0.0, -5.0, 0.5), (0.0, 1.0, 0.0)
 
     def pack():
-        scene = warmup_scene(nodes="nodes" not in without)
-        packed.append(compile_scene(scene, RenderSettings(8, 8)).packed)
+        packed.append(_packed_warmup_scene(without))
 
     def geometry():
         return packed[0].geometry
@@ -233,6 +235,12 @@ def warm_kernels(
 def _warm_kernels(report: Callable[[str], None], without: frozenset[str]) -> float:
     start = time.perf_counter()
     steps = warmup_steps(without)
+    if steps[-1][0] == "caustic photons" and _may_compile_beside():
+        # The photon kernels compile in a process of their own from the start, on the other
+        # core: their compile shares nothing with the render kernel's (each optimises the
+        # searches it inlines), so the warm-up takes the longer of the two, not their sum
+        beside = PhotonsBeside()
+        steps[-1] = ("caustic photons", beside.finish)
     took = []
     for number, (label, compile_step) in enumerate(steps, 1):
         report(progress_line(number, len(steps), label))
@@ -247,6 +255,38 @@ def _warm_kernels(report: Callable[[str], None], without: frozenset[str]) -> flo
     for folder in prune_stale():
         report(f"Whitted: removed the kernel cache {folder.name}, unused for {STALE_DAYS} days")
     return seconds
+
+
+def _may_compile_beside() -> bool:
+    return (os.cpu_count() or 1) > 1 and os.environ.get(SERIAL_SWITCH, "") in ("", "0")
+
+
+class PhotonsBeside:
+    """The photon kernels' compile (`--photons-only`) in a child process started now;
+    `finish` waits for it, and compiles them here if it failed."""
+
+    def __init__(self):
+        from . import child_process
+
+        self.process = subprocess.Popen(
+            child_process.command("jit.warmup", PHOTONS_ONLY), env=child_process.environment(),
+            stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+        )  # fmt: skip
+
+    def finish(self) -> None:
+        output, _ = self.process.communicate()
+        if self.process.returncode != 0:
+            print(f"Whitted: the photon kernels' compile beside failed, compiling them here: "
+                  f"{output[-500:]}", flush=True)  # fmt: skip
+            warm_photon_kernels(_packed_warmup_scene(frozenset()))
+
+
+def _packed_warmup_scene(without: frozenset[str]):
+    from .. import RenderSettings
+    from ..compile import compile_scene
+
+    scene = warmup_scene(nodes="nodes" not in without)
+    return compile_scene(scene, RenderSettings(8, 8)).packed
 
 
 def own_core() -> str:
@@ -279,6 +319,9 @@ def kernels_ready(without: frozenset[str] = frozenset()) -> bool:
 
 def main(arguments: list[str]) -> int:
     """`--without TAG`: the variant without those features (core.jit.variants.tag)."""
+    if arguments[:1] == [PHOTONS_ONLY]:  # a warm-up's photon kernels, beside it
+        warm_photon_kernels(_packed_warmup_scene(frozenset()))
+        return 0
     without = frozenset()
     if arguments[:1] == ["--without"]:
         without = features_of(arguments[1])

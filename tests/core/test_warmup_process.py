@@ -195,3 +195,31 @@ def test_a_variants_warmup_child_is_told_what_to_leave_out(tmp_path, monkeypatch
     steps = [label for label, _ in kernel_warmup.warmup_steps(without)]
     assert "caustic photons" not in steps and steps[-1] == "render kernel"
     assert "caustic photons" in [label for label, _ in kernel_warmup.warmup_steps()]
+
+
+def test_the_photon_kernels_compile_beside_and_here_if_that_fails(tmp_path, monkeypatch):
+    """A warm-up with caustics starts the photon kernels' compile in a process of its own at
+    once (`--photons-only`, by the launcher it was started with) and waits for it last; if
+    that process fails, it compiles them itself."""
+    from core.jit import child_process
+
+    said = tmp_path / "arguments"
+    launcher = fake_python(tmp_path, f'echo "$@" > {said}\necho "it broke"\nexit 3\n')
+    monkeypatch.setattr(child_process, "_launcher", launcher)
+    compiled_here = []
+    monkeypatch.setattr(kernel_warmup, "warm_photon_kernels", compiled_here.append)
+    monkeypatch.setattr(kernel_warmup, "_packed_warmup_scene", lambda without: "packed")
+    beside = kernel_warmup.PhotonsBeside()
+    beside.finish()
+    assert said.read_text().split()[-1] == kernel_warmup.PHOTONS_ONLY
+    assert compiled_here == ["packed"]
+    # the launcher travels to the children's children
+    env = child_process.environment()
+    assert env[child_process.LAUNCHER_VARIABLE].startswith("[")
+
+
+def test_a_serial_warmup_compiles_the_photon_kernels_in_turn(monkeypatch):
+    monkeypatch.setenv(kernel_warmup.SERIAL_SWITCH, "1")
+    assert not kernel_warmup._may_compile_beside()
+    monkeypatch.setenv(kernel_warmup.SERIAL_SWITCH, "0")
+    assert kernel_warmup._may_compile_beside() == ((os.cpu_count() or 1) > 1)
