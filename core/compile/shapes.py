@@ -66,12 +66,16 @@ def pack_geometry(scene_shapes: list, shapes: list, world_from_object: np.ndarra
             not isinstance(s, Mesh) or len(meshes.lo) and has_triangles(meshes, mesh_of[id(s.mesh)])
         ) for i, s in enumerate(shapes)], bool
     ).reshape(-1)  # fmt: skip
-    top_lo, top_hi, top_info, top_order = build_bvh(
-        lo[solid], hi[solid], _TOP_MAX_LEAF, _TOP_TRAVERSAL_COST
-    )
-    top_order = np.flatnonzero(solid)[top_order]
-    if not solid.any():
-        top_info = np.zeros((0, 2), np.int32)
+    if solid.any():
+        top_lo, top_hi, top_info, top_order = build_bvh(
+            lo[solid], hi[solid], _TOP_MAX_LEAF, _TOP_TRAVERSAL_COST
+        )
+        top_order = np.flatnonzero(solid)[top_order]
+    else:
+        # Nothing to hit: an empty box and no node, as the builder would make, without a
+        # kernel (the warm-up packs an empty scene for the kernels' argument types alone)
+        top_lo, top_hi = np.zeros((1, 3)), np.full((1, 3), -1.0)
+        top_info, top_order = np.zeros((0, 2), np.int32), np.zeros(0, np.int32)
     tau = _shadow_transparency(shapes, scene_rows, shadow_share)
     return Geometry(
         top_bounds=np.ascontiguousarray(np.hstack([top_lo, top_hi])),

@@ -54,9 +54,10 @@ READY_PREFIX = "Whitted: kernels ready"
 # One for each CPU target: a cache folder can hold the kernels of several (core.jit.relocatable)
 MARKER = f"warm-{CPU_TARGET}.ok"
 LOCK = "warm.lock"
-# The photon kernels compiled beside the rest (in a process of their own), unless this is set
+# The packing's and photon pass's kernels compiled beside the rest (in a process of their
+# own), unless this is set
 SERIAL_SWITCH = "WHITTED_SERIAL_WARMUP"
-PHOTONS_ONLY = "--photons-only"
+BESIDE = "--beside"
 CACHE_LINE = "Whitted: kernel cache "
 
 
@@ -112,9 +113,19 @@ def warmup_scene(nodes: bool = True):
     )
 
 
-def warmup_steps(without: frozenset[str] = frozenset()) -> list[tuple[str, Callable[[], None]]]:
+def warmup_steps(
+    without: frozenset[str] = frozenset(), beside: bool = False
+) -> list[tuple[str, Callable[[], None]]]:
     """(what it compiles, how) for each step, in order, for the render kernel without the
-    features `without` (none: the full kernel)."""
+    features `without` (none: the full kernel).
+
+    `beside`: the scene packing's kernels (and the photon pass's) compile in a process of
+    their own from the start (`Beside`), on the other core, while this one compiles the
+    searches and the render kernel for the types of an empty scene, which packs without a
+    kernel; the last step waits for that process. They share no compile work: the render
+    kernel's searches and shading are typed and optimised in each process anyway."""
+    from .. import RenderSettings, Scene
+    from ..compile import compile_scene
     from ..driver import prepare_kernel
     from ..kernels.light_pyramid import TRAVERSE_ALL
     from ..kernels.render_tile import render_tile
@@ -131,6 +142,18 @@ def warmup_steps(without: frozenset[str] = frozenset()) -> list[tuple[str, Calla
     def geometry():
         return packed[0].geometry
 
+    if beside:
+        started = Beside(without)
+        packed.append(compile_scene(Scene(), RenderSettings(8, 8)).packed)
+        last = "scene packing" if "caustics" in without else "scene packing and caustic photons"
+        return [
+            ("nearest hits", lambda: compile_as_callee(closest_hit, geometry(), o, d, math.inf,
+                                                       stacks)),
+            ("shadow rays", lambda: compile_as_callee(transmittance, geometry(), o, d, 9.0,
+                                                      stacks, TRAVERSE_ALL)),
+            ("render kernel", lambda: prepare_kernel(packed[0], variant(render_tile, without))),
+            (last, started.finish),
+        ]  # fmt: skip
     steps = [
         ("scene packing", pack),
         (
@@ -172,6 +195,11 @@ def progress_line(step: int, steps: int, label: str) -> str:
 # issue 44), the shares re-measured there
 STEP_SHARES = {"scene packing": 0.22, "nearest hits": 0.12, "shadow rays": 0.05,
                "render kernel": 0.44, "caustic photons": 0.17}  # fmt: skip
+# With the packing beside (the usual way on two cores or more: warmup_steps), the steps in
+# their order and shares (2026-12-07, the full kernel: nearest hits 6-7 s, shadow rays 3-4 s,
+# the render kernel 35-40 s, and what is left of the packing and photons beside 5-10 s)
+BESIDE_SHARES = {"nearest hits": 0.12, "shadow rays": 0.06, "render kernel": 0.68,
+                 "scene packing": 0.14, "scene packing and caustic photons": 0.14}  # fmt: skip
 TYPICAL_WARMUP_S = 56.0
 _PROGRESS = re.compile(r"(\d+) of (\d+) \((.*)\)$")
 
@@ -185,10 +213,15 @@ def progress_fraction(line: str, step_seconds: float) -> float | None:
     if found is None:
         return None
     label, step, steps = found.group(3), int(found.group(1)), int(found.group(2))
+    # the steps in their order: the packing first, or beside (and waited for last)
+    serial = list(STEP_SHARES)
+    shares = STEP_SHARES if step <= len(serial) and serial[step - 1] == label else BESIDE_SHARES
+    # beside: the three steps, then the wait for the packing (with photons or not: one share)
+    order = serial if shares is STEP_SHARES else list(shares)[:4]
     # a variant's warm-up may run fewer steps (no photons): their shares make the whole
-    whole = sum(list(STEP_SHARES.values())[:steps]) or 1.0
-    done = sum(STEP_SHARES.get(lbl, 0.0) for lbl in list(STEP_SHARES)[: step - 1])
-    share = STEP_SHARES.get(label, 0.0)
+    whole = sum(shares.get(lbl, 0.0) for lbl in order[:steps]) or 1.0
+    done = sum(shares.get(lbl, 0.0) for lbl in order[: step - 1])
+    share = shares.get(label, 0.0)
     within = min(0.95, step_seconds / (share * TYPICAL_WARMUP_S)) if share else 0.0
     return min(1.0, (done + share * within) / whole)
 
@@ -234,13 +267,7 @@ def warm_kernels(
 
 def _warm_kernels(report: Callable[[str], None], without: frozenset[str]) -> float:
     start = time.perf_counter()
-    steps = warmup_steps(without)
-    if steps[-1][0] == "caustic photons" and _may_compile_beside():
-        # The photon kernels compile in a process of their own from the start, on the other
-        # core: their compile shares nothing with the render kernel's (each optimises the
-        # searches it inlines), so the warm-up takes the longer of the two, not their sum
-        beside = PhotonsBeside()
-        steps[-1] = ("caustic photons", beside.finish)
+    steps = warmup_steps(without, beside=_may_compile_beside())
     took = []
     for number, (label, compile_step) in enumerate(steps, 1):
         report(progress_line(number, len(steps), label))
@@ -261,24 +288,35 @@ def _may_compile_beside() -> bool:
     return (os.cpu_count() or 1) > 1 and os.environ.get(SERIAL_SWITCH, "") in ("", "0")
 
 
-class PhotonsBeside:
-    """The photon kernels' compile (`--photons-only`) in a child process started now;
-    `finish` waits for it, and compiles them here if it failed."""
+class Beside:
+    """The scene packing's kernels, and the photon pass's unless `without` caustics, compiled
+    in a child process started now (`--beside`, by the launcher this process was started
+    with); `finish` waits for it, and compiles them here if it failed."""
 
-    def __init__(self):
+    def __init__(self, without: frozenset[str]):
         from . import child_process
 
+        self.without = without
+        variant = ["--without", tag(without)] if without else []
         self.process = subprocess.Popen(
-            child_process.command("jit.warmup", PHOTONS_ONLY), env=child_process.environment(),
-            stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+            child_process.command("jit.warmup", BESIDE, *variant),
+            env=child_process.environment(), stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT, text=True,
         )  # fmt: skip
 
     def finish(self) -> None:
         output, _ = self.process.communicate()
         if self.process.returncode != 0:
-            print(f"Whitted: the photon kernels' compile beside failed, compiling them here: "
+            print(f"Whitted: the packing kernels' compile beside failed, compiling them here: "
                   f"{output[-500:]}", flush=True)  # fmt: skip
-            warm_photon_kernels(_packed_warmup_scene(frozenset()))
+            compile_beside(self.without)
+
+
+def compile_beside(without: frozenset[str]) -> None:
+    """What `Beside` compiles: the warm-up scene packed, and its photons traced."""
+    packed = _packed_warmup_scene(without)
+    if "caustics" not in without:
+        warm_photon_kernels(packed)
 
 
 def _packed_warmup_scene(without: frozenset[str]):
@@ -319,12 +357,14 @@ def kernels_ready(without: frozenset[str] = frozenset()) -> bool:
 
 def main(arguments: list[str]) -> int:
     """`--without TAG`: the variant without those features (core.jit.variants.tag)."""
-    if arguments[:1] == [PHOTONS_ONLY]:  # a warm-up's photon kernels, beside it
-        warm_photon_kernels(_packed_warmup_scene(frozenset()))
-        return 0
+    beside = arguments[:1] == [BESIDE]  # a warm-up's packing and photon kernels, beside it
+    arguments = arguments[1:] if beside else arguments
     without = frozenset()
     if arguments[:1] == ["--without"]:
         without = features_of(arguments[1])
+    if beside:
+        compile_beside(without)
+        return 0
     # The first line names the package compiled, for the parent to check it is its own
     print(f"Whitted: core {own_core()}", flush=True)
     print(f"{CACHE_LINE}{kernel_cache_dir()}", flush=True)

@@ -197,11 +197,12 @@ def test_a_variants_warmup_child_is_told_what_to_leave_out(tmp_path, monkeypatch
     assert "caustic photons" in [label for label, _ in kernel_warmup.warmup_steps()]
 
 
-def test_the_photon_kernels_compile_beside_and_here_if_that_fails(tmp_path, monkeypatch):
-    """A warm-up with caustics starts the photon kernels' compile in a process of its own at
-    once (`--photons-only`, by the launcher it was started with) and waits for it last; if
-    that process fails, it compiles them itself."""
+def test_the_packing_kernels_compile_beside_and_here_if_that_fails(tmp_path, monkeypatch):
+    """A warm-up starts the packing's and photon pass's kernels' compile in a process of its
+    own at once (`--beside`, by the launcher it was started with, for the same variant) and
+    waits for it last; if that process fails, it compiles them itself."""
     from core.jit import child_process
+    from core.jit.variants import tag
 
     said = tmp_path / "arguments"
     launcher = fake_python(tmp_path, f'echo "$@" > {said}\necho "it broke"\nexit 3\n')
@@ -209,13 +210,28 @@ def test_the_photon_kernels_compile_beside_and_here_if_that_fails(tmp_path, monk
     compiled_here = []
     monkeypatch.setattr(kernel_warmup, "warm_photon_kernels", compiled_here.append)
     monkeypatch.setattr(kernel_warmup, "_packed_warmup_scene", lambda without: "packed")
-    beside = kernel_warmup.PhotonsBeside()
-    beside.finish()
-    assert said.read_text().split()[-1] == kernel_warmup.PHOTONS_ONLY
+    without = frozenset({"nodes"})
+    kernel_warmup.Beside(without).finish()
+    assert said.read_text().split()[-3:] == [kernel_warmup.BESIDE, "--without", tag(without)]
     assert compiled_here == ["packed"]
+    compiled_here.clear()
+    kernel_warmup.compile_beside(frozenset({"caustics"}))
+    assert compiled_here == []  # no photon kernels for a variant without caustics
     # the launcher travels to the children's children
     env = child_process.environment()
     assert env[child_process.LAUNCHER_VARIABLE].startswith("[")
+
+
+def test_the_progress_bar_follows_either_order_of_the_steps():
+    beside = ["nearest hits", "shadow rays", "render kernel", "scene packing and caustic photons"]
+    serial = ["scene packing", "nearest hits", "shadow rays", "render kernel", "caustic photons"]
+    for steps in (beside, serial, beside[:3] + ["scene packing"], serial[:4]):
+        fractions = []
+        for k, label in enumerate(steps, 1):
+            line = kernel_warmup.progress_line(k, len(steps), label)
+            fractions += [kernel_warmup.progress_fraction(line, s) for s in (0.0, 2.0, 1e6)]
+        assert fractions == sorted(fractions) and fractions[0] == 0.0, (steps, fractions)
+        assert 0.8 < fractions[-1] <= 1.0, (steps, fractions)
 
 
 def test_a_serial_warmup_compiles_the_photon_kernels_in_turn(monkeypatch):
