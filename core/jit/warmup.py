@@ -355,8 +355,10 @@ def kernels_ready(without: frozenset[str] = frozenset()) -> bool:
     return False
 
 
-def main(arguments: list[str]) -> int:
-    """`--without TAG`: the variant without those features (core.jit.variants.tag)."""
+def main(arguments: list[str] | None = None) -> int:
+    """`--without TAG`: the variant without those features (core.jit.variants.tag); `--beside`
+    first: the packing's (and photons') kernels alone, for a warm-up (`Beside`)."""
+    arguments = sys.argv[1:] if arguments is None else arguments
     beside = arguments[:1] == [BESIDE]  # a warm-up's packing and photon kernels, beside it
     arguments = arguments[1:] if beside else arguments
     without = frozenset()
@@ -373,4 +375,4 @@ def main(arguments: list[str]) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv[1:]))
+    sys.exit(main())
