@@ -19,6 +19,12 @@ from tests.support.seed_cache import seed_shared_cache
 pytestmark = pytest.mark.blender34
 
 
+def render_sample(output: str, file_format: str = "PNG"):
+    """`blender -b` rendering the sample's frame 1 to `output` (a path with ####)."""
+    return blender_34(str(SAMPLE), "--addons", "whitted", "-E", "WHITTED", "-o", output,
+                      "-F", file_format, "-f", "1")  # fmt: skip
+
+
 @pytest.mark.first
 def test_a_first_render_on_a_new_machine_prints_the_kernel_compile_steps(tmp_path, monkeypatch):
     """With an empty kernel cache the render waits for the warm-up process, printing each
@@ -29,10 +35,7 @@ def test_a_first_render_on_a_new_machine_prints_the_kernel_compile_steps(tmp_pat
     and the bpy module of the same Python and numba, compile none of the warm-up's again.)"""
     shared = Path(os.environ["WHITTED_CACHE_DIR"])
     monkeypatch.setenv("WHITTED_CACHE_DIR", str(tmp_path / "cache"))
-    run = blender_34(
-        str(SAMPLE), "--addons", "whitted", "-E", "WHITTED", "-o", f"{tmp_path}/out_####",
-        "-F", "PNG", "-f", "1",
-    )  # fmt: skip
+    run = render_sample(f"{tmp_path}/out_####")
     assert run.returncode == 0, run.stdout + run.stderr
     lines = run.stdout.splitlines()
     steps = [
@@ -72,10 +75,7 @@ def test_a_first_render_compiles_only_the_kernel_variant_its_scene_needs(tmp_pat
     shared = os.environ["WHITTED_CACHE_DIR"]
     monkeypatch.setenv("WHITTED_FULL_KERNEL", "0")
     monkeypatch.setenv("WHITTED_CACHE_DIR", str(tmp_path / "cache"))
-    run = blender_34(
-        str(SAMPLE), "--addons", "whitted", "-E", "WHITTED", "-o", f"{tmp_path}/variant_####",
-        "-F", "OPEN_EXR", "-f", "1",
-    )  # fmt: skip
+    run = render_sample(f"{tmp_path}/variant_####", "OPEN_EXR")
     assert run.returncode == 0, run.stdout + run.stderr
     steps = [line for line in run.stdout.splitlines()
              if line.startswith("Whitted: compiling kernels: ") and " of " in line]  # fmt: skip
@@ -88,10 +88,7 @@ def test_a_first_render_compiles_only_the_kernel_variant_its_scene_needs(tmp_pat
     assert "then loaded from the cache" in run.stdout, run.stdout[-2000:]
     monkeypatch.setenv("WHITTED_FULL_KERNEL", "1")
     monkeypatch.setenv("WHITTED_CACHE_DIR", shared)  # with the full kernel
-    full = blender_34(
-        str(SAMPLE), "--addons", "whitted", "-E", "WHITTED", "-o", f"{tmp_path}/full_####",
-        "-F", "OPEN_EXR", "-f", "1",
-    )  # fmt: skip
+    full = render_sample(f"{tmp_path}/full_####", "OPEN_EXR")
     assert full.returncode == 0, full.stdout + full.stderr
     variant, _ = read_exr(tmp_path / "variant_0001.exr")
     whole, _ = read_exr(tmp_path / "full_0001.exr")
@@ -101,10 +98,7 @@ def test_a_first_render_compiles_only_the_kernel_variant_its_scene_needs(tmp_pat
 
 
 def test_headless_command_renders_the_sample(sample_scene, tmp_path):
-    run = blender_34(
-        str(SAMPLE), "--addons", "whitted", "-E", "WHITTED", "-o", f"{tmp_path}/out_####",
-        "-F", "PNG", "-f", "1",
-    )  # fmt: skip
+    run = render_sample(f"{tmp_path}/out_####")
     assert run.returncode == 0, run.stdout + run.stderr
     assert "Blender 3.4" in run.stdout
     assert "Traceback" not in run.stdout + run.stderr
