@@ -106,7 +106,13 @@ def kernel_features_unused(scene, settings) -> frozenset:
 
     if full_kernel_asked():  # WHITTED_FULL_KERNEL=1: every render by the full kernel
         return frozenset()
-    return frozenset(FEATURES) - expected_features(scene, settings)
+    try:
+        return frozenset(FEATURES) - expected_features(scene, settings)
+    except Exception:
+        # Only a hint for the warm-up: a scene the compile refuses (a broken graph, a bad
+        # value) gets its clear error there, naming the object and field; until then, the
+        # full kernel
+        return frozenset()
 
 
 def _kernels_ready(engine, timings, without=frozenset()) -> bool:

@@ -182,3 +182,21 @@ def test_warnings_outlast_the_summary_and_stay_with_the_picture(
     assert "Radius 0.5 m" in kept["Whitted Warnings"], kept
     image = np.asarray(Image.open(tmp_path / "warned.png"))
     assert image.shape[:2] == (120, 160)
+
+
+def test_a_scene_whose_features_cannot_be_foreseen_renders_with_the_full_kernel(
+    sample_scene, bpy_with_whitted, tmp_path, monkeypatch, seen
+):
+    """The features a scene may use are only a hint for the warm-up (core.compile.features):
+    where reading them fails, the warm-up is the full kernel's and the render goes on (a
+    scene the compile refuses gets its own clear error there)."""
+    features = sys.modules["whitted.core.compile.features"]
+
+    def fails(scene, settings):
+        raise ValueError("a graph the hint cannot read")
+
+    monkeypatch.setattr(features, "expected_features", fails)
+    monkeypatch.setenv("WHITTED_FULL_KERNEL", "0")
+    assert final_render().kernel_features_unused(None, None) == frozenset()
+    kept = rendered_metadata(bpy_with_whitted, sample_scene, tmp_path / "unforeseen.png")
+    assert "Whitted" in kept and not any(kind == "ERROR" for kind, _ in seen), seen
