@@ -144,14 +144,28 @@ def tile_kernel(packed: PackedScene):
         return render_tile
     leave_out = left_out(packed)
     own = variant(render_tile, leave_out)
-    if own.signatures or _in_cache(own):
+    if own.signatures:
         return own
-    ready = [
-        (len(without), kernel)
-        for without, kernel in compiled_variants()
-        if without <= leave_out and (kernel.signatures or _in_cache(kernel))
-    ]
-    return max(ready, key=lambda entry: entry[0])[1] if ready else own
+    # Loaded in this process first: a viewport renders many times, and reads no file again
+    loaded = _fewest_features(leave_out, [(w, k) for w, k in _made_here() if k.signatures])
+    if loaded is not None:
+        return loaded
+    if _in_cache(own):
+        return own
+    cached = [(w, k) for w, k in compiled_variants() if _in_cache(k)]
+    return _fewest_features(leave_out, cached) or own
+
+
+def _fewest_features(leave_out: frozenset[str], kernels):
+    """Of (left out, kernel) pairs, the kernel holding every feature but `leave_out` that
+    leaves out the most, or None."""
+    fitting = [(len(without), kernel) for without, kernel in kernels if without <= leave_out]
+    return max(fitting, key=lambda entry: entry[0])[1] if fitting else None
+
+
+def _made_here():
+    """(left out, kernel) of the full kernel and the variants made in this process."""
+    return [(frozenset(), render_tile), *made_variants(render_tile)]
 
 
 def full_kernel_asked() -> bool:
@@ -162,16 +176,14 @@ def full_kernel_asked() -> bool:
 def compiled_variants():
     """(left out, kernel) of every tile kernel that may be compiled: the full kernel, those
     made in this process, and those whose cache index files lie in the kernel cache."""
-    found = {frozenset(): render_tile}
+    found = dict(_made_here())
     folder = _cache_folder(render_tile)
     if folder is not None:
         for index in folder.glob(f"*.{render_tile.__name__}__without_*.nbi"):
             bits = index.name.split("__without_")[1].split("-")[0]
             with contextlib.suppress(ValueError):
                 without = features_of(bits)
-                found[without] = variant(render_tile, without)
-    for without, kernel in made_variants(render_tile):
-        found[without] = kernel
+                found.setdefault(without, variant(render_tile, without))
     return list(found.items())
 
 

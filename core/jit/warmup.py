@@ -142,32 +142,25 @@ def warmup_steps(
     def geometry():
         return packed[0].geometry
 
+    # the searches and the render kernel, for the packed scene's types, in either order
+    kernels = [
+        ("nearest hits",
+         lambda: compile_as_callee(closest_hit, geometry(), o, d, math.inf, stacks)),
+        ("shadow rays",
+         lambda: compile_as_callee(transmittance, geometry(), o, d, 9.0, stacks, TRAVERSE_ALL)),
+        ("render kernel", lambda: prepare_kernel(packed[0], variant(render_tile, without))),
+    ]  # fmt: skip
     if beside:
         started = Beside(without)
         packed.append(compile_scene(Scene(), RenderSettings(8, 8)).packed)
         last = "scene packing" if "caustics" in without else "scene packing and caustic photons"
-        return [
-            ("nearest hits", lambda: compile_as_callee(closest_hit, geometry(), o, d, math.inf,
-                                                       stacks)),
-            ("shadow rays", lambda: compile_as_callee(transmittance, geometry(), o, d, 9.0,
-                                                      stacks, TRAVERSE_ALL)),
-            ("render kernel", lambda: prepare_kernel(packed[0], variant(render_tile, without))),
-            (last, started.finish),
-        ]  # fmt: skip
-    steps = [
-        ("scene packing", pack),
-        (
-            "nearest hits",
-            lambda: compile_as_callee(closest_hit, geometry(), o, d, math.inf, stacks),
-        ),
-        (
-            "shadow rays",
-            lambda: compile_as_callee(transmittance, geometry(), o, d, 9.0, stacks, TRAVERSE_ALL),
-        ),
-        ("render kernel", lambda: prepare_kernel(packed[0], variant(render_tile, without))),
-        ("caustic photons", lambda: warm_photon_kernels(packed[0])),
-    ]
-    return steps if "caustics" not in without else steps[:-1]
+        return [*kernels, (last, started.finish)]
+    photons = (
+        []
+        if "caustics" in without
+        else [("caustic photons", lambda: warm_photon_kernels(packed[0]))]
+    )
+    return [("scene packing", pack), *kernels, *photons]
 
 
 def warm_photon_kernels(packed) -> None:
