@@ -60,9 +60,9 @@ PLATFORMS = (
 KERNELS_FOR = "linux-x64"
 
 # The name Blender imports the installed `core` as, for an extension installed from disk into
-# the user repository it offers first; numba's cache records it (core.jit.cache_folder), so
-# the shipped kernels are compiled under it. Installed into another repository, Whitted
-# compiles its own.
+# the user repository it offers first: the warm-up that checks the shipped kernels imports
+# `core` under it, as Blender will (kernels cached under any name load under any other:
+# core.jit.cache_names).
 INSTALLED_AS = "bl_ext.user_default.whitted.core"
 
 
@@ -166,7 +166,10 @@ def build(
     wheels (for tests, offline) the manifest lists none and the extension relies on the numba
     and Pillow Blender can import. The Linux zip's kernels are compiled by each of `pythons`
     for each of `levels` (every portable level unless given; none if empty) with their cache
-    in kernel_cache (out_dir/kernel_cache unless given: a second build only loads them).
+    in kernel_cache: unless given, the checkout's own (WHITTED_CACHE_DIR, as `make` sets it),
+    whose kernels load under the extension's name too (core.jit.cache_names), so the zip
+    ships the kernels the tests and renders compiled, and compiles only what they did not;
+    else out_dir/kernel_cache (a second build only loads them).
     Wheels are downloaded into wheel_cache (out_dir/wheels unless given)."""
     sys.path.insert(0, str(ROOT))
     from core.jit.relocatable import PORTABLE_LEVELS
@@ -186,7 +189,9 @@ def build(
             wheels = download_wheels(platform, (wheel_cache or out_dir / "wheels") / platform.name)
         kernels = []
         if platform.name == KERNELS_FOR and levels:
-            kernels = shipped_kernels(kernel_cache or out_dir / "kernel_cache", pythons, levels)
+            shared = os.environ.get("WHITTED_CACHE_DIR")
+            cache = kernel_cache or (Path(shared) if shared else out_dir / "kernel_cache")
+            kernels = shipped_kernels(cache, pythons, levels)
         manifest = platform_manifest(template, platform, wheels)
         target = out_dir / f"whitted-{VERSION}-{platform.name}.zip"
         zips[platform.name] = write_zip(target, manifest, wheels, kernels)

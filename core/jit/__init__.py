@@ -6,8 +6,9 @@
   render kernel holds one copy of the shadow-ray search, not five.
 - `deferred`: a callee's compile finished once, inside the kernel Python calls.
 - `flag_values`: numba's compile options read in one step when typing compares them.
-- `cache_folder`: the cache folder of this version and package, the extension's shipped
+- `cache_folder`: the cache folder of this version, the extension's shipped
   kernels copied into it, old versions' folders pruned.
+- `cache_names`: kernels cached under one import name of `core` loaded under another.
 - `relocatable`: one cache serving any folder `core` is unpacked in and any x86-64 CPU of a
   feature level, so the extension can ship it.
 - `healing`: a damaged cache file removed and its kernel compiled again, as numba loads it.

@@ -3,9 +3,11 @@ in, old versions' folders pruned. A damaged cache file heals as numba loads it
 (core.jit.healing).
 
 The folder's name holds the package, numba and Python versions and a hash of the kernels'
-source (and of the package's import name): numba checks only a cached function's own file
-for changes, not the files of the functions it calls, so without the hash an edit to one
-kernel module could leave stale machine code inlined in another. Tests, benchmarks and
+source: numba checks only a cached function's own file for changes, not the files of the
+functions it calls, so without the hash an edit to one kernel module could leave stale
+machine code inlined in another. Not the name `core` is imported under: one folder serves
+them all (core.jit.cache_names), so a checkout's tests, Blender's add-on and the
+extension's zip compile each kernel once per Python and numba. Tests, benchmarks and
 Blender subprocesses share the folder through WHITTED_CACHE_DIR.
 
 The extension ships its kernels compiled (`make addon`; core.jit.relocatable says how one
@@ -35,26 +37,40 @@ from .relocatable import CORE, PACKAGE_ROOT
 CORE_PACKAGE = __package__.rpartition(".")[0]
 
 
-def kernel_source_hash(package: str = CORE_PACKAGE) -> str:
-    # The package's import name too: numba's cache records the module each kernel came from
-    # and imports it by that name on loading, so kernels compiled as `core` (a checkout) do
-    # not load as an add-on's `bl_ext.user_default.whitted.core`, nor the other way round
-    digest = hashlib.sha1(package.encode())
+def _another_core_imported() -> bool:
+    """Whether another Whitted `core` (not an alias of this one, as a checkout's add-on
+    makes) was imported in this process first."""
+    this = sys.modules.get(__name__)
+    return any(
+        name.endswith("jit.cache_folder") and module is not this
+        and hasattr(module, "kernel_source_hash")
+        for name, module in list(sys.modules.items())
+    )  # fmt: skip
+
+
+# The second of two cores in one process keeps a folder of its own: loading the first's
+# kernels too would define each function's machine code twice under one name
+SECOND_CORE = _another_core_imported()
+
+
+def kernel_source_hash() -> str:
+    digest = hashlib.sha1(CORE_PACKAGE.encode() if SECOND_CORE else b"")
     # how kernels are compiled (decorators.py, never_inlined.py) and found and stamped
     # (relocatable.py) too; and vocabulary.py, whose codes the kernels compile in as constants
     here = Path(__file__).parent
     sources = [here / "decorators.py", here / "never_inlined.py", here / "relocatable.py",
+               here / "cache_names.py",
                CORE / "vocabulary.py", *(CORE / "kernels").glob("*.py")]  # fmt: skip
     for path in sorted(sources):
         digest.update(path.name.encode() + path.read_bytes())
     return digest.hexdigest()[:12]
 
 
-def kernel_cache_dir(package: str = CORE_PACKAGE) -> Path:
-    """This version's cache folder, for this package imported under the name given."""
+def kernel_cache_dir() -> Path:
+    """This version's cache folder."""
     base = os.environ.get("WHITTED_CACHE_DIR") or Path.home() / ".cache" / "whitted"
     python = f"py{sys.version_info[0]}{sys.version_info[1]}"
-    tag = f"whitted-{VERSION}-numba-{numba.__version__}-{python}-{kernel_source_hash(package)}"
+    tag = f"whitted-{VERSION}-numba-{numba.__version__}-{python}-{kernel_source_hash()}"
     return Path(base) / tag
 
 

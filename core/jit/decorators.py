@@ -9,6 +9,7 @@ import numba
 from numba.core import errors, types
 
 from .cache_folder import kernel_cache_dir
+from .cache_names import read_any_core_names
 from .deferred import defer_callee_compiles, optimised_alone  # noqa: F401 (kernels take it here)
 from .flag_values import read_options_at_once
 from .healing import heal_damaged_loads
@@ -19,6 +20,8 @@ from .variants import MADE_BY
 numba.config.CACHE_DIR = str(kernel_cache_dir())
 # A damaged cache file of any kernel is removed and that kernel compiled again, not raised
 heal_damaged_loads(kernel_cache_dir())
+# Kernels cached under another name of `core` load under this one (core.jit.cache_names)
+read_any_core_names([kernel_cache_dir()])
 # The cache can be moved to another folder and another machine (core.jit.relocatable): the
 # extension ships it filled
 use_relocatable_cache_folders()

@@ -4,7 +4,6 @@ import os
 import re
 import shutil
 import subprocess
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -14,7 +13,6 @@ from tests.blender.conftest import ROOT, SAMPLE
 from tests.support.blender34 import blender_34
 from tests.support.blender_reference import expected_pixels, sample_grid
 from tests.support.exr import read_exr
-from tests.support.seed_cache import seed_shared_cache
 
 pytestmark = pytest.mark.blender34
 
@@ -25,53 +23,15 @@ def render_sample(output: str, file_format: str = "PNG"):
                       "-F", file_format, "-f", "1")  # fmt: skip
 
 
-@pytest.mark.first
-def test_a_first_render_on_a_new_machine_prints_the_kernel_compile_steps(tmp_path, monkeypatch):
-    """With an empty kernel cache the render waits for the warm-up process, printing each
-    step as it starts, and then loads every kernel from the cache the warm-up filled. (A
-    cold compile of its own, about a minute. It runs first of all the tests, so
-    that in a new checkout, where the shared cache has no folder for the add-on's kernels
-    yet, the one it filled becomes that folder: the add-on's tests after it, in Blender 3.4
-    and the bpy module of the same Python and numba, compile none of the warm-up's again.)"""
-    shared = Path(os.environ["WHITTED_CACHE_DIR"])
-    monkeypatch.setenv("WHITTED_CACHE_DIR", str(tmp_path / "cache"))
-    run = render_sample(f"{tmp_path}/out_####")
-    assert run.returncode == 0, run.stdout + run.stderr
-    lines = run.stdout.splitlines()
-    steps = [
-        line for line in lines if line.startswith("Whitted: compiling kernels: ") and " of " in line
-    ]
-    # the packing's and photons' kernels compile beside the rest (core.jit.warmup.Beside)
-    assert steps and steps[0] == "Whitted: compiling kernels: 1 of 4 (nearest hits)", run.stdout
-    # the last step (waiting for what compiled beside) may pass before the render looks
-    ready = re.search(r"^Whitted: kernels ready in [\d.]+ s \((.*)\)$", run.stdout, re.M)
-    assert (
-        ready
-        and ready.group(1).endswith(" s")
-        and (
-            "render kernel" in ready.group(1)
-            and "scene packing and caustic photons" in ready.group(1)
-        )
-    ), run.stdout
-    assert "exited with status" not in run.stdout
-    # The render waited for the warm-up, said so apart from its own time, then loaded them
-    assert "first-use kernel compile" in run.stdout, run.stdout[-2000:]
-    assert "then loaded from the cache" in run.stdout and (tmp_path / "out_0001.png").is_file()
-    # The frame's metadata says the render time apart from the compile it waited for
-    kept = Image.open(tmp_path / "out_0001.png").info
-    compiled = re.match(r"first-use kernel compile (\d+) s", kept["Whitted Kernels"])
-    assert compiled, kept
-    render_s = float(kept["Whitted Render Time"].removesuffix(" s"))
-    assert render_s < 0.2 * int(compiled.group(1)), kept
-    assert kept["Whitted"].startswith(f"{render_s:.2f} s |"), kept
-    seed_shared_cache(tmp_path / "cache", shared)
-
-
-def test_a_first_render_compiles_only_the_kernel_variant_its_scene_needs(tmp_path, monkeypatch):
-    """Without WHITTED_FULL_KERNEL (the suite sets it), `blender -b` from an empty cache warms
-    the render kernel without the features the scene cannot use (core.jit.variants): the
-    sample's spheres under the report's lights need none, so no photon step, and the frame
-    is the full kernel's to the bit (the shared cache's, which the test above filled)."""
+def test_a_first_render_on_a_new_machine_compiles_only_its_variant_and_says_each_step(
+    tmp_path, monkeypatch
+):
+    """Without WHITTED_FULL_KERNEL (the suite sets it), `blender -b` from an empty cache waits
+    for the warm-up process, printing each step as it starts, and warms the render kernel
+    without the features the scene cannot use (core.jit.variants): the sample's spheres
+    under the report's lights need none, so no photon step. Then it loads every kernel from
+    the cache the warm-up filled, and the frame is the full kernel's to the bit (the shared
+    cache's: the signature test's warm-up, which the add-on loads under its own name)."""
     shared = os.environ["WHITTED_CACHE_DIR"]
     monkeypatch.setenv("WHITTED_FULL_KERNEL", "0")
     monkeypatch.setenv("WHITTED_CACHE_DIR", str(tmp_path / "cache"))
@@ -79,19 +39,32 @@ def test_a_first_render_compiles_only_the_kernel_variant_its_scene_needs(tmp_pat
     assert run.returncode == 0, run.stdout + run.stderr
     steps = [line for line in run.stdout.splitlines()
              if line.startswith("Whitted: compiling kernels: ") and " of " in line]  # fmt: skip
-    assert steps and all(" of 4 (" in step for step in steps), run.stdout
+    # the packing's kernels compile beside the rest (core.jit.warmup.Beside)
+    assert steps and steps[0] == "Whitted: compiling kernels: 1 of 4 (nearest hits)", run.stdout
+    assert all(" of 4 (" in step for step in steps), run.stdout
+    # the last step (waiting for what compiled beside) may pass before the render looks
     ready = re.search(r"^Whitted: kernels ready in [\d.]+ s \((.*)\)$", run.stdout, re.M)
-    assert ready and "scene packing " in ready.group(1), run.stdout
+    assert ready and ready.group(1).endswith(" s"), run.stdout
+    assert "render kernel" in ready.group(1) and "scene packing " in ready.group(1), run.stdout
     assert "caustic" not in ready.group(1), run.stdout  # no photon kernels
+    assert "exited with status" not in run.stdout
     markers = sorted(p.name for p in (tmp_path / "cache").rglob("warm-*.ok"))
     assert len(markers) == 1 and "-without-" in markers[0], markers
+    # The render waited for the warm-up, said so apart from its own time, then loaded them
+    assert "first-use kernel compile" in run.stdout, run.stdout[-2000:]
     assert "then loaded from the cache" in run.stdout, run.stdout[-2000:]
     monkeypatch.setenv("WHITTED_FULL_KERNEL", "1")
     monkeypatch.setenv("WHITTED_CACHE_DIR", shared)  # with the full kernel
     full = render_sample(f"{tmp_path}/full_####", "OPEN_EXR")
     assert full.returncode == 0, full.stdout + full.stderr
-    variant, _ = read_exr(tmp_path / "variant_0001.exr")
+    variant, kept = read_exr(tmp_path / "variant_0001.exr")
     whole, _ = read_exr(tmp_path / "full_0001.exr")
+    # The frame's metadata says the render time apart from the compile it waited for
+    compiled = re.match(r"first-use kernel compile (\d+) s", kept.get("Whitted Kernels", ""))
+    assert compiled, kept
+    render_s = float(kept["Whitted Render Time"].removesuffix(" s"))
+    assert render_s < 0.2 * int(compiled.group(1)), kept
+    assert kept["Whitted"].startswith(f"{render_s:.2f} s |"), kept
     assert variant.keys() == whole.keys() and max(c.max() for c in variant.values()) > 0.1
     for name, channel in whole.items():
         np.testing.assert_array_equal(variant[name], channel, err_msg=name)
