@@ -27,31 +27,16 @@ import math
 
 from ..jit.decorators import inlined_kernel, kernel
 from ..vocabulary import GLASS_SHADOWS_ATTENUATED
-from .caustics import caustic_irradiance
-from .emitters import emitted_colour
 from .emitters_seen import emitters_seen
-from .environment import environment_light, environment_seen
-from .features import (
-    WITH_CAUSTICS,
-    WITH_EMITTERS,
-    WITH_EMITTERS_SEEN,
-    WITH_ENVIRONMENT,
-    WITH_GLOSSY,
-    WITH_NODES,
-    WITH_PASSES,
-    WITH_VARYING_SHADOWS,
-)
+from .environment import environment_seen
+from .features import WITH_EMITTERS_SEEN, WITH_GLOSSY, WITH_PASSES
 from .fresnel import fresnel_dielectric
 from .glossy import visible_normal
-from .layout import (
-    ENVIRONMENT_NONE,
-    VISIBLE_CAMERA,
-    VISIBLE_GLOSSY,
-    VISIBLE_TRANSMISSION,
-)
+from .layout import VISIBLE_CAMERA, VISIBLE_GLOSSY, VISIBLE_TRANSMISSION
+from .light_at_point import light_at_point
 from .light_samples import stratified_cell
+from .material_at_hit import material_at_hit
 from .options import (
-    OPTION_ENVIRONMENT,
     OPTION_GLASS_SHADOWS,
     OPTION_GLOSSY_SAMPLES,
     OPTION_MAX_DEPTH,
@@ -65,20 +50,14 @@ from .pass_record import (
     REC_ENVIRONMENT,
     REC_REFLECTION,
     REC_REFRACTION,
-    TERM_ROW_LIT,
-    TERM_ROW_UNSHADOWED,
     add_to,
     clear,
     record_hit,
     record_lighting,
 )
 from .rng import PURPOSE_GLOSSY, uniform2
-from .shader_program import ray_at, run_program
-from .shading import Phong, ShadingPoint, local_colour
-from .shadow_crossing import answer_crossings
-from .shadow_log import begin_point
-from .surface import diffuse_colour, hit_frame, normal_rows, surface_at
-from .surface_terms import table_surface, terms_from_lobes
+from .shading import Phong, ShadingPoint
+from .surface import surface_at
 from .trace import closest_hit, spawn_point
 from .vec import add, dot, mul, normalize, row, scale, sub
 from .workspace import MAX_CROSSINGS, RAYS_TRACED
@@ -182,6 +161,31 @@ def _leave_surface(rays, top, here, sample, samples, spread, key, event, o, d, w
     return top
 
 
+@kernel
+def _glossy_samples(frame, here, depth, rho, coat_reflects, tau):
+    """(whether the rays leaving the surface spread over its rough lobe, by sampled
+    microfacet normals (core.kernels.glossy), and how many: the camera ray's hit takes the
+    setting's samples, deeper hits one). Off without the `glossy` feature: by the shading
+    normal, one ray each way."""
+    if not WITH_GLOSSY:
+        return False, 1
+    glossy = frame.options[OPTION_GLOSSY_SAMPLES]
+    spread = glossy > 0 and here.roughness > 0.0 and (rho > 0.0 or coat_reflects > 0.0
+                                                      or tau > 0.0)  # fmt: skip
+    return spread, ((glossy if depth == 0 else 1) if spread else 1)
+
+
+@inlined_kernel
+def _seen_emitters(lights, o, d, t, came_through, depth, refracted_before):
+    """Blender's lights seen in mirrors and through glass by a ray after its first bounce
+    (the `emitters_seen` feature); none by a rough mirror's ray, whose highlight holds them."""
+    if not WITH_EMITTERS_SEEN or depth == 0 or refracted_before == RAY_ROUGH_REFLECTED:
+        return (0.0, 0.0, 0.0)
+    if lights.emitter_kind.shape[0] == 0:
+        return (0.0, 0.0, 0.0)
+    return emitters_seen(lights, o, d, t, came_through)
+
+
 @inlined_kernel
 def trace_ray(ps, o, d, key, ws):
     """(linear RGB colour seen along unit direction d from o, with every bounce; its alpha:
@@ -190,8 +194,12 @@ def trace_ray(ps, o, d, key, ws):
     (core.kernels.pass_record): each ray's colour goes to the term of its branch, the
     camera ray's own hit is split into ambient, diffuse and specular.
 
-    Each feature's code is behind its constant (core.kernels.features), tested where the
-    code is called: a variant without it never compiles that code."""
+    The features (core.kernels.features) are calls of their own, each behind its constant
+    where it is called, so that a variant without one never compiles its code: the
+    material's terms (core.kernels.material_at_hit: node programs), the light at the point
+    (core.kernels.light_at_point: Blender's lights, the World, varying shadows, caustics),
+    lights seen in mirrors (`_seen_emitters`), the glossy spread (`_glossy_samples`) and the
+    passes (core.kernels.pass_record)."""
     frame, geo, surf, mats, lights = ps
     stacks, rays, record = ws.stacks, ws.rays, ws.record
     max_depth = frame.options[OPTION_MAX_DEPTH]
@@ -217,15 +225,13 @@ def trace_ray(ps, o, d, key, ws):
         crossed = rays.crossed[top]
         stacks.ray_counts[RAYS_TRACED] += 1
         shape, t, part, b1, b2 = closest_hit(geo, o, d, math.inf, stacks)
-        lit_seen = refracted_before != RAY_ROUGH_REFLECTED
-        if WITH_EMITTERS_SEEN and depth > 0 and lit_seen and lights.emitter_kind.shape[0] > 0:
-            # Lights in Blender's units, seen in mirrors and through glass
-            glimpse = emitters_seen(lights, o, d, t if shape >= 0 else math.inf, came_through)
-            if glimpse[0] > 0.0 or glimpse[1] > 0.0 or glimpse[2] > 0.0:
-                seen = mul(w, glimpse)
-                colour = add(colour, seen)
-                if WITH_PASSES and recording:
-                    add_to(record, branch, seen)
+        glimpse = _seen_emitters(lights, o, d, t if shape >= 0 else math.inf, came_through,
+                                 depth, refracted_before)  # fmt: skip
+        if glimpse[0] > 0.0 or glimpse[1] > 0.0 or glimpse[2] > 0.0:
+            seen = mul(w, glimpse)
+            colour = add(colour, seen)
+            if WITH_PASSES and recording:
+                add_to(record, branch, seen)
         if shape < 0:
             if depth == 0 and frame.options[OPTION_TRANSPARENT] != 0:
                 # a camera ray (or what passed straight through) meets nothing, not even
@@ -249,27 +255,12 @@ def trace_ray(ps, o, d, key, ws):
             continue
         material = surf.shape_material[shape]
         first = recording and depth == 0 and not hit_recorded
-        programmed = mats.shader_range[material, 0] >= 0
-        textured = mats.texture[material] >= 0 or programmed
+        textured = mats.texture[material] >= 0 or mats.shader_range[material, 0] >= 0
         p, n_geometric, n_shading, u, v = surface_at(
             geo, surf, shape, part, b1, b2, o, d, t, textured or (first and with_uv)
         )
-        if WITH_NODES and programmed:  # a node material whose terms vary over the surface
-            with_frame = mats.shader_frame[material] != 0
-            hit, across = hit_frame(geo, surf, shape, part, p, n_shading, u, v, with_frame)
-            rows = normal_rows(geo.shape_object_from_world, shape)
-            # Light Path: a camera ray until it reflects or refracts (passing a transparent
-            # surface keeps it one, as in Cycles)
-            ray = ray_at(1.0 if depth == 0 else 0.0, 0.0, depth, d, n_geometric)
-            run_program(mats, material, ws.shader_stack, ws.lobes, hit, across, rows, ray)
-            here = terms_from_lobes(ws.lobes)
-            if here.normal[0] != 0.0 or here.normal[1] != 0.0 or here.normal[2] != 0.0:
-                n_shading = here.normal  # Bump, Normal Map: the graph's shading normal
-        else:
-            kd = (0.0, 0.0, 0.0)
-            if mats.transparency[material] < 1.0 or first:
-                kd = diffuse_colour(mats, material, u, v)
-            here = table_surface(mats, material, kd)
+        here, n_shading = material_at_hit(geo, surf, mats, ws, shape, material, part, p, d,
+                                          n_geometric, n_shading, u, v, depth, first)  # fmt: skip
         tau = here.transparency
         rho = here.reflectivity
         # Face the side the ray came from
@@ -303,44 +294,15 @@ def trace_ray(ps, o, d, key, ws):
                 add_to(record, branch, seen)
         if tau < 1.0:
             point = ShadingPoint(outside, n_shading, scale(d, -1.0))
-            ks = here.ks
-            phong = Phong(kd, ks, here.shininess)
-            splitting = first and split
-            begin_point(stacks.shadow_state)
-            while True:
-                local = local_colour(
-                    frame, lights, geo, stacks, point, phong, key, event, splitting
-                )
-                if WITH_EMITTERS and lights.emitter_kind.shape[0] > 0:  # Blender's lights
-                    emitted = emitted_colour(
-                        frame, lights, geo, stacks, point, phong, key, event, splitting
-                    )
-                    local = add(local, emitted)
-                # the World's light
-                if WITH_ENVIRONMENT and frame.options[OPTION_ENVIRONMENT] != ENVIRONMENT_NONE:
-                    sky = environment_light(
-                        frame, lights, geo, stacks, point, kd, key, event, splitting
-                    )
-                    local = add(local, sky)
-                # shadow rays that crossed surfaces whose share varies: their shares, then
-                # the lights once more with the answered visibilities (core.kernels.shadow_log)
-                if WITH_VARYING_SHADOWS and answer_crossings(geo, surf, mats, ws,
-                                                             refraction_passes):  # fmt: skip
-                    continue
-                break
-            if WITH_CAUSTICS and lights.photon_cells.shape[0] > 0:
-                # light brought by mirrors and glass (core.kernels.caustics)
-                falling = scale(caustic_irradiance(lights, p, n_geometric), 1.0 / math.pi)
-                local = add(local, mul(kd, falling))
-                if splitting:  # the diffuse pass holds it, as light falling on the point
-                    for a in range(3):
-                        stacks.terms[TERM_ROW_LIT, a] += falling[a]
-                        stacks.terms[TERM_ROW_UNSHADOWED, a] += falling[a]
+            phong = Phong(kd, here.ks, here.shininess)
+            local = light_at_point(frame, lights, geo, surf, mats, ws, point, phong, p,
+                                   n_geometric, key, event, first and split,
+                                   refraction_passes)  # fmt: skip
             seen = mul(w, scale(local, 1.0 - tau))
             colour = add(colour, seen)
             if WITH_PASSES and first:
                 terms = stacks.terms
-                record_lighting(record, terms, local, kd, ks, frame.ambient, 1.0 - tau, split)
+                record_lighting(record, terms, local, kd, here.ks, frame.ambient, 1.0 - tau, split)
             elif WITH_PASSES and recording:
                 add_to(record, branch, seen)
         event += 1
@@ -356,15 +318,7 @@ def trace_ray(ps, o, d, key, ws):
             )
         if depth >= max_depth:
             continue
-        # A rough surface's rays: by the shading normal (sharp), or spread over its lobe
-        # by sampled microfacet normals (core.kernels.glossy)
-        spread = False
-        samples = 1
-        if WITH_GLOSSY:
-            glossy = frame.options[OPTION_GLOSSY_SAMPLES]
-            spread = glossy > 0 and here.roughness > 0.0 and (rho > 0.0 or coat_reflects > 0.0
-                                                              or tau > 0.0)  # fmt: skip
-            samples = (glossy if depth == 0 else 1) if spread else 1
+        spread, samples = _glossy_samples(frame, here, depth, rho, coat_reflects, tau)
         for sample in range(samples):
             top = _leave_surface(
                 rays, top, here, sample, samples, spread, key, event, o, d, w, p, n_shading,

@@ -41,6 +41,7 @@ from core.compile.features import expected_features, left_out, used_features
 from core.jit import variants
 from core.kernels.features import FEATURES
 from core.kernels.integrator import trace_ray
+from core.kernels.material_at_hit import material_at_hit
 from core.kernels.render_tile import render_tile
 from core.kernels.trace import closest_hit
 
@@ -178,8 +179,12 @@ def test_a_variant_copies_only_the_kernels_that_read_a_feature():
     # the nearest-hit search reads no feature: every variant shares it, compiled once
     assert variants.variant(closest_hit, everything) is closest_hit
     assert copy.py_func.__globals__["trace_ray"].py_func.__globals__["closest_hit"] is closest_hit
-    assert copy.py_func.__globals__["trace_ray"].py_func.__globals__["WITH_NODES"] is False
-    assert trace_ray.py_func.__globals__["WITH_NODES"] is True  # the module is untouched
+    # a feature's call of its own, in a module of its own, is copied with its constant off
+    traced = copy.py_func.__globals__["trace_ray"].py_func.__globals__
+    assert traced["WITH_PASSES"] is False
+    assert traced["material_at_hit"].py_func.__globals__["WITH_NODES"] is False
+    assert traced["material_at_hit"] is not material_at_hit
+    assert material_at_hit.py_func.__globals__["WITH_NODES"] is True  # the module is untouched
     assert variants.variant(render_tile, everything) is copy  # made once
     assert variants.variant(render_tile, frozenset()) is render_tile
 

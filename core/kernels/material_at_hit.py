@@ -1,0 +1,33 @@
+"""A hit's material in the integrator's terms (`Surface`), by one of two routes: a node
+material whose terms vary over the surface runs its shader program at the hit (the
+`nodes` feature, core.kernels.features: a variant without it compiles neither the
+interpreter nor the hit's frame); every other material reads its row of the table."""
+
+from ..jit.decorators import inlined_kernel
+from .features import WITH_NODES
+from .shader_program import ray_at, run_program
+from .surface import diffuse_colour, hit_frame, normal_rows
+from .surface_terms import table_surface, terms_from_lobes
+
+
+@inlined_kernel
+def material_at_hit(geo, surf, mats, ws, shape, material, part, p, d, n_geometric, n_shading,
+                    u, v, depth, first):  # fmt: skip
+    """(the `Surface` at the hit, its shading normal). `first`: the camera ray's hit whose
+    passes are recorded (its diffuse colour is needed even under glass)."""
+    if WITH_NODES and mats.shader_range[material, 0] >= 0:
+        with_frame = mats.shader_frame[material] != 0
+        hit, across = hit_frame(geo, surf, shape, part, p, n_shading, u, v, with_frame)
+        rows = normal_rows(geo.shape_object_from_world, shape)
+        # Light Path: a camera ray until it reflects or refracts (passing a transparent
+        # surface keeps it one, as in Cycles)
+        ray = ray_at(1.0 if depth == 0 else 0.0, 0.0, depth, d, n_geometric)
+        run_program(mats, material, ws.shader_stack, ws.lobes, hit, across, rows, ray)
+        here = terms_from_lobes(ws.lobes)
+        if here.normal[0] != 0.0 or here.normal[1] != 0.0 or here.normal[2] != 0.0:
+            n_shading = here.normal  # Bump, Normal Map: the graph's shading normal
+        return here, n_shading
+    kd = (0.0, 0.0, 0.0)
+    if mats.transparency[material] < 1.0 or first:
+        kd = diffuse_colour(mats, material, u, v)
+    return table_surface(mats, material, kd), n_shading
