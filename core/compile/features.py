@@ -27,7 +27,7 @@ from ..kernels.options import (
 from ..kernels.shadow_log import SHADOW_VARIES
 from ..model import Csg, RenderSettings, Scene
 from ..model.emitters import Emitter
-from ..model.shader import emits, sends_caustics
+from ..model.shader import emits, passes_light, sends_caustics
 
 
 def used_features(packed: PackedScene) -> frozenset[str]:
@@ -73,7 +73,8 @@ def expected_features(scene: Scene, settings: RenderSettings) -> frozenset[str]:
     """A superset of the features `scene` packed for `settings` uses, from the model alone."""
     materials = list({id(m): m for m in _materials(scene.shapes)}.values())
     graphs = [m.surface for m in materials if m.surface is not None]
-    nodes = any(_varies(graph) for graph in graphs)
+    varying = [graph for graph in graphs if _varies(graph)]
+    nodes = bool(varying)
     emitters = any(isinstance(light, Emitter) for light in scene.lights) or any(
         max(m.emission) > 0.0 for m in materials
     ) or any(emits(graph) for graph in graphs)  # fmt: skip
@@ -86,7 +87,9 @@ def expected_features(scene: Scene, settings: RenderSettings) -> frozenset[str]:
         "emitters": emitters,
         "emitters_seen": emitters and settings.max_depth > 0,
         "environment": scene.environment is not None,
-        "varying_shadows": nodes,  # only a graph's share varies over a surface
+        # only a varying graph's share varies over a surface, and only if it can let light
+        # through (under either glass-shadow rule: the more that passes, the safe side)
+        "varying_shadows": any(passes_light(graph, True) for graph in varying),
         "caustics": bool(settings.caustics) and settings.caustic_photons != 0 and specular,
         "passes": bool(settings.passes),
         "adaptive": settings.adaptive_threshold > 0.0 and settings.pixel_samples > 1,

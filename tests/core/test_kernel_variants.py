@@ -219,7 +219,16 @@ def constant_nodes_scene():
     return Scene(camera=_camera(), shapes=shapes, lights=_report_lights()), _settings()
 
 
-@pytest.mark.parametrize("make", [*SCENES.values(), constant_nodes_scene])
+def opaque_nodes_scene():
+    """A node material that varies over the surface (a noise texture's colour) but lets no
+    light through: its shadows do not vary, so its variant has no varying-shadow code."""
+    noise = ShaderNode("noise", {"Scale": 4.0})
+    textured = ShaderNode("diffuse", {"Color": Link(noise, "Color")})
+    shapes = [*_basics(), Sphere("Noisy", Material(surface=textured), _placed(2.0, -1.0, 0.5, 0.4))]
+    return Scene(camera=_camera(), shapes=shapes, lights=_report_lights()), _settings()
+
+
+@pytest.mark.parametrize("make", [*SCENES.values(), constant_nodes_scene, opaque_nodes_scene])
 def test_the_features_expected_before_packing_hold_those_packing_finds(make):
     """The warm-up compiles the variant of `expected_features` before the scene is packed:
     it must hold every feature the packed scene uses, or the render compiles again."""
@@ -229,3 +238,5 @@ def test_the_features_expected_before_packing_hold_those_packing_finds(make):
     assert used <= expected, used - expected
     if make is plain_scene:
         assert expected == frozenset()  # and not everything: a variant saves a compile
+    if make is opaque_nodes_scene:
+        assert expected == used == frozenset({"nodes"})  # its shadows do not vary
