@@ -59,7 +59,6 @@ def kernel_source_hash() -> str:
     # (relocatable.py) too; and vocabulary.py, whose codes the kernels compile in as constants
     here = Path(__file__).parent
     sources = [here / "decorators.py", here / "never_inlined.py", here / "relocatable.py",
-               here / "cache_names.py",
                CORE / "vocabulary.py", *(CORE / "kernels").glob("*.py")]  # fmt: skip
     for path in sorted(sources):
         digest.update(path.name.encode() + path.read_bytes())

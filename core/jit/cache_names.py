@@ -21,17 +21,25 @@ a folder of its own, so that no function is defined twice under one symbol.
 
 from __future__ import annotations
 
+import functools
 import io
 import pickle
 from pathlib import Path
 
 from .relocatable import CORE
 
-# This core's import name, and its top-level modules and packages (`kernels`, `vocabulary`)
+# This core's import name
 OWN_PACKAGE = __package__.rpartition(".")[0]
-OWN_MODULES = frozenset(p.stem for p in CORE.iterdir() if p.suffix == ".py" or p.is_dir())
 # Packages of that last name that are never a Whitted core (numba's own is `numba.core`)
 NOT_OURS = ("numba", "llvmlite", "numpy")
+
+
+@functools.cache
+def _is_own_module(inside: str) -> bool:
+    """Whether `inside` (`kernels.layout`) names a module or package of this core: a test's
+    `tests.core.kernels.test_shapes`, cached beside ours, names none and is left alone."""
+    path = CORE.joinpath(*inside.split("."))
+    return path.with_suffix(".py").is_file() or (path / "__init__.py").is_file()
 
 
 def own_module_name(name: str) -> str:
@@ -45,7 +53,7 @@ def own_module_name(name: str) -> str:
         return name
     if package == OWN_PACKAGE or package.split(".")[0] in NOT_OURS:
         return name
-    if rest.split(".")[0] not in OWN_MODULES:
+    if not _is_own_module(rest):
         return name
     return f"{OWN_PACKAGE}.{rest}"
 

@@ -113,6 +113,8 @@ def test_a_second_core_in_one_process_keeps_a_folder_of_its_own(tmp_path):
         # numba's own `core`, a module our core has not got, and other packages stay
         ("numba.core.types.containers", "numba.core.types.containers"),
         ("core.no_such_module", "core.no_such_module"),
+        ("core.kernels.no_such_module", "core.kernels.no_such_module"),
+        ("tests.core.kernels.test_shapes", "tests.core.kernels.test_shapes"),
         ("numpy", "numpy"),
     ],
 )
