@@ -27,14 +27,13 @@ import numpy as np
 from ..kernels.caster_hulls import HULL_BOX, HULL_SPHERE
 from ..kernels.layout import EMITS_DIFFUSE, EMITS_SHADOW, PackedScene
 from ..kernels.options import EMITTER_MESH, EMITTER_SUN_CONE
-from ..kernels.photons import REFLECTIVE, REFRACTIVE, row_power
-from ..kernels.workspace import new_workspace
+from ..kernels.photons import REFLECTIVE, REFRACTIVE
 from ..model import RenderSettings
 from ..model.shader import sends_caustics
 from ..vocabulary import SHAPE_SPHERE
 from .photon_budget import PILOT_PHOTONS, Budget, automatic_budget
 from .photon_grid import hashed_grid, neighbour_distances, radius_levels
-from .photon_tracer import PhotonTracer
+from .photon_tracer import PhotonTracer, row_power
 
 PILOT = 256  # photons a row, to share out the budget
 MARGIN = 1e-6  # relative: how far outside its shape a caster hull lies
@@ -129,11 +128,8 @@ def add_caustics(packed: PackedScene, settings: RenderSettings, on_photons=None,
         return packed, warnings, None
     start = time.perf_counter()
     rows = np.array([(light, k, PILOT) for light in lit for k in range(len(casters))], np.int64)
-    workspace = new_workspace(0)
-    geo = packed.geometry
     containing = lights_inside(lights, casters)
-    power = np.zeros(len(rows))
-    row_power(geo, lights, casters, containing, rows, settings.seed, workspace.stacks, power)
+    power = row_power(packed, settings, branches, casters, containing, rows)
     if power.sum() <= 0.0:
         return packed, warnings, None
     trace = PhotonTracer(packed, settings, branches, casters, containing, rows, power)

@@ -89,14 +89,10 @@ class PhotonTracer:
         position, direction, power = (np.zeros((room, 3)) for _ in range(3))
         tally = np.zeros(TALLY_SLOTS, np.int64)
         workspace = self._workspace()
-        packed, settings = self.packed, self.settings
-        geo, surf, mats, lights = packed.geometry, packed.surfaces, packed.materials, packed.lights
         try:
-            stored = trace_photons(geo, surf, mats, lights, self.casters, self.containing, part,
-                                   settings.seed, self.branches, max(settings.max_depth, 1),
-                                   settings.glossy_samples > 0, position, direction, power,
-                                   workspace.stacks, workspace.shader_stack, workspace.lobes,
-                                   tally)  # fmt: skip
+            stored = _traced(self.packed, self.settings, self.branches, self.casters,
+                             self.containing, part, False, position, direction, power,
+                             workspace, tally)  # fmt: skip
         finally:
             self.workspaces.put(workspace)
         return position[:stored], direction[:stored], power[:stored], tally
@@ -106,6 +102,30 @@ class PhotonTracer:
             return self.workspaces.get_nowait()
         except Empty:  # none free: a thread's first part
             return new_workspace(0)
+
+
+def row_power(packed, settings, branches, casters, containing, rows: np.ndarray) -> np.ndarray:
+    """The mean power (over RGB) each row (light, hull, photons) of `rows` sends into its
+    hull, estimated from the row's photons (numbered by the row's place), measured by the
+    tracing kernel itself (core.kernels.photons.trace_photons: one compile for both)."""
+    count = len(rows)
+    plan = np.column_stack([rows, np.arange(count), np.zeros(count, np.int64), rows[:, 2]])
+    power = np.zeros((count, 3))
+    none = np.zeros((0, 3))
+    _traced(packed, settings, branches, casters, containing, plan.astype(np.int64), True, none,
+            none, power, new_workspace(0), np.zeros(TALLY_SLOTS, np.int64))  # fmt: skip
+    return power[:, 0].copy()
+
+
+def _traced(packed, settings, branches, casters, containing, plan, measure, position, direction,
+            power, workspace, tally) -> int:  # fmt: skip
+    """trace_photons over `plan` with the render's settings (the one place that calls it,
+    so that measuring and tracing pass the same types: one compile)."""
+    geo, surf, mats, lights = packed.geometry, packed.surfaces, packed.materials, packed.lights
+    return trace_photons(geo, surf, mats, lights, casters, containing, plan, settings.seed,
+                         branches, max(settings.max_depth, 1), settings.glossy_samples > 0,
+                         measure, position, direction, power, workspace.stacks,
+                         workspace.shader_stack, workspace.lobes, tally)  # fmt: skip
 
 
 def _joined(total: int, traced: list) -> Traced:

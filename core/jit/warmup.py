@@ -15,10 +15,9 @@ within it, since no render calls them from Python.
 
 A warm-up compiles the full render kernel, which renders every scene, or a variant without
 some features (core.kernels.features, core.jit.variants): `--without TAG` (a bit set of
-FEATURES, core.jit.variants.tag) compiles that variant, the warm-up scene without a node
-material unless the variant holds node programs, and the photon pass's kernels only if it
-holds caustics. `blender -b` and the command line warm the variant a scene needs (about half
-the compile); Blender's window warms the full kernel at start-up, for every scene after.
+FEATURES, core.jit.variants.tag) compiles that variant, and the photon pass's kernels only
+if it holds caustics. `blender -b` and the command line warm the variant a scene needs (about
+half the compile); Blender's window warms the full kernel at start-up, for every scene after.
 
 A marker file in the cache folder says that all steps of a warm-up finished there (one per
 variant), so the add-on starts no process when the cache holds the kernels a render needs.
@@ -61,9 +60,13 @@ BESIDE = "--beside"
 CACHE_LINE = "Whitted: kernel cache "
 
 
-def warmup_scene(nodes: bool = True):
-    """A small scene with one of everything a packed scene can hold (a node material only
-    when `nodes`: its constant program's fold is a kernel of its own)."""
+def warmup_scene():
+    """A small scene with one of everything a packed scene can hold. Its node material is
+    constant: the compile folds it into the table with a kernel of its own (`fold_surfaces`),
+    which every variant's warm-up compiles, since a scene the variant without node programs
+    renders may still hold constant node materials, as most of Blender's do (a default
+    Principled BSDF, a Glass BSDF): without it, such a scene's first render compiled the
+    fold itself, 8 s after the warm-up said the kernels were ready."""
     from .. import (
         AreaLight,
         Box,
@@ -102,7 +105,7 @@ def warmup_scene(nodes: bool = True):
             Mesh("Mesh", mesh=TriangleMesh(vertices, triangles), world_from_object=moved(4)),
             Csg("Csg", operation="difference", left=Box("Box"), right=Cylinder("Cylinder")),
             Sphere("Textured", Material(texture=Texture(pixels=checker)), moved(6)),
-            *([Sphere("Node material", node_material, moved(8))] if nodes else []),
+            Sphere("Node material", node_material, moved(8)),
         ],
         lights=[
             PointLight((0.0, -4.0, 4.0), (1.0, 1.0, 1.0)),
@@ -137,7 +140,7 @@ def warmup_steps(
     o, d = (0.0, -5.0, 0.5), (0.0, 1.0, 0.0)
 
     def pack():
-        packed.append(_packed_warmup_scene(without))
+        packed.append(_packed_warmup_scene())
 
     def geometry():
         return packed[0].geometry
@@ -307,17 +310,16 @@ class Beside:
 
 def compile_beside(without: frozenset[str]) -> None:
     """What `Beside` compiles: the warm-up scene packed, and its photons traced."""
-    packed = _packed_warmup_scene(without)
+    packed = _packed_warmup_scene()
     if "caustics" not in without:
         warm_photon_kernels(packed)
 
 
-def _packed_warmup_scene(without: frozenset[str]):
+def _packed_warmup_scene():
     from .. import RenderSettings
     from ..compile import compile_scene
 
-    scene = warmup_scene(nodes="nodes" not in without)
-    return compile_scene(scene, RenderSettings(8, 8)).packed
+    return compile_scene(warmup_scene(), RenderSettings(8, 8)).packed
 
 
 def own_core() -> str:

@@ -234,23 +234,8 @@ def photon_start(geo, lights, casters, containing, light, k, key, photons, stack
 
 
 @kernel
-def row_power(geo, lights, casters, containing, plan, seed, stacks, out):
-    """The mean power (over RGB) each row (light, hull, photons) of `plan` sends into its
-    hull, estimated from `photons` photons, into `out`."""
-    for r in range(plan.shape[0]):
-        light, k, photons = plan[r, 0], plan[r, 1], plan[r, 2]
-        total = 0.0
-        for i in range(photons):
-            key = chain(chain(chain(np.uint64(0), seed), r), i)
-            _, _, t, power, falloff = photon_start(geo, lights, casters, containing, light, k,
-                                                   key, photons, stacks)  # fmt: skip
-            total += channel_mean(power) * falloff_share(falloff, t)
-        out[r] = total
-
-
-@kernel
 def trace_photons(geo, surf, mats, lights, casters, containing, plan, seed, branches,
-                  max_bounces, spread, out_position, out_direction, out_power, stacks,
+                  max_bounces, spread, measure, out_position, out_direction, out_power, stacks,
                   shader_stack, lobes, tally):  # fmt: skip
     """Trace photons of rows of `plan` (light, caster hull, the row's photons, the row's
     number, first, count: photons first to first + count - 1 of the row, so that a pass can
@@ -259,7 +244,14 @@ def trace_photons(geo, surf, mats, lights, casters, containing, plan, seed, bran
     of travel, power), in order; returns how many were stored. `branches`: REFLECTIVE |
     REFRACTIVE, the specular events a photon may take; `spread`: rough surfaces scatter
     photons over their lobes (RenderSettings.glossy_samples > 0), else they are sharp;
-    `shader_stack` and `lobes`: a workspace's, for node materials' programs."""
+    `shader_stack` and `lobes`: a workspace's, for node materials' programs.
+
+    `measure`: trace nothing, only add up the mean power (over RGB) each row's photons send
+    into its hull, into out_power[row, 0] (zeros on entry), to share a pass's photons among
+    the rows (core.compile.caustics). One kernel does both, rather than a second one, so
+    that the searches and the light samples it shares with the tracing are optimised and
+    made into machine code once: a kernel of its own for this took as long to compile as
+    the whole tracer (14 s against 13)."""
     stored = 0
     for r in range(plan.shape[0]):
         light, k, photons, number = plan[r, 0], plan[r, 1], plan[r, 2], plan[r, 3]
@@ -268,6 +260,9 @@ def trace_photons(geo, surf, mats, lights, casters, containing, plan, seed, bran
             o, d, t_light, power, falloff = photon_start(geo, lights, casters, containing,
                                                          light, k, key, photons,
                                                          stacks)  # fmt: skip
+            if measure:
+                out_power[r, 0] += channel_mean(power) * falloff_share(falloff, t_light)
+                continue
             if containing[light, k]:
                 t_light = 0.0  # it starts at the light
             if max(power[0], power[1], power[2]) <= 0.0:
