@@ -142,6 +142,8 @@ def _kernels_ready(engine, timings, without=frozenset()) -> bool:
     status = warmup.wait(lambda: cancelled(engine), show)
     if compiling:
         timings.compile_s = time.perf_counter() - start
+        if status.state == "ready":
+            show(status)  # its "kernels ready in ..." line, which ended the wait
     if status.state == "running":
         message = (
             "Whitted: render cancelled while the kernels compiled (first use on this "

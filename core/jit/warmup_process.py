@@ -94,8 +94,16 @@ class WarmupProcess:
                 if line.startswith(PROGRESS_PREFIX) or line.startswith(READY_PREFIX):
                     self._text = line[len("Whitted: ") :]
                     self._line_at = time.perf_counter()
+                if line.startswith(READY_PREFIX) and not foreign:
+                    # The child wrote its marker before this line: the cache is complete.
+                    # What it does after (pruning old cache folders, its interpreter's exit
+                    # with numba's and LLVM's teardown: 1.1 s of a 30 s first render) holds
+                    # up no render
+                    self._state = "ready"
         status = process.wait()
         with self._lock:
+            if self._state == "ready":
+                return
             if status == 0 and not foreign:
                 self._state = "ready"
             else:

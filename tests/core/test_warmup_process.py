@@ -63,6 +63,28 @@ def test_progress_lines_become_the_status_and_a_clean_exit_is_ready(tmp_path):
                      "compiling kernels: 2 of 2 (render kernel)"]  # fmt: skip
 
 
+def test_the_ready_line_is_ready_while_the_child_is_still_exiting(tmp_path):
+    """The child writes its marker, then prints the ready line: a render need not wait for
+    what follows (pruning, the interpreter's exit), here a child that lingers."""
+    gone = tmp_path / "gone"
+    python = fake_python(
+        tmp_path,
+        f'echo "Whitted: core {OWN_CORE}"\n'
+        'echo "Whitted: compiling kernels: 1 of 1 (render kernel)"\n'
+        'echo "Whitted: kernels ready in 1.0 s (render kernel 1.0 s)"\n'
+        f"sleep 30\ntouch {gone}\n",
+    )
+    warmup = WarmupProcess(python)
+    warmup.start()
+    status = warmup.wait(lambda: False, lambda s: None, poll_s=0.01)
+    try:
+        assert status.state == "ready" and status.text.startswith("kernels ready")
+        assert warmup._process.poll() is None and not gone.exists()  # still there
+    finally:
+        warmup._process.kill()
+        warmup._process.wait()
+
+
 def test_a_cancelled_wait_returns_at_once_and_the_child_goes_on(tmp_path):
     done = tmp_path / "done"
     python = fake_python(
