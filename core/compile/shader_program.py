@@ -69,6 +69,15 @@ class Program:
         assert len(row) <= 8, row  # op and seven operands
         self.ops.append(list(row) + [0] * (8 - len(row)))
 
+    def step_with_more(self, row: tuple, more: tuple) -> None:
+        """A step whose operands go on in the next row (OP_MORE), which the kernel reads
+        as that row. Both rows' operands are evaluated by the caller first, since an input
+        linked to a texture adds steps of its own: made between the two rows, they took the
+        continuation's place, and the step drew nothing (an image in a Principled BSDF's
+        Emission Color, as Blender's glTF importer links every emissive map, went black)."""
+        self.step(*row)
+        self.step(sp.OP_MORE, *more)
+
     def resolved(self) -> tuple[np.ndarray, np.ndarray]:
         """(ops int32 (n, 8), constants float64): operands as stack slots, the constants
         first and the computed values after them."""
@@ -162,15 +171,16 @@ class ProgramBuilder:
         elif kind == "holdout":
             p.step(sp.OP_HOLDOUT, weight)
         elif kind == "principled":
-            p.step(sp.OP_PRINCIPLED, weight, v(node.input("Base Color"), "triple"),
+            row = (sp.OP_PRINCIPLED, weight, v(node.input("Base Color"), "triple"),
                    v(node.input("Metallic"), "value"), v(node.input("Roughness"), "value"),
                    v(node.input("IOR"), "value"), v(node.input("Alpha"), "value"),
                    self._normal(node))  # fmt: skip
-            p.step(sp.OP_MORE, v(node.input("Transmission"), "value"),
-                   v(node.input("Emission Color"), "triple"),
-                   v(node.input("Emission Strength"), "value"), v(node.input("Specular"), "value"),
-                   v(node.input("Specular Tint"), "triple"),
-                   int(bool(node.setting("layered"))))  # fmt: skip
+            more = (v(node.input("Transmission"), "value"),
+                    v(node.input("Emission Color"), "triple"),
+                    v(node.input("Emission Strength"), "value"), v(node.input("Specular"), "value"),
+                    v(node.input("Specular Tint"), "triple"),
+                    int(bool(node.setting("layered"))))  # fmt: skip
+            p.step_with_more(row, more)
 
     def _normal(self, node):
         """The operand of a closure's Normal input, or -1 (the surface's own normal)."""
@@ -272,35 +282,36 @@ class ProgramBuilder:
                    v(node.input("Color1"), "triple"), v(node.input("Color2"), "triple"),
                    v(node.input("Scale"), "value"))  # fmt: skip
         elif kind == "brick":
-            p.step(sp.OP_BRICK, slots["Color"], slots["Fac"],
+            row = (sp.OP_BRICK, slots["Color"], slots["Fac"],
                    v(node.input("Vector"), "triple", sp.COORD_GENERATED),
                    v(node.input("Color1"), "triple"), v(node.input("Color2"), "triple"),
                    v(node.input("Mortar"), "triple"), v(node.input("Scale"), "value"))  # fmt: skip
             shape = (float(node.setting("offset")), float(node.setting("squash")), 0.0)
             frequencies = node.setting("offset_frequency") * 256 + node.setting("squash_frequency")
-            p.step(sp.OP_MORE, v(node.input("Mortar Size"), "value"),
-                   v(node.input("Mortar Smooth"), "value"), v(node.input("Bias"), "value"),
-                   v(node.input("Brick Width"), "value"), v(node.input("Row Height"), "value"),
-                   p.constant(shape), frequencies)  # fmt: skip
+            more = (v(node.input("Mortar Size"), "value"),
+                    v(node.input("Mortar Smooth"), "value"), v(node.input("Bias"), "value"),
+                    v(node.input("Brick Width"), "value"), v(node.input("Row Height"), "value"),
+                    p.constant(shape), frequencies)  # fmt: skip
+            p.step_with_more(row, more)
         elif kind == "noise":
-            p.step(sp.OP_NOISE, slots["Color"], slots["Fac"],
+            row = (sp.OP_NOISE, slots["Color"], slots["Fac"],
                    v(node.input("Vector"), "triple", sp.COORD_GENERATED),
                    *(v(node.input(name), "value")
                      for name in ("Scale", "Detail", "Roughness", "Lacunarity")))  # fmt: skip
             # its Color costs two more fractal sums: made only where something reads it
-            p.step(sp.OP_MORE, v(node.input("Distortion"), "value"),
-                   int(bool(node.setting("normalize"))),
-                   int((id(node), "Color") in self.used))  # fmt: skip
+            more = (v(node.input("Distortion"), "value"), int(bool(node.setting("normalize"))),
+                    int((id(node), "Color") in self.used))  # fmt: skip
+            p.step_with_more(row, more)
         elif kind == "voronoi":
             names = ("Scale", "Detail", "Roughness", "Lacunarity", "Randomness", "Exponent")
             values = [v(node.input(name), "value") for name in names]
-            p.step(sp.OP_VORONOI, slots["Color"], slots["Distance"], slots["Position"],
+            row = (sp.OP_VORONOI, slots["Color"], slots["Distance"], slots["Position"],
                    v(node.input("Vector"), "triple", sp.COORD_GENERATED), *values[:3])  # fmt: skip
             modes = (VORONOI_FEATURES.index(node.setting("feature"))
                      + 2 * VORONOI_METRICS.index(node.setting("distance"))
                      + 8 * int(bool(node.setting("normalize")))
                      + 16 * VORONOI_HASHES.index(node.setting("cell_hash")))  # fmt: skip
-            p.step(sp.OP_MORE, *values[3:], modes)
+            p.step_with_more(row, (*values[3:], modes))
         elif kind == "gradient":
             p.step(sp.OP_GRADIENT, slots["Color"], slots["Fac"],
                    v(node.input("Vector"), "triple", sp.COORD_GENERATED),

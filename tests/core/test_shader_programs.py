@@ -330,3 +330,61 @@ def test_an_images_alpha_cuts_the_surface_exactly_at_its_texels():
     assert np.all(red != blue)  # each pixel wholly card or wholly World
     # the image's row 0 is its top, as the picture's
     np.testing.assert_array_equal(red, np.kron(mask, np.ones((4, 4), bool)))
+
+
+def _computed(value):
+    """`value` as a node computes it (a step of the program before its reader's): a number
+    plus 0, a colour mixed with factor 0, both exact."""
+    if np.ndim(value) == 0:
+        return Link(_node("math", A=value, B=0.0), "Value")
+    return Link(_node("mix_color", Fac=0.0, A=value, B=(0.0, 0.0, 0.0)), "Color")
+
+
+# The nodes whose step goes on in a second row (OP_MORE), with values for the inputs read
+# from that row (the rest at their defaults)
+CONTINUED = {
+    "principled": {"Transmission": 0.2, "Emission Color": (0.6, 0.3, 0.1),
+                   "Emission Strength": 1.5, "Specular": 0.8, "Specular Tint": (0.9, 0.7, 0.5)},
+    "brick": {"Mortar Size": 0.05, "Mortar Smooth": 0.3, "Bias": 0.2, "Brick Width": 0.4,
+              "Row Height": 0.3},
+    "noise": {"Distortion": 0.7},
+    "voronoi": {"Lacunarity": 2.5, "Randomness": 0.6, "Exponent": 0.7},
+}  # fmt: skip
+
+
+@pytest.mark.parametrize("kind", CONTINUED)
+def test_an_input_a_node_computes_renders_as_the_same_value_given(kind):
+    """Every input, given as a value or computed by a linked node, renders the same picture.
+    A linked input adds steps to the program: they once came between a step and its second
+    row, which the step then missed, drawing nothing (an image in a Principled BSDF's
+    Emission Color, as Blender's glTF importer links emissive maps, was black)."""
+    values = CONTINUED[kind]
+
+    def material(inputs):
+        node = ShaderNode(kind, inputs)
+        if kind == "principled":
+            return Material(surface=node)
+        output = "Distance" if kind == "voronoi" else "Color"
+        return _diffuse(Link(node, output))
+
+    given, _, _ = _image(material=material(dict(values)))
+    computed, _, _ = _image(material=material({k: _computed(v) for k, v in values.items()}))
+    plain, _, _ = _image(material=material({}))
+    assert not np.array_equal(given, plain)  # the premise: the values change the picture
+    np.testing.assert_array_equal(computed, given)
+
+
+def test_an_image_in_a_principled_emission_is_seen_as_its_pixels_times_the_strength():
+    """A Principled BSDF with a black base (no specular) emitting an image, in the dark: what
+    the camera sees is the image's pixels times Emission Strength, as the Emission BSDF
+    of that image shows them."""
+    texture = Texture(pixels=_stripes(), srgb=False)
+    image = ShaderNode("image", settings={"texture": texture})
+    principled = _node("principled", Base_Color=(0.0, 0.0, 0.0), Specular=0.0,
+                       Emission_Color=Link(image, "Color"), Emission_Strength=2.0)  # fmt: skip
+    emission = _node("emission", Color=Link(image, "Color"), Strength=2.0)
+    seen, _, _ = _image(material=Material(surface=principled), environment_colour=0.0)
+    expected, _, _ = _image(material=Material(surface=emission), environment_colour=0.0)
+    _, inside = hits(SIZE)
+    assert seen[inside].min() > 0.0  # never black where the image is not
+    np.testing.assert_allclose(seen, expected, atol=1e-12)

@@ -1,0 +1,47 @@
+"""Materials as Blender's glTF importer makes them of the public sample models, side by side
+with Cycles (tests/support/cycles.py): small glTF files written here (tests/support/
+gltf_files.py) go through `bpy.ops.import_scene.gltf`, in every Blender version the tests
+run as a module.
+
+Emissive maps: the importer links the map to the Principled BSDF's Emission Color (through a
+Mix node when the emissive factor is coloured; a grey factor goes into Emission Strength).
+Until issue 61 the surface rendered black: the map's steps came between the Principled
+step and its second row, which it then missed (core.compile.shader_program)."""
+
+import numpy as np
+import pytest
+
+from tests.support.cycles import new_scene, side_by_side
+from tests.support.gltf_files import checker, import_gltf, write_quad
+
+pytestmark = pytest.mark.bpy
+
+# A pixel agrees when within this of Cycles' (the emission is exact in both, Cycles' in
+# float32); a texel edge through a pixel's centre is Cycles' blend of two texels
+CLOSE = 2e-3
+EDGE_SHARE = 0.02
+
+BASE = checker((200, 60, 30), (40, 80, 220))
+GLOW = checker((0, 0, 0), (255, 200, 50))
+
+
+@pytest.mark.parametrize("factor", [(1.0, 1.0, 1.0), (0.5, 0.2, 0.1)], ids=["grey", "coloured"])
+def test_an_emissive_map_glows_as_in_cycles(bpy_with_whitted, tmp_path, factor):
+    """A base colour map and an emissive map, in the dark: the camera sees the emission."""
+    bpy = bpy_with_whitted
+    scene = new_scene(bpy)
+    bpy.data.objects.remove(bpy.data.objects["Plane"])
+    material = dict(
+        name="Glowing",
+        pbrMetallicRoughness=dict(baseColorTexture=dict(index=0), metallicFactor=0.0),
+        emissiveTexture=dict(index=1),
+        emissiveFactor=list(factor),
+    )
+    import_gltf(bpy, write_quad(tmp_path / "quad.gltf", material, [BASE, GLOW]))
+    tree = bpy.data.materials["Glowing"].node_tree
+    emission = next(n for n in tree.nodes if n.type == "BSDF_PRINCIPLED").inputs["Emission Color"]
+    assert emission.is_linked  # the importer's shape: the map (or its Mix) feeds it
+    cycles, whitted = side_by_side(bpy, scene, tmp_path, samples=16)
+    assert cycles.max() > 0.1  # the premise: something glows
+    off = np.abs(whitted - cycles).max(axis=-1) > CLOSE
+    assert off.mean() <= EDGE_SHARE, (off.mean(), whitted.mean(), cycles.mean())
