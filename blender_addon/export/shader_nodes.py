@@ -195,7 +195,7 @@ class GraphReader:
         for name in names:
             made.inputs[name] = v(node, groups, name)
         self._distribution(node, made)
-        if kind == "BSDF_DIFFUSE" and self._number(node, "Roughness") > 0.0:
+        if kind == "BSDF_DIFFUSE" and _number(node.inputs["Roughness"]) > 0.0:
             self.note(f"{node_label(node)}'s Roughness is not modelled (used: Lambert, 0)")
         if kind == "BSDF_METALLIC" and getattr(node, "fresnel_type", "F82") != "F82":
             self.note(f"{node_label(node)}'s Physical Conductor Fresnel (used: F82 Tint)")
@@ -226,7 +226,14 @@ class GraphReader:
 
     def _principled(self, node, groups):
         for name, neutral, used in _UNMODELLED:
-            if node.inputs.get(name) is not None and self._number(node, name) != neutral:
+            socket = node.inputs.get(name)
+            if socket is None:
+                continue
+            feed = feed_of(socket, groups)
+            if feed.node is not None:  # a texture or any node may make it non-neutral
+                self.note(f"{node_label(node)}'s {name}, driven by node "
+                          f"{node_label(feed.node)}, is not modelled (used: {used})")  # fmt: skip
+            elif _number(feed.socket) != neutral:  # its value, or the group's input's
                 self.note(f"{node_label(node)}'s {name} is not modelled (used: {used})")
         for name in ("Coat Normal", "Clearcoat Normal", "Tangent"):
             self.linked(node, groups, name, "the surface's own normal")
@@ -385,7 +392,7 @@ class GraphReader:
                 made.inputs[name] = v(node, groups, name)
             made.settings["invert"] = bool(node.invert)
             width = node.inputs.get("Filter Width")
-            if width is not None and self._number(node, "Filter Width") > 0.1 + 1e-6:
+            if width is not None and _number(node.inputs["Filter Width"]) > 0.1 + 1e-6:
                 self.note(f"{node_label(node)}'s Filter Width above 0.1 (used: the height's "
                           "slope at the point)")  # fmt: skip
             self.linked(node, groups, "Normal", "the surface's own normal, bumped")
@@ -463,10 +470,6 @@ class GraphReader:
         if socket is not None and feed_of(socket, groups).node is not None:
             self.note(f"{node_label(node)}'s {name} is not read (used: {what})")
 
-    def _number(self, node, name) -> float:
-        value = _constant(node.inputs[name])
-        return float(value if np.ndim(value) == 0 else np.mean(value))
-
 
 def _mix_inputs(node):
     """(factor, A, B) sockets of a Mix Color: MixRGB's three, or the Mix node's colour ones
@@ -477,6 +480,12 @@ def _mix_inputs(node):
     kind = {"RGBA": "Color", "FLOAT": "Float", "VECTOR": "Vector"}.get(node.data_type, "Color")
     factor = by_id.get("Factor_Float") or node.inputs[0]
     return factor, by_id.get(f"A_{kind}", node.inputs[1]), by_id.get(f"B_{kind}", node.inputs[2])
+
+
+def _number(socket) -> float:
+    """A socket's own value as one number (a colour's mean)."""
+    value = _constant(socket)
+    return float(value if np.ndim(value) == 0 else np.mean(value))
 
 
 def _constant(socket):
