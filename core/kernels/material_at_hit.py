@@ -4,6 +4,7 @@ material whose terms vary over the surface runs its shader program at the hit (t
 interpreter nor the hit's frame); every other material reads its row of the table."""
 
 from ..jit.decorators import inlined_kernel
+from .bent_normal import kept_above
 from .features import WITH_NODES
 from .shader_program import ray_at, run_program
 from .surface import diffuse_colour, hit_frame, normal_rows
@@ -25,7 +26,8 @@ def material_at_hit(geo, surf, mats, ws, shape, material, part, p, d, n_geometri
         run_program(mats, material, ws.shader_stack, ws.lobes, hit, across, rows, ray)
         here = terms_from_lobes(ws.lobes)
         if here.normal[0] != 0.0 or here.normal[1] != 0.0 or here.normal[2] != 0.0:
-            n_shading = here.normal  # Bump, Normal Map: the graph's shading normal
+            # Bump, Normal Map: the graph's shading normal, kept from reflecting below
+            n_shading = kept_above(n_geometric, d, here.normal)
         return here, n_shading
     kd = (0.0, 0.0, 0.0)
     if mats.transparency[material] < 1.0 or first:

@@ -61,6 +61,7 @@ import math
 import numpy as np
 
 from ..jit.decorators import kernel
+from .bent_normal import kept_above
 from .caster_hulls import hull_centre, hull_point, hull_start, hulls_entered, start_density
 from .emitters import emitter_sample
 from .fresnel import fresnel_dielectric
@@ -294,7 +295,7 @@ def trace_photons(geo, surf, mats, lights, casters, containing, plan, seed, bran
                     run_program(mats, material, shader_stack, lobes, hit, across, rows, ray)
                     here = terms_from_lobes(lobes)
                     if here.normal[0] != 0.0 or here.normal[1] != 0.0 or here.normal[2] != 0.0:
-                        n_shading = here.normal  # Bump, Normal Map
+                        n_shading = kept_above(n_geometric, d, here.normal)  # Bump, Normal Map
                 else:
                     here = table_surface(mats, material, row(mats.diffuse, material))
                 tau, rho = here.transparency, here.reflectivity
