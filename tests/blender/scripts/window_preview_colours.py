@@ -83,7 +83,9 @@ def tick():
             return 0.25
         seen["thumbnails"].setdefault(engine, {})[material.name] = rows
     if not queue:
-        f12()
+        # Blender may still refuse writes as the last preview job ends: then at the next tick
+        if not written(f12):
+            return 0.25
         with open(OUT, "w") as f:
             json.dump(seen, f)
         bpy.ops.wm.quit_blender()
