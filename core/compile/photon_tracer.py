@@ -112,8 +112,8 @@ def row_power(packed, settings, branches, casters, containing, rows: np.ndarray)
     plan = np.column_stack([rows, np.arange(count), np.zeros(count, np.int64), rows[:, 2]])
     power = np.zeros((count, 3))
     none = np.zeros((0, 3))
-    _traced(packed, settings, branches, casters, containing, plan.astype(np.int64), True, none,
-            none, power, new_workspace(0), np.zeros(TALLY_SLOTS, np.int64))  # fmt: skip
+    _traced(packed, settings, branches, casters, containing, plan, True, none, none, power,
+            new_workspace(0), np.zeros(TALLY_SLOTS, np.int64))  # fmt: skip
     return power[:, 0].copy()
 
 

@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pytest
 
-from tests.support.cycles import new_scene, side_by_side, uniform_world
+from tests.support.cycles import new_scene, normal_map_image, side_by_side, uniform_world
 
 pytestmark = pytest.mark.bpy
 
@@ -17,14 +17,7 @@ pytestmark = pytest.mark.bpy
 def _normal_mapped_metal(bpy):
     """Principled metal, roughness 0, its normal from a 4 x 4 map of strongly tilted texel
     normals (tangent space, Closest, strength 1)."""
-    rng = np.random.default_rng(61)
-    image = bpy.data.images.new("Dents", 4, 4, alpha=True, float_buffer=True)
-    image.colorspace_settings.name = "Non-Color"  # before the pixels: setting it reloads them
-    rgba = np.ones((4, 4, 4), np.float32)
-    rgba[..., 0:2] = rng.uniform(0.1, 0.9, (4, 4, 2))
-    rgba[..., 2] = rng.uniform(0.6, 0.9, (4, 4))
-    image.pixels.foreach_set(rgba.ravel())
-    image.pack()
+    image = normal_map_image(bpy, "Dents", seed=61, across=(0.1, 0.9), up=(0.6, 0.9))
     material = bpy.data.materials.new("Dented metal")
     material.use_nodes = True
     tree = material.node_tree

@@ -13,7 +13,7 @@ import math
 import numpy as np
 import pytest
 
-from tests.support.cycles import new_scene, side_by_side
+from tests.support.cycles import new_scene, normal_map_image, side_by_side
 
 pytestmark = pytest.mark.bpy
 
@@ -372,16 +372,8 @@ def _displacement(bpy, tree, diffuse, output):
 
 def _normal_map(bpy, tree, diffuse, output):
     """A float image of normal-map colours, Closest (a normal per texel), tangent space."""
-    rng = np.random.default_rng(4)
-    image = bpy.data.images.new("Normals", 4, 4, alpha=True, float_buffer=True)
-    image.colorspace_settings.name = "Non-Color"  # before the pixels: setting it reloads them
-    rgba = np.ones((4, 4, 4), np.float32)
-    rgba[..., 0:2] = rng.uniform(0.2, 0.8, (4, 4, 2))
-    rgba[..., 2] = rng.uniform(0.7, 1.0, (4, 4))
-    image.pixels.foreach_set(rgba.ravel())
-    image.pack()
     node = tree.nodes.new("ShaderNodeTexImage")
-    node.image = image
+    node.image = normal_map_image(bpy, "Normals", seed=4)
     node.interpolation = "Closest"
     mapping = tree.nodes.new("ShaderNodeNormalMap")
     mapping.inputs["Strength"].default_value = 0.8

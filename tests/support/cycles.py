@@ -197,6 +197,20 @@ def environment_world(bpy, scene, pixels: np.ndarray, turn_degrees: float = 0.0,
     return world
 
 
+def normal_map_image(bpy, name, seed, across=(0.2, 0.8), up=(0.7, 1.0)):
+    """A 4 x 4 float image of normal-map colours (Non-Color): each texel's red and green
+    (its tilt across the surface) uniform in `across`, its blue (up) in `up`."""
+    rng = np.random.default_rng(seed)
+    image = bpy.data.images.new(name, 4, 4, alpha=True, float_buffer=True)
+    image.colorspace_settings.name = "Non-Color"  # before the pixels: setting it reloads them
+    rgba = np.ones((4, 4, 4), np.float32)
+    rgba[..., 0:2] = rng.uniform(*across, (4, 4, 2))
+    rgba[..., 2] = rng.uniform(*up, (4, 4))
+    image.pixels.foreach_set(rgba.ravel())
+    image.pack()
+    return image
+
+
 def uniform_world(scene, colour, strength=1.0):
     world = scene.world
     world.use_nodes = True
