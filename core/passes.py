@@ -21,7 +21,8 @@ kernels also write, per pixel, from the same camera rays:
     environment     3  the background seen directly by camera rays
     ambient         3  ambient light at the first hit (kd * ambient)
     diffuse         3  direct diffuse light at the first hit, shadows included
-    specular        3  Phong highlights at the first hit, shadows included
+    specular        3  highlights (Phong's, a node material's glints) at the first hit,
+                       shadows included
     reflection      3  everything seen in the first hit's mirror reflection (and a dielectric's
                        Fresnel reflection), with all its own bounces
     refraction      3  everything seen through the first hit (its refracted ray and bounces)

@@ -203,16 +203,26 @@ class GraphReader:
         return made
 
     def _distribution(self, node, made) -> None:
-        """A rough lobe is GGX's (core.kernels.glossy): a Sharp distribution (before 4.0)
-        has no roughness, and Beckmann or Ashikhmin-Shirley are noted when rough."""
+        """A rough lobe's microfacet distribution (core.kernels.microfacet): GGX,
+        Multiscatter GGX and Beckmann as named (Beckmann's rays spread by Glossy Samples
+        are GGX's: noted when rough); a Sharp one (before 4.0) has no roughness, and
+        Ashikhmin-Shirley is noted when rough (drawn as Multiscatter GGX)."""
         distribution = getattr(node, "distribution", "GGX")
-        if "Roughness" not in made.inputs or distribution in ("GGX", "MULTI_GGX"):
+        if "Roughness" not in made.inputs:
             return
-        if distribution == "SHARP":
+        rough = isinstance(made.inputs["Roughness"], core.Link) or made.inputs["Roughness"] > 0.0
+        if distribution in core.model.shader.DISTRIBUTIONS:
+            made.settings["distribution"] = distribution
+            if distribution == "BECKMANN" and rough:  # core.kernels.glossy samples GGX's
+                self.note(f"{node_label(node)}'s Beckmann distribution (used: GGX for the "
+                          "rays Glossy Samples spread; its glint is Beckmann's)")  # fmt: skip
+        elif distribution == "SHARP":
             made.inputs["Roughness"] = 0.0
-        elif isinstance(made.inputs["Roughness"], core.Link) or made.inputs["Roughness"] > 0.0:
-            shown = distribution.replace("_", "-").title()
-            self.note(f"{node_label(node)}'s {shown} distribution (used: GGX)")
+        else:
+            made.settings["distribution"] = "MULTI_GGX"
+            if rough:
+                shown = distribution.replace("_", "-").title()
+                self.note(f"{node_label(node)}'s {shown} distribution (used: Multiscatter GGX)")
 
     def _normal(self, made, node, groups) -> None:
         """A closure's Normal input: what feeds it, else the displacement's bump normal."""
@@ -261,6 +271,7 @@ class GraphReader:
         dielectric = made.inputs.get("Metallic", 0.0) != 1.0
         if PRINCIPLED_LAYERED and constant_tint and dielectric and not np.allclose(tint, 1.0):
             self.note(f"{node_label(node)}'s Specular Tint on a dielectric (used: white)")
+        self._distribution(node, made)
         self._normal(made, node, groups)
         return made
 

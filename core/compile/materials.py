@@ -13,6 +13,7 @@ from ..kernels.layout import Materials
 from ..kernels.shader_fold import FOLDED_COLUMNS, fold_surfaces
 from ..kernels.shader_program import SHADER_STACK
 from ..kernels.shadow_log import SHADOW_VARIES
+from ..kernels.surface_terms import GLOSS_COLUMNS
 from ..model.shader import passes_light
 from ..passes import crypto_id
 from ..textures import load_texture
@@ -80,6 +81,7 @@ def pack_materials(shapes: list) -> tuple[Materials, dict[int, int]]:
         transparent=rows([m.transparent for m, _ in materials]),
         holdout=np.array([m.holdout for m, _ in materials], float),
         roughness=np.array([m.roughness for m, _ in materials], float),
+        gloss=_no_gloss(len(materials)),
         texture_alpha=concatenated([a.ravel() for _, a in textures.loaded], (0,), np.float32),
         **_program_tables(programs),
     )
@@ -151,6 +153,7 @@ def _fold_constant_programs(table: Materials, programs: list) -> None:
         table.transparent[k] = row[31:34]
         table.holdout[k] = row[34]
         table.roughness[k] = row[35]
+        table.gloss[k] = row[36:]
         table.shader_range[k] = (-1, -1)
 
 
@@ -196,7 +199,15 @@ def folded_row(table: Materials, k: int) -> dict:
         refraction_fresnel=table.refraction_fresnel[k], emission=table.emission[k],
         transparent=table.transparent[k], holdout=table.holdout[k],
         roughness=table.roughness[k], programmed=table.shader_range[k, 0] >= 0,
+        gloss=table.gloss[k],
     )  # fmt: skip
+
+
+def _no_gloss(count: int) -> np.ndarray:
+    """Gloss rows of no glint (core.kernels.surface_terms), a coat IOR of 1.5 as its default."""
+    gloss = np.zeros((count, GLOSS_COLUMNS))
+    gloss[:, 15] = 1.5
+    return gloss
 
 
 def _edge(material):

@@ -20,6 +20,7 @@ import numpy as np
 from ..kernels import shader_program as sp
 from ..kernels.facing_values import FACING_FRESNEL, FACING_LAYER_FACING, FACING_LAYER_FRESNEL
 from ..model.shader import (
+    DISTRIBUTIONS,
     EXTENSIONS,
     GRADIENT_TYPES,
     MAPPING_TYPES,
@@ -96,6 +97,11 @@ def _slot(operand, base):
     return int(operand)
 
 
+def _distribution(node) -> int:
+    """A rough closure's microfacet distribution, as core.kernels.microfacet numbers it."""
+    return DISTRIBUTIONS.index(node.setting("distribution"))
+
+
 def _outputs_read(surface) -> set:
     """(id(node), output) of every output a link of the graph reads."""
     read, seen, stack = set(), set(), [surface]
@@ -154,15 +160,17 @@ class ProgramBuilder:
                    self._normal(node))  # fmt: skip
         elif kind == "glossy":
             p.step(sp.OP_GLOSSY, weight, v(node.input("Color"), "triple"),
-                   v(node.input("Roughness"), "value"), 0, 0, 0, self._normal(node))  # fmt: skip
+                   v(node.input("Roughness"), "value"), _distribution(node), 0, 0,
+                   self._normal(node))  # fmt: skip
         elif kind == "metallic":
             p.step(sp.OP_METALLIC, weight, v(node.input("Base Color"), "triple"),
                    v(node.input("Edge Tint"), "triple"), v(node.input("Roughness"), "value"),
-                   0, 0, self._normal(node))  # fmt: skip
+                   _distribution(node), 0, self._normal(node))  # fmt: skip
         elif kind in ("glass", "refraction"):
             p.step(sp.OP_GLASS, weight, v(node.input("Color"), "triple"),
                    v(node.input("IOR"), "value"), int(kind == "glass"),
-                   v(node.input("Roughness"), "value"), 0, self._normal(node))  # fmt: skip
+                   v(node.input("Roughness"), "value"), _distribution(node),
+                   self._normal(node))  # fmt: skip
         elif kind == "transparent":
             p.step(sp.OP_TRANSPARENT, weight, self.value(node.input("Color"), "triple"))
         elif kind == "emission":
@@ -179,7 +187,7 @@ class ProgramBuilder:
                     v(node.input("Emission Color"), "triple"),
                     v(node.input("Emission Strength"), "value"), v(node.input("Specular"), "value"),
                     v(node.input("Specular Tint"), "triple"),
-                    int(bool(node.setting("layered"))))  # fmt: skip
+                    int(bool(node.setting("layered"))), _distribution(node))  # fmt: skip
             p.step_with_more(row, more)
 
     def _normal(self, node):

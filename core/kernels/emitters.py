@@ -1,5 +1,6 @@
 """Lights in Blender's units at one surface point: each light's samples, their shadow rays,
-and the report's Lambert and Phong terms for what arrives.
+and the report's Lambert and Phong terms for what arrives (or, for a node material's rough
+lobes, their microfacet glint: core.kernels.microfacet).
 
 For light l seen from a shading point, sample j gives a unit direction L_j, the distance to
 the light along it and a weight w_j (`light_sphere`, `light_panel`, `light_sun`); with the
@@ -30,6 +31,7 @@ from .light_pyramid import TRAVERSE_ALL
 from .light_samples import light_spread, square_point
 from .light_sphere import facing_disk_sample, sphere_sample, spot_mask
 from .light_sun import sun_sample
+from .microfacet import gloss_lit
 from .options import (
     EMITTER_ELLIPSE,
     EMITTER_FACING_DISK,
@@ -116,8 +118,9 @@ def emitted_colour(frame, lights, geo, stacks, point, phong, key, event, split):
     `split` (core.kernels.shading.local_colour's) stacks.terms gets the light falling too."""
     targets, visibility, terms = stacks.light_targets, stacks.visibility, stacks.terms
     origin, n, to_viewer = point.origin, point.normal, point.to_viewer
-    kd, ks, shininess = phong
-    glossy = ks[0] > 0.0 or ks[1] > 0.0 or ks[2] > 0.0
+    kd, ks, shininess, gloss = phong.kd, phong.ks, phong.shininess, phong.gloss
+    glints = gloss.alpha > 0.0
+    glossy = glints or ks[0] > 0.0 or ks[1] > 0.0 or ks[2] > 0.0
     samples = frame.options[OPTION_SHADOW_SAMPLES]
     pattern = frame.options[OPTION_SHADOW_PATTERN]
     adaptive = frame.options[OPTION_SHADOW_ADAPTIVE] != 0
@@ -175,7 +178,10 @@ def emitted_colour(frame, lights, geo, stacks, point, phong, key, event, split):
                 continue
             factor = diffuse * n_dot_l
             seen = seen_through(stacks, j)
-            if specular > 0.0:
+            if specular > 0.0 and glints:
+                glint = gloss_lit(gloss, n, to_viewer, light_dir)
+                total = add(total, mul(glint, scale(seen, weight)))
+            elif specular > 0.0:
                 reflected = sub(scale(n, 2.0 * n_dot_l), light_dir)
                 r_dot_v = min(dot(reflected, to_viewer), 1.0)
                 if r_dot_v > 0.0:

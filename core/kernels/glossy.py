@@ -3,8 +3,9 @@
 With RenderSettings.glossy_samples 0 (the default) a rough surface stays sharp: its one
 reflected ray leaves by the mirror direction of the shading normal, its refracted ray by
 Snell's law, each carrying what the rough lobe reflects or transmits on average (the
-lobe's terms, core.kernels.shader_program), and its highlight stands for the lights it
-would blur (Surface.mirror_hides_lights). A scene that needs no blur pays nothing for it.
+lobe's terms, core.kernels.shader_program), and its glint (core.kernels.microfacet) stands
+for the lights it would blur (Surface.mirror_hides_lights). A scene that needs no blur pays
+nothing for it.
 
 With n > 0 samples, a camera ray's hit on a surface of roughness r spreads n rays over the
 lobe, each by its own microfacet normal m drawn from GGX's distribution of normals visible

@@ -36,6 +36,7 @@ from .layout import VISIBLE_CAMERA, VISIBLE_GLOSSY, VISIBLE_TRANSMISSION
 from .light_at_point import light_at_point
 from .light_samples import stratified_cell
 from .material_at_hit import material_at_hit
+from .microfacet import rough_coat_albedo
 from .options import (
     OPTION_GLASS_SHADOWS,
     OPTION_GLOSSY_SAMPLES,
@@ -64,7 +65,7 @@ from .workspace import MAX_CROSSINGS, RAYS_TRACED
 
 MIN_WEIGHT = 1e-6
 # How a ray left its last surface (RayStack.refracted): the lights in Blender's units it
-# sees depend on it (a rough mirror's highlight holds their light already)
+# sees depend on it (a rough mirror's glint holds their light already)
 RAY_REFLECTED, RAY_REFRACTED, RAY_ROUGH_REFLECTED = 0, 1, 2
 
 
@@ -178,7 +179,7 @@ def _glossy_samples(frame, here, depth, rho, coat_reflects, tau):
 @inlined_kernel
 def _seen_emitters(lights, o, d, t, came_through, depth, refracted_before):
     """Blender's lights seen in mirrors and through glass by a ray after its first bounce
-    (the `emitters_seen` feature); none by a rough mirror's ray, whose highlight holds them."""
+    (the `emitters_seen` feature); none by a rough mirror's ray, whose glint holds them."""
     if not WITH_EMITTERS_SEEN or depth == 0 or refracted_before == RAY_ROUGH_REFLECTED:
         return (0.0, 0.0, 0.0)
     if lights.emitter_kind.shape[0] == 0:
@@ -276,6 +277,8 @@ def trace_ray(ps, o, d, key, ws):
             # a layer on the surface, air on its outer side from either side (Cycles' specular
             # layer does not flip its IOR on back faces)
             coat_f, _ = fresnel_dielectric(cos_i, 1.0, here.coat_ior)
+            if here.gloss.coat > 0.0:  # a rough layer: its whole lobe's reflectance
+                coat_f = rough_coat_albedo(here.gloss, here.roughness, cos_i)
             coat_reflects = here.coat * coat_f
             if here.coat_hides:
                 kd = scale(kd, 1.0 - coat_reflects)  # the diffuse seen through the coat
@@ -294,7 +297,7 @@ def trace_ray(ps, o, d, key, ws):
                 add_to(record, branch, seen)
         if tau < 1.0:
             point = ShadingPoint(outside, n_shading, scale(d, -1.0))
-            phong = Phong(kd, here.ks, here.shininess)
+            phong = Phong(kd, here.ks, here.shininess, here.gloss)
             local = light_at_point(frame, lights, geo, surf, mats, ws, point, phong, p,
                                    n_geometric, key, event, first and split,
                                    refraction_passes)  # fmt: skip
@@ -302,7 +305,8 @@ def trace_ray(ps, o, d, key, ws):
             colour = add(colour, seen)
             if WITH_PASSES and first:
                 terms = stacks.terms
-                record_lighting(record, terms, local, kd, here.ks, frame.ambient, 1.0 - tau, split)
+                glints = here.ks if here.gloss.alpha == 0.0 else (1.0, 1.0, 1.0)
+                record_lighting(record, terms, local, kd, glints, frame.ambient, 1.0 - tau, split)
             elif WITH_PASSES and recording:
                 add_to(record, branch, seen)
         event += 1

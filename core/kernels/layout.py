@@ -122,6 +122,9 @@ class Materials(NamedTuple):
     transparent: np.ndarray  # float64 (q, 3): share passing straight through
     holdout: np.ndarray  # float64 (q,): share of a camera ray's pixel cut out
     roughness: np.ndarray  # float64 (q,): the mirror's and glass's (core.model.Material)
+    # float64 (q, GLOSS_COLUMNS): its rough lobes' glints (core.kernels.surface_terms), zero
+    # for the report's materials (their highlight is Phong's: specular, shininess)
+    gloss: np.ndarray
 
 
 class Lights(NamedTuple):

@@ -102,7 +102,7 @@ def record_hit(record, surf, mats, shape, material, p, n, u, v, opacity, kd):
 @kernel
 def record_lighting(record, terms, local, kd, ks, ambient, opacity, split):
     """The first hit's own colour `local`, split: ambient, direct diffuse (kd times the light
-    falling through the shadows) and specular (what remains: the Phong highlights, exactly
+    falling through the shadows) and specular (what remains: the highlights, exactly
     what the colour holds beyond the other two, so the terms add up to it), each times the
     opacity as Combined takes them; and the light reaching it, with and without shadows.
     Without `split` (no diffuse, specular or shadow pass asked for) only ambient is known."""

@@ -5,10 +5,10 @@ import numpy as np
 
 from ..jit.decorators import allocating_kernel, kernel
 from .shader_program import LOBE_COUNT, SHADER_STACK, run_program
-from .surface_terms import terms_from_lobes
+from .surface_terms import GLOSS_COLUMNS, gloss_columns, terms_from_lobes
 
 # The columns of a folded row (fold_surfaces' out), in Surface's order
-FOLDED_COLUMNS = 36
+FOLDED_COLUMNS = 36 + GLOSS_COLUMNS
 
 
 @kernel
@@ -21,7 +21,8 @@ def fold_surfaces(mats, rows, out):
     """Run the programs of material `rows` at a hit that reads nothing, writing each Surface
     to a row of `out` (FOLDED_COLUMNS: kd, ks, shininess, reflectivity, transparency, outer
     and inner IOR, mirror normal and edge, hides lights, coat, coat IOR, coat hides, glass
-    reflect and transmit, refraction Fresnel, emission, transparent, holdout, roughness)."""
+    reflect and transmit, refraction Fresnel, emission, transparent, holdout, roughness,
+    gloss)."""
     stack = np.zeros(SHADER_STACK)
     lobes = np.zeros(LOBE_COUNT)
     zero = (0.0, 0.0, 0.0)
@@ -50,3 +51,4 @@ def fold_surfaces(mats, rows, out):
         _three(o, 31, s.transparent)
         o[34] = s.holdout
         o[35] = s.roughness
+        gloss_columns(s.gloss, o, 36)

@@ -7,14 +7,23 @@ operands being stack slots (a triple takes three from its slot) or, for settings
 integers. A material's constants are copied to the stack's first slots before its steps run.
 Value steps compute texture coordinates, textures and colours; closure steps add lobes
 (shader_lobes below), each times its weight, a slot that Mix Shader steps split. What the
-lobes make of the surface (`terms_from_lobes`) is Whitted's model, as
-blender_addon/export/shader_lobes.py documents it.
+lobes make of the surface (core.kernels.surface_terms.terms_from_lobes) is Whitted's
+model, as the README's table of Blender nodes documents it; rough lobes also glint in
+Blender's lights (core.kernels.microfacet).
 """
 
 import math
 
 from ..jit.decorators import kernel
 from .facing_values import facing_value
+from .microfacet import (
+    DIST_BECKMANN,
+    DIST_MULTI_GGX,
+    dielectric_average,
+    ggx_albedo_average,
+    multiscatter_fresnel,
+    schlick_average,
+)
 from .noise import noise_texture
 from .shader_values import (
     brick,
@@ -69,14 +78,15 @@ OP_VORONOI = 32
 OP_FACING = 33  # out, IOR or Blend, normal (-1 the surface's), which (facing_values.FACING_*)
 # Closures take their Normal input's slot in the last column (f), or -1 for the surface's
 OP_DIFFUSE = 20  # weight, colour
-OP_GLOSSY = 21  # weight, colour, roughness
-OP_METALLIC = 22  # weight, base, edge tint, roughness
-OP_GLASS = 23  # weight, colour, IOR, 1 glass / 0 refraction, roughness
+OP_GLOSSY = 21  # weight, colour, roughness, distribution (microfacet.DIST_*)
+OP_METALLIC = 22  # weight, base, edge tint, roughness, distribution
+OP_GLASS = 23  # weight, colour, IOR, 1 glass / 0 refraction, roughness, distribution
 OP_TRANSPARENT = 24  # weight, colour
 OP_EMISSION = 25  # weight, colour, strength
 OP_HOLDOUT = 26  # weight
 OP_PRINCIPLED = 27  # weight, base, metallic, roughness, IOR, alpha; its next row (OP_MORE):
-OP_MORE = 28  # transmission, emission colour, emission strength, specular level, tint, layered
+# transmission, emission colour, emission strength, specular level, tint, layered, distribution
+OP_MORE = 28
 
 # Texture coordinates (OP_COORD)
 COORD_UV, COORD_GENERATED, COORD_OBJECT, COORD_NORMAL = 0, 1, 2, 3
@@ -100,26 +110,35 @@ L_GLASS_IOR = 13  # times the glass's weight
 L_GLASS_REFLECT = 14  # RGB, times the glass's weight
 L_GLASS_TRANSMIT = 17  # RGB, times the glass's weight
 L_FRESNEL = 20  # refraction_fresnel, times the glass's weight
-L_HIGHLIGHT = 21  # RGB ks
-L_SHININESS = 24  # shininess times the highlight's mean ks
-L_EMISSION = 25  # RGB
-L_TRANSPARENT = 28  # RGB
-L_HOLDOUT = 31
-L_ROUGH = 32  # 1 if a rough lobe's highlight stands for the lights in its mirror
-L_NORMAL = 33  # world normal times weight, from closures given a Normal
-L_NORMAL_WEIGHT = 36
+L_EMISSION = 21  # RGB
+L_TRANSPARENT = 24  # RGB
+L_HOLDOUT = 27
+L_ROUGH = 28  # 1 if a rough lobe's glint stands for the lights in its mirror
+L_NORMAL = 29  # world normal times weight, from closures given a Normal
+L_NORMAL_WEIGHT = 32
 # roughness times weight of the mirror, coat and glass lobes, and their weight (the mean
 # roughness their reflected and refracted rays are spread by, when glossy rays are sampled)
-L_ROUGHNESS = 37
-L_ROUGHNESS_WEIGHT = 38
-LOBE_COUNT = 39
+L_ROUGHNESS = 33
+L_ROUGHNESS_WEIGHT = 34
+# The rough lobes' glints (core.kernels.microfacet.Gloss, its sums)
+L_GLOSS_NORMAL = 35  # RGB
+L_GLOSS_EDGE = 38  # RGB
+L_GLOSS_MS_NORMAL = 41  # RGB
+L_GLOSS_MS_EDGE = 44  # RGB
+L_GLOSS_COAT = 47
+L_GLOSS_COAT_IOR = 48  # times the coat's weight
+L_GLOSS_COAT_MS = 49
+L_GLOSS_ALPHA = 50  # alpha times weight
+L_GLOSS_WEIGHT = 51
+L_GLOSS_BECKMANN = 52  # the weight of Beckmann lobes
+LOBE_COUNT = 53
 
 # Slots of a program's stack: constants first, then every node output (a triple each)
 SHADER_STACK = 4096
 
-# Past this roughness a mirror or coat lobe also makes a highlight (shader_lobes.py's rule)
+# Past this roughness a mirror or coat lobe also glints; below it
+# the lobe is a sharp mirror, in which lights are seen (core.kernels.emitters_seen)
 SHARP_ROUGHNESS = 0.1
-MAX_SHININESS = 10000.0
 WEIGHT_CUTOFF = 1e-5
 
 
@@ -141,12 +160,6 @@ def _add3(lobes, slot, weight, v):
 
 
 @kernel
-def phong_exponent(roughness):
-    alpha = max(roughness, 1e-4) ** 2
-    return min(max((2.0 / (alpha * alpha) - 2.0) / 4.0, 0.0), MAX_SHININESS)
-
-
-@kernel
 def f0_of_ior(ior):
     return ((ior - 1.0) / (ior + 1.0)) ** 2
 
@@ -158,14 +171,46 @@ def ior_of_f0(f0):
 
 
 @kernel
-def _highlight(lobes, f0, roughness):
-    if roughness <= SHARP_ROUGHNESS or max(f0[0], f0[1], f0[2]) <= 0.0:
-        return
-    shininess = phong_exponent(roughness)
-    peak = (2.0 * shininess + 1.0) / 4.0  # the GGX lobe's peak, seen and lit head-on
-    _add3(lobes, L_HIGHLIGHT, peak, f0)
-    lobes[L_SHININESS] += shininess * peak * (f0[0] + f0[1] + f0[2]) / 3.0
+def _glint_shape(lobes, weight, roughness, distribution):
+    lobes[L_GLOSS_ALPHA] += weight * roughness * roughness
+    lobes[L_GLOSS_WEIGHT] += weight
+    if distribution == DIST_BECKMANN:
+        lobes[L_GLOSS_BECKMANN] += weight
     lobes[L_ROUGH] = 1.0
+
+
+@kernel
+def _glint(lobes, weight, normal, edge, roughness, distribution):
+    """A rough mirror lobe's glint: Schlick's Fresnel from `normal` to `edge` (the same
+    colour, and no Fresnel, for a Glossy BSDF), and under Multiscatter GGX the light its
+    microfacets pass on (core.kernels.microfacet; a Glossy BSDF's colour is its Fss, as
+    Cycles takes it)."""
+    if roughness <= SHARP_ROUGHNESS or weight <= 0.0:
+        return
+    if max(normal) <= 0.0 and max(edge) <= 0.0:
+        return
+    _add3(lobes, L_GLOSS_NORMAL, weight, normal)
+    _add3(lobes, L_GLOSS_EDGE, weight, edge)
+    _glint_shape(lobes, weight, roughness, distribution)
+    if distribution == DIST_MULTI_GGX:
+        e_average = ggx_albedo_average(roughness)
+        for c in range(3):
+            fms = multiscatter_fresnel(schlick_average(normal[c], edge[c]), e_average)
+            lobes[L_GLOSS_MS_NORMAL + c] += weight * fms * normal[c]
+            lobes[L_GLOSS_MS_EDGE + c] += weight * fms * edge[c]
+
+
+@kernel
+def _coat_glint(lobes, weight, ior, roughness, distribution):
+    """A rough dielectric layer's glint: the exact Fresnel of its IOR."""
+    if roughness <= SHARP_ROUGHNESS or weight <= 0.0:
+        return
+    lobes[L_GLOSS_COAT] += weight
+    lobes[L_GLOSS_COAT_IOR] += weight * ior
+    _glint_shape(lobes, weight, roughness, distribution)
+    if distribution == DIST_MULTI_GGX:
+        e_average = ggx_albedo_average(roughness)
+        lobes[L_GLOSS_COAT_MS] += weight * multiscatter_fresnel(dielectric_average(ior), e_average)
 
 
 @kernel
@@ -175,22 +220,21 @@ def _roughness(lobes, weight, roughness):
 
 
 @kernel
-def add_mirror(lobes, weight, normal, edge, roughness):
+def add_mirror(lobes, weight, normal, edge, roughness, distribution):
     _roughness(lobes, weight, roughness)
     _add3(lobes, L_MIRROR, weight, normal)
     _add3(lobes, L_EDGE, weight, edge)
-    _highlight(lobes, (weight * normal[0], weight * normal[1], weight * normal[2]), roughness)
+    _glint(lobes, weight, normal, edge, roughness, distribution)
 
 
 @kernel
-def add_coat(lobes, weight, ior, roughness, hides):
+def add_coat(lobes, weight, ior, roughness, hides, distribution):
     _roughness(lobes, weight, roughness)
     lobes[L_COAT] += weight
     lobes[L_COAT_IOR] += weight * ior
     if hides:
         lobes[L_COAT_HIDES] = 1.0
-    f0 = weight * f0_of_ior(ior)
-    _highlight(lobes, (f0, f0, f0), roughness)
+    _coat_glint(lobes, weight, ior, roughness, distribution)
 
 
 @kernel
@@ -210,8 +254,8 @@ def _nonnegative(c):
 
 @kernel
 def _principled(lobes, w, base, metallic, roughness, ior, alpha, more):
-    """Cycles' Principled BSDF in lobes: blender_addon/export/principled.py documents it."""
-    transmission, emission, strength, level, tint, layered = more
+    """Cycles' Principled BSDF in lobes (the README's table of Blender nodes)."""
+    transmission, emission, strength, level, tint, layered, distribution = more
     base = _nonnegative(base)
     clamped = (min(base[0], 1.0), min(base[1], 1.0), min(base[2], 1.0))
     roughness = min(max(roughness, 0.0), 1.0)
@@ -225,7 +269,7 @@ def _principled(lobes, w, base, metallic, roughness, ior, alpha, more):
     if layered:
         tint = _nonnegative(tint)
         if metallic > WEIGHT_CUTOFF:
-            add_mirror(lobes, w * metallic, clamped, (1.0, 1.0, 1.0), roughness)
+            add_mirror(lobes, w * metallic, clamped, (1.0, 1.0, 1.0), roughness, distribution)
             w *= 1.0 - metallic
         if transmission > WEIGHT_CUTOFF:
             root = (math.sqrt(clamped[0]), math.sqrt(clamped[1]), math.sqrt(clamped[2]))
@@ -233,7 +277,7 @@ def _principled(lobes, w, base, metallic, roughness, ior, alpha, more):
             w *= 1.0 - transmission
         f0 = f0_of_ior(ior) * 2.0 * max(level, 0.0)
         if f0 > 0.0 and w > WEIGHT_CUTOFF:
-            add_coat(lobes, w, ior_of_f0(f0), roughness, True)
+            add_coat(lobes, w, ior_of_f0(f0), roughness, True, distribution)
         _add3(lobes, L_DIFFUSE, w, base)
         return
     # Before Blender 4.0: additive lobes; `level` is Specular, tint[0] the Specular Tint
@@ -243,10 +287,11 @@ def _principled(lobes, w, base, metallic, roughness, ior, alpha, more):
     _add3(lobes, L_DIFFUSE, w * (1.0 - metallic) * (1.0 - transmission), base)
     spec_weight = w * (1.0 - glass)
     if metallic > WEIGHT_CUTOFF:
-        add_mirror(lobes, spec_weight * metallic, clamped, (1.0, 1.0, 1.0), roughness)
+        add_mirror(lobes, spec_weight * metallic, clamped, (1.0, 1.0, 1.0), roughness,
+                   distribution)  # fmt: skip
     if specular > 0.0 and metallic < 1.0:
         add_coat(lobes, spec_weight * (1.0 - metallic), ior_of_f0(0.08 * specular), roughness,
-                 False)  # fmt: skip
+                 False, distribution)  # fmt: skip
     if glass > WEIGHT_CUTOFF:
         reflect = (
             (1.0 - tint_share) + clamped[0] * tint_share,
@@ -431,11 +476,11 @@ def run_program(mats, material, stack, lobes, hit, frame, normal_rows, ray):
             _add_normal(lobes, s, s[out], f)
         elif op == OP_GLOSSY:
             tint = _nonnegative(_triple(s, a))
-            add_mirror(lobes, s[out], tint, tint, min(max(s[b], 0.0), 1.0))
+            add_mirror(lobes, s[out], tint, tint, min(max(s[b], 0.0), 1.0), c)
             _add_normal(lobes, s, s[out], f)
         elif op == OP_METALLIC:
             add_mirror(lobes, s[out], clamp01(_triple(s, a)), clamp01(_triple(s, b)),
-                       min(max(s[c], 0.0), 1.0))  # fmt: skip
+                       min(max(s[c], 0.0), 1.0), d)  # fmt: skip
             _add_normal(lobes, s, s[out], f)
         elif op == OP_GLASS:
             tint = _nonnegative(_triple(s, a))
@@ -452,8 +497,8 @@ def run_program(mats, material, stack, lobes, hit, frame, normal_rows, ray):
         elif op == OP_PRINCIPLED:
             _add_normal(lobes, s, s[out], f)
             m_op, m0, m1, m2 = ops[row, 0], ops[row, 1], ops[row, 2], ops[row, 3]
-            m3, m4, m5 = ops[row, 4], ops[row, 5], ops[row, 6]
+            m3, m4, m5, m6 = ops[row, 4], ops[row, 5], ops[row, 6], ops[row, 7]
             row += 1
             if m_op == OP_MORE:
-                more = (s[m0], _triple(s, m1), s[m2], s[m3], _triple(s, m4), m5 != 0)
+                more = (s[m0], _triple(s, m1), s[m2], s[m3], _triple(s, m4), m5 != 0, m6)
                 _principled(lobes, s[out], _triple(s, a), s[b], s[c], s[d], s[e], more)

@@ -53,11 +53,14 @@ class ShadingPoint(NamedTuple):
 
 
 class Phong(NamedTuple):
-    """The report's material terms: diffuse kd, specular ks (RGB) and the Phong exponent."""
+    """The report's material terms: diffuse kd, specular ks (RGB) and the Phong exponent;
+    and a node material's rough lobes, which glint in Blender's lights instead
+    (core.kernels.microfacet.Gloss; alpha 0 for the report's materials)."""
 
     kd: tuple
     ks: tuple
     shininess: float
+    gloss: tuple
 
 
 class AreaLight(NamedTuple):
@@ -127,7 +130,7 @@ def _phong_lit(light_dir, radiance, visible, point, phong):
     """The report's Phong terms for light arriving along unit light_dir with `radiance`,
     of which `visible` (RGB) gets through (the shadow ray's transmittance)."""
     n, to_viewer = point.normal, point.to_viewer
-    kd, ks, shininess = phong
+    kd, ks, shininess = phong.kd, phong.ks, phong.shininess
     n_dot_l = dot(n, light_dir)
     if n_dot_l <= 0.0 or visible[0] == visible[1] == visible[2] == 0.0:
         return 0.0, 0.0, 0.0

@@ -6,6 +6,7 @@ import math
 from typing import NamedTuple
 
 from ..jit.decorators import kernel
+from .microfacet import Gloss
 from .shader_program import (
     L_COAT,
     L_COAT_HIDES,
@@ -18,7 +19,16 @@ from .shader_program import (
     L_GLASS_IOR,
     L_GLASS_REFLECT,
     L_GLASS_TRANSMIT,
-    L_HIGHLIGHT,
+    L_GLOSS_ALPHA,
+    L_GLOSS_BECKMANN,
+    L_GLOSS_COAT,
+    L_GLOSS_COAT_IOR,
+    L_GLOSS_COAT_MS,
+    L_GLOSS_EDGE,
+    L_GLOSS_MS_EDGE,
+    L_GLOSS_MS_NORMAL,
+    L_GLOSS_NORMAL,
+    L_GLOSS_WEIGHT,
     L_HOLDOUT,
     L_MIRROR,
     L_NORMAL,
@@ -26,7 +36,6 @@ from .shader_program import (
     L_ROUGH,
     L_ROUGHNESS,
     L_ROUGHNESS_WEIGHT,
-    L_SHININESS,
     L_TRANSPARENT,
 )
 from .vec import row
@@ -59,6 +68,32 @@ class Surface(NamedTuple):
     holdout: float
     normal: tuple  # the shading normal its graph gives (world), or zero: the surface's own
     roughness: float  # its mirror's and glass's, 0 sharp (blurred when glossy rays are sampled)
+    gloss: Gloss  # its rough lobes' glints (core.kernels.microfacet); alpha 0: none
+
+
+# Materials.gloss's columns: Gloss's fields, its triples as three
+GLOSS_COLUMNS = 17
+
+
+@kernel
+def _gloss_row(table, material):
+    g = table[material]
+    return Gloss(
+        g[0], g[1] != 0.0, (g[2], g[3], g[4]), (g[5], g[6], g[7]), (g[8], g[9], g[10]),
+        (g[11], g[12], g[13]), g[14], g[15], g[16],
+    )  # fmt: skip
+
+
+@kernel
+def gloss_columns(gloss, o, first):
+    """Write a Gloss to o[first : first + GLOSS_COLUMNS] (the inverse of _gloss_row)."""
+    o[first], o[first + 1] = gloss.alpha, 1.0 if gloss.beckmann else 0.0
+    for c in range(3):
+        o[first + 2 + c] = gloss.normal[c]
+        o[first + 5 + c] = gloss.edge[c]
+        o[first + 8 + c] = gloss.ms_normal[c]
+        o[first + 11 + c] = gloss.ms_edge[c]
+    o[first + 14], o[first + 15], o[first + 16] = gloss.coat, gloss.coat_ior, gloss.coat_ms
 
 
 @kernel
@@ -96,6 +131,7 @@ def table_surface(mats, material, kd):
         mats.holdout[material],
         (0.0, 0.0, 0.0),
         mats.roughness[material],
+        _gloss_row(mats.gloss, material),
     )
 
 
@@ -119,15 +155,12 @@ def terms_from_lobes(lobes):
     mirror_normal = _scaled(lobes, L_MIRROR, per_rest)
     mirror_edge = _scaled(lobes, L_EDGE, per_rest)
     mirrors = max(mirror_normal) > 0.0 or max(mirror_edge) > 0.0
-    ks = _scaled(lobes, L_HIGHLIGHT, per_rest)
-    mean_ks = (lobes[L_HIGHLIGHT] + lobes[L_HIGHLIGHT + 1] + lobes[L_HIGHLIGHT + 2]) / 3.0
-    shininess = lobes[L_SHININESS] / mean_ks if mean_ks > 0.0 else 1.0
     coat = lobes[L_COAT]
     white = (1.0, 1.0, 1.0)
     return Surface(
         _scaled(lobes, L_DIFFUSE, per_rest),
-        ks,
-        shininess,
+        (0.0, 0.0, 0.0),  # no Phong highlight: the rough lobes glint (gloss)
+        1.0,
         1.0 if mirrors else 0.0,
         glass,
         1.0,
@@ -150,6 +183,28 @@ def terms_from_lobes(lobes):
         min(lobes[L_HOLDOUT], 1.0),
         _normal(lobes),
         _mean_roughness(lobes),
+        _gloss(lobes, per_rest),
+    )
+
+
+@kernel
+def _gloss(lobes, per_rest):
+    """The rough lobes' glints as shares of the rest (as the other lobes are)."""
+    weight = lobes[L_GLOSS_WEIGHT]
+    if weight <= 0.0:
+        return Gloss(0.0, False, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0), (0.0, 0.0, 0.0),
+                     (0.0, 0.0, 0.0), 0.0, 1.5, 0.0)  # fmt: skip
+    coat = lobes[L_GLOSS_COAT]
+    return Gloss(
+        lobes[L_GLOSS_ALPHA] / weight,
+        lobes[L_GLOSS_BECKMANN] > 0.5 * weight,  # the distribution of most of the lobes
+        _scaled(lobes, L_GLOSS_NORMAL, per_rest),
+        _scaled(lobes, L_GLOSS_EDGE, per_rest),
+        _scaled(lobes, L_GLOSS_MS_NORMAL, per_rest),
+        _scaled(lobes, L_GLOSS_MS_EDGE, per_rest),
+        coat * per_rest,
+        lobes[L_GLOSS_COAT_IOR] / coat if coat > 0.0 else 1.5,
+        lobes[L_GLOSS_COAT_MS] * per_rest,
     )
 
 

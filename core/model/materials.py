@@ -63,8 +63,9 @@ class Material:
                       colour)
     mirror_edge    -- RGB the mirror's tint tends to at grazing incidence, Schlick's
                       c + (edge - c)(1 - cos)^5; None: the same as mirror_colour (no Fresnel)
-    mirror_sees_lights -- False: lights are not seen in the mirror, as the Phong highlight
-                      (`specular`) already holds their light (a rough surface's)
+    mirror_sees_lights -- False: lights are not seen in the mirror, as the highlight
+                      already holds their light (a rough surface's: its glint,
+                      core.kernels.microfacet, for a node material)
     coat           -- 0..1: weight of a clear dielectric layer over the surface, reflecting
                       with the exact Fresnel reflectance of coat_ior (Principled's specular)
     coat_ior       -- its index of refraction (> 0); 1 reflects nothing

@@ -39,21 +39,29 @@ SHADER_NODES = {
             "Normal": None,
         },
         closure=True,
-        settings={"layered": True},
+        settings={"layered": True, "distribution": "GGX"},
     ),  # fmt: skip
     "diffuse": dict(inputs={"Color": RGB, "Normal": None}, closure=True),
-    "glossy": dict(inputs={"Color": RGB, "Roughness": 0.5, "Normal": None}, closure=True),
+    # A rough lobe's microfacet distribution (DISTRIBUTIONS; core.kernels.microfacet)
+    "glossy": dict(
+        inputs={"Color": RGB, "Roughness": 0.5, "Normal": None},
+        closure=True,
+        settings={"distribution": "GGX"},
+    ),  # fmt: skip
     "metallic": dict(
         inputs={"Base Color": RGB, "Edge Tint": (1.0, 1.0, 1.0), "Roughness": 0.5, "Normal": None},
         closure=True,
+        settings={"distribution": "GGX"},
     ),  # fmt: skip
     "glass": dict(
         inputs={"Color": (1.0, 1.0, 1.0), "Roughness": 0.0, "IOR": 1.5, "Normal": None},
         closure=True,
+        settings={"distribution": "GGX"},
     ),  # fmt: skip
     "refraction": dict(
         inputs={"Color": (1.0, 1.0, 1.0), "Roughness": 0.0, "IOR": 1.5, "Normal": None},
         closure=True,
+        settings={"distribution": "GGX"},
     ),  # fmt: skip
     "transparent": dict(inputs={"Color": (1.0, 1.0, 1.0)}, closure=True),
     "emission": dict(inputs={"Color": (1.0, 1.0, 1.0), "Strength": 1.0}, closure=True),
@@ -192,6 +200,8 @@ SHADER_NODES = {
     ),  # fmt: skip
 }
 NORMAL_MAP_SPACES = ("TANGENT", "OBJECT", "WORLD")
+# Microfacet distributions, in the order of core.kernels.microfacet's DIST_* numbers
+DISTRIBUTIONS = ("GGX", "MULTI_GGX", "BECKMANN")
 # The Voronoi texture's Feature and Distance Whitted evaluates, and its two cell hashes
 # (core.kernels.voronoi), in the order of the kernel's numbers
 VORONOI_FEATURES = ("F1", "F2")
@@ -210,6 +220,8 @@ MIX_BLENDS = ("MIX", "ADD", "MULTIPLY", "SUBTRACT", "SCREEN", "DIVIDE", "DIFFERE
 GRADIENT_TYPES = ("LINEAR", "QUADRATIC", "EASING", "DIAGONAL", "RADIAL", "QUADRATIC_SPHERE",
                   "SPHERICAL")  # fmt: skip
 MAPPING_TYPES = ("POINT", "TEXTURE", "VECTOR", "NORMAL")
+# The closures with a microfacet distribution
+ROUGH_CLOSURES = ("principled", "glossy", "metallic", "glass", "refraction")
 # The deepest chain of nodes a graph may have: the graph is walked recursively
 MAX_GRAPH_DEPTH = 100
 INTERPOLATIONS = ("Linear", "Closest", "Cubic", "Smart")
@@ -308,6 +320,7 @@ def _check_settings(owner, label, node) -> None:
         ("voronoi", "feature"): VORONOI_FEATURES,
         ("voronoi", "distance"): VORONOI_METRICS,
         ("voronoi", "cell_hash"): VORONOI_HASHES,
+        **{(kind, "distribution"): DISTRIBUTIONS for kind in ROUGH_CLOSURES},
     }
     for (kind, name), allowed in choices.items():
         if node.kind == kind and node.setting(name) not in allowed:

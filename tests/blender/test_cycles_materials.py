@@ -301,8 +301,8 @@ def test_glossy_samples_blur_a_rough_surface_as_cycles_does(bpy_with_whitted, tm
     Cycles blurs."""
     bpy = bpy_with_whitted
     scene, _ = ball_on_floor(bpy, SPREAD[kind])
-    # no sun: its highlight (Phong's lobe for GGX's, the same with or without glossy rays)
-    # is not what is compared here, the blur of what the ball reflects and refracts is
+    # no sun: its glint (the same with or without glossy rays; test_cycles_glints.py) is
+    # not what is compared here, the blur of what the ball reflects and refracts is
     bpy.data.objects.remove(bpy.data.objects["Sun"])
     cycles = render_with(bpy, scene, "CYCLES", tmp_path / "cycles.exr", samples=1024)
     scene.whitted.glossy_samples = 0

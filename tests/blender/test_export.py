@@ -221,7 +221,7 @@ def sphere_with_material(bpy, name):
 def test_untouched_materials_follow_their_principled_bsdf(empty_scene, monkeypatch):
     """The Principled BSDF read from the Material Output (export/principled.py): a smooth
     metal is a mirror tinted by its base colour, white at grazing; glass refracts with its
-    IOR, a rough surface gets highlights; the Whitted panel's own values win when asked."""
+    IOR, a rough surface glints; the Whitted panel's own values win when asked."""
     bpy = sys.modules["bpy"]
     _, material = sphere_with_material(bpy, "Chrome")
     bsdf = principled(material)
@@ -242,8 +242,14 @@ def test_untouched_materials_follow_their_principled_bsdf(empty_scene, monkeypat
     assert water.mirror_sees_lights  # glass stays sharp, lights seen in it
     bsdf.inputs[transmission].default_value = 0.0
     plastic = compiled_material(bpy, monkeypatch)
-    # Roughness 0.5: alpha 0.25, a Blinn-Phong exponent 2 / alpha^2 - 2 = 30, on R.V a quarter
-    assert plastic.shininess == pytest.approx(7.5) and not plastic.mirror_sees_lights
+    # Roughness 0.5: a glint of alpha 0.25 (core.kernels.microfacet), its layer the IOR's
+    # (columns: alpha, Beckmann, ..., coat weight, coat IOR), Multiscatter GGX's by default
+    assert plastic.gloss[0] == pytest.approx(0.25) and not plastic.mirror_sees_lights
+    # (before 4.0: Specular 0.5, an F0 of 0.04, IOR 1.5, and GGX's lobe by default)
+    layered = bpy.app.version >= (4, 0, 0)
+    assert plastic.gloss[14] == pytest.approx(1.0)
+    assert plastic.gloss[15] == pytest.approx(1.33 if layered else 1.5, abs=1e-3)
+    assert (plastic.gloss[16] > 0.0) == layered
     bsdf.inputs[transmission].default_value = 1.0
     # Blender 4's Principled tints each crossing by sqrt(base): a solid, by the base
     per_crossing = np.sqrt((0.9, 0.6, 0.2)) if bpy.app.version >= (4, 0, 0) else (0.9, 0.6, 0.2)
@@ -355,7 +361,8 @@ def test_a_rough_glass_reads_its_roughness_and_names_a_beckmann_distribution(
     empty_scene, monkeypatch
 ):
     """A Glass BSDF's Roughness is read (glossy samples spread its rays by GGX); Beckmann,
-    Blender's default before 4.0, is named in the warning with GGX used instead."""
+    Blender's default before 4.0, is kept for its glint and named in the warning, its
+    spread rays being GGX's."""
     bpy = sys.modules["bpy"]
     _, material = sphere_with_material(bpy, "Frosted")
     tree = material.node_tree
@@ -371,7 +378,10 @@ def test_a_rough_glass_reads_its_roughness_and_names_a_beckmann_distribution(
     glass.distribution = "BECKMANN"
     _, _, warnings = exported(bpy, monkeypatch)
     mine = [w for w in warnings if w.startswith(f"material '{material.name}'")]
-    assert len(mine) == 1 and "Beckmann distribution (used: GGX)" in mine[0], warnings
+    assert len(mine) == 1 and "Beckmann distribution (used: GGX for the rays" in mine[0], warnings
+    assert scene.shapes[0].material.surface.settings["distribution"] == "GGX"
+    scene, _, _ = exported(bpy, monkeypatch)
+    assert scene.shapes[0].material.surface.settings["distribution"] == "BECKMANN"
 
 
 def test_an_image_texture_on_the_base_colour_is_read_with_its_pixels(empty_scene, monkeypatch):
