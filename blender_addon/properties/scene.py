@@ -12,6 +12,7 @@ from bpy.props import (
 
 from ..core.model.settings import (
     DEFAULT_ENVIRONMENT_SAMPLES,
+    DEFAULT_GLOSSY_SAMPLES,
     DEFAULT_PIXEL_SAMPLES,
     DEFAULT_SHADOW_SAMPLES,
 )
@@ -180,13 +181,14 @@ class WhittedSceneSettings(bpy.types.PropertyGroup):
         name="Glossy Samples",
         description=(
             "Rays spread over a rough mirror's or glass's lobe where a camera ray meets it "
-            "(one at later bounces), blurring reflections and refractions as Cycles does. "
-            "0 keeps rough surfaces sharp: as bright as their lobe on average, at no cost"
+            "(fewer where the lobe reflects little, as a plastic's; one at later bounces), "
+            "blurring reflections and refractions as Cycles does. 0 keeps rough surfaces "
+            "sharp: as bright as their lobe on average, at no cost"
         ),
         min=0,
         soft_max=256,
         max=4096,
-        default=0,
+        default=DEFAULT_GLOSSY_SAMPLES,
     )
     tile_size: IntProperty(
         name="Tile Size",

@@ -27,7 +27,7 @@ from ..kernels.options import (
 from ..kernels.shadow_log import SHADOW_VARIES
 from ..model import Csg, RenderSettings, Scene
 from ..model.emitters import Emitter
-from ..model.shader import emits, passes_light, sends_caustics
+from ..model.shader import emits, is_rough, passes_light, sends_caustics
 
 
 def used_features(packed: PackedScene) -> frozenset[str]:
@@ -48,7 +48,9 @@ def used_features(packed: PackedScene) -> frozenset[str]:
         "caustics": lights.photon_cells.shape[0] > 0,
         "passes": options[OPTION_PASSES] != 0,
         "adaptive": frame.sampling[0] > 0.0 and options[OPTION_PIXEL_SAMPLES] > 1,
-        "glossy": options[OPTION_GLOSSY_SAMPLES] > 0,
+        # spread only by a rough surface: a folded one's roughness, or a program's per hit
+        "glossy": options[OPTION_GLOSSY_SAMPLES] > 0
+        and (nodes or bool(np.any(mats.roughness > 0.0))),
     }
     return frozenset(name for name in FEATURES if used[name])
 
@@ -93,7 +95,8 @@ def expected_features(scene: Scene, settings: RenderSettings) -> frozenset[str]:
         "caustics": bool(settings.caustics) and settings.caustic_photons != 0 and specular,
         "passes": bool(settings.passes),
         "adaptive": settings.adaptive_threshold > 0.0 and settings.pixel_samples > 1,
-        "glossy": settings.glossy_samples > 0,
+        "glossy": settings.glossy_samples > 0
+        and (nodes or any(m.roughness > 0.0 for m in materials) or any(map(is_rough, graphs))),
     }
     return frozenset(name for name in FEATURES if used[name])
 

@@ -1,13 +1,15 @@
 """Rough mirrors and glass: what their reflected and refracted rays are.
 
-With RenderSettings.glossy_samples 0 (the default) a rough surface stays sharp: its one
+With RenderSettings.glossy_samples 0 (the core's default; Blender's is
+core.model.settings.DEFAULT_GLOSSY_SAMPLES) a rough surface stays sharp: its one
 reflected ray leaves by the mirror direction of the shading normal, its refracted ray by
 Snell's law, each carrying what the rough lobe reflects or transmits on average (the
 lobe's terms, core.kernels.shader_program), and its glint (core.kernels.microfacet) stands
 for the lights it would blur (Surface.mirror_hides_lights). A scene that needs no blur pays
 nothing for it.
 
-With n > 0 samples, a camera ray's hit on a surface of roughness r spreads n rays over the
+With n > 0 samples, a camera ray's hit on a surface of roughness r spreads up to n rays
+(n times the share of the light its lobes send on: core.kernels.integrator) over the
 lobe, each by its own microfacet normal m drawn from GGX's distribution of normals visible
 from the incoming direction (Heitz 2018, "Sampling the GGX Distribution of Visible
 Normals"; Cycles' alpha is r^2): the mirror direction and Fresnel of m, Snell's law about

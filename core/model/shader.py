@@ -415,6 +415,15 @@ def passes_light(surface, refraction_passes: bool = True) -> bool:
     return False
 
 
+def is_rough(surface) -> bool:
+    """Whether a graph has a closure with a microfacet lobe whose Roughness is linked or
+    above 0 (ROUGH_CLOSURES): one whose rays Glossy Samples may spread."""
+    return any(
+        node.kind in ROUGH_CLOSURES and _given(node, "Roughness", 0.0)
+        for node in _closures(surface)
+    )
+
+
 def sends_caustics(surface, reflective: bool, refractive: bool) -> bool:
     """Whether a graph may send light on as a caustic: reflect it as a mirror (Glossy,
     Metallic, Glass, a Principled BSDF whose Metallic or Transmission is linked or above 0),

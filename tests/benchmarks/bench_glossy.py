@@ -9,7 +9,8 @@ The sharp rule (glossy samples 0, the default: each rough surface reflects and r
 much light as its lobe on average, unblurred) against 1 to 1,024 glossy rays. Writes
 results/glossy.png and .csv; prints glossy_default_rmse and _s (the sharp rule's), and
 glossy_rays_to_beat_sharp: the fewest glossy rays whose error is below the sharp rule's,
-with its time over the sharp rule's as glossy_cost_to_beat_sharp."""
+with its time over the sharp rule's as glossy_cost_to_beat_sharp; and glossy_knee_rays,
+where the error against time bends (`knee`)."""
 
 import numpy as np
 
@@ -57,6 +58,17 @@ def _settings(glossy, seed=0):
                           environment_samples=0, seed=seed)  # fmt: skip
 
 
+def knee(rows) -> int:
+    """The rays where the error against time bends: the point of the curve farthest below
+    the chord from its first point to its last, both axes scaled to 0..1 (the "kneedle"
+    rule). core.model.settings.DEFAULT_GLOSSY_SAMPLES is chosen from it."""
+    seconds = np.array([r[2] for r in rows])
+    errors = np.array([r[3] for r in rows])
+    t = (seconds - seconds[0]) / (seconds[-1] - seconds[0])
+    e = (errors - errors[-1]) / (errors[0] - errors[-1])
+    return int(rows[int(np.argmax(1.0 - t - e))][1])
+
+
 def main():
     scene = glossy_scene()
     converged, _ = timed_render(scene, _settings(4096, seed=99), runs=1)
@@ -67,6 +79,7 @@ def main():
         rows.append(("glossy rays at the hit", n, seconds, rmse))
     write_chart("glossy", "Rough mirrors and glass: error against time (labels: rays)", rows,
                 ("glossy rays at the hit", 0), "rays", "glossy")  # fmt: skip
+    print(f"glossy_knee_rays: {knee(rows[1:])}")
     sharp = rows[0]
     beating = [r for r in rows[1:] if r[3] < sharp[3]]
     print(f"glossy_rays_to_beat_sharp: {beating[0][1] if beating else 'none'}")

@@ -228,7 +228,18 @@ def opaque_nodes_scene():
     return Scene(camera=_camera(), shapes=shapes, lights=_report_lights()), _settings()
 
 
-@pytest.mark.parametrize("make", [*SCENES.values(), constant_nodes_scene, opaque_nodes_scene])
+def sharp_scene_asking_for_glossy_rays():
+    """Blender's default Glossy Samples (8) over a scene with no rough surface: a smooth
+    metal, folded into the table, and the report's materials."""
+    metal = ShaderNode("principled", {"Metallic": 1.0, "Roughness": 0.0})
+    shapes = [*_basics(), Sphere("Chrome", Material(surface=metal), _placed(2.0, -1.0, 0.5, 0.4))]
+    return Scene(camera=_camera(), shapes=shapes, lights=_report_lights()), _settings(
+        glossy_samples=8
+    )
+
+
+@pytest.mark.parametrize("make", [*SCENES.values(), constant_nodes_scene, opaque_nodes_scene,
+                                  sharp_scene_asking_for_glossy_rays])  # fmt: skip
 def test_the_features_expected_before_packing_hold_those_packing_finds(make):
     """The warm-up compiles the variant of `expected_features` before the scene is packed:
     it must hold every feature the packed scene uses, or the render compiles again."""
@@ -240,3 +251,5 @@ def test_the_features_expected_before_packing_hold_those_packing_finds(make):
         assert expected == frozenset()  # and not everything: a variant saves a compile
     if make is opaque_nodes_scene:
         assert expected == used == frozenset({"nodes"})  # its shadows do not vary
+    if make is sharp_scene_asking_for_glossy_rays:
+        assert expected == used == frozenset()  # no rough surface: no glossy code compiled
