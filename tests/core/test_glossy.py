@@ -106,21 +106,10 @@ def test_a_rough_mirror_stays_sharp_without_glossy_samples_and_blurs_with_them()
     roughness-0 ball's; with 64 it is a ramp over several pixels, and the ball reflects,
     summed over its pixels, within 5% as much (only the rays the lobe sends below the
     surface are lost)."""
-    from core import (
-        Environment,
-        Material,
-        RenderSettings,
-        Scene,
-        ShaderNode,
-        Sphere,
-        Texture,
-        render,
-    )
+    from core import Material, RenderSettings, Scene, ShaderNode, Sphere, render
     from tests.core.test_environment import look_at_ball
 
-    sky = np.zeros((16, 32, 3))
-    sky[:8] = 1.0
-    world = Environment(colour=(1.0, 1.0, 1.0), image=Texture(pixels=sky, srgb=False))
+    world = _half_sky(1.0)
 
     def column(roughness, glossy):
         metal = ShaderNode("principled", {"Base Color": (0.9, 0.9, 0.9), "Metallic": 1.0,
@@ -144,21 +133,10 @@ def test_glossy_rays_go_where_the_light_goes():
     plastic ball (a specular layer reflecting 4-10%) a few, so that it costs little more than
     the sharp rule, while its blur still converges: the plastic's picture at 64 is closer
     to its own at 4,096 than the sharp rule's."""
-    from core import (
-        Environment,
-        Material,
-        RenderSettings,
-        Scene,
-        ShaderNode,
-        Sphere,
-        Texture,
-        render,
-    )
+    from core import Material, RenderSettings, Scene, ShaderNode, Sphere, render
     from tests.core.test_environment import look_at_ball
 
-    sky = np.zeros((16, 32, 3))
-    sky[:8] = 4.0  # bright above the horizon, black below: the blur shows in the layer
-    world = Environment(colour=(1.0, 1.0, 1.0), image=Texture(pixels=sky, srgb=False))
+    world = _half_sky(4.0)  # bright enough that the blur shows in a plastic's layer
 
     def traced(surface, glossy):
         ball = Sphere("Ball", Material(surface=surface), np.eye(4))
@@ -183,3 +161,12 @@ def test_glossy_rays_go_where_the_light_goes():
     error, sharp_error = (np.abs(x - converged).mean() for x in (plastic_image, plastic_sharp))
     print(f"plastic's error: 64 rays {error:.4f}, sharp {sharp_error:.4f}")
     assert error < 0.9 * sharp_error
+
+
+def _half_sky(brightness):
+    """A World of `brightness` above the horizon and black below."""
+    from core import Environment, Texture
+
+    sky = np.zeros((16, 32, 3))
+    sky[:8] = brightness
+    return Environment(colour=(1.0, 1.0, 1.0), image=Texture(pixels=sky, srgb=False))
