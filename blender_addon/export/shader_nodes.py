@@ -29,6 +29,7 @@ _UNMODELLED = (
 # Blender's Math operations Whitted computes (the others: noted, their A used)
 MATH = set(core.model.shader.MATH_OPERATIONS)
 BLENDS = set(core.model.shader.MIX_BLENDS)
+VECTOR_MATH = set(core.model.shader.VECTOR_MATH_OPERATIONS)
 # Value nodes: Blender node.type -> (core kind, {Blender output identifier or name: core
 # output name})
 OUTPUTS = {
@@ -50,6 +51,7 @@ OUTPUTS = {
     "LAYER_WEIGHT": ("layer_weight", {"Fresnel": "Fresnel", "Facing": "Facing"}),
     "MAPPING": ("mapping", {"Vector": "Vector"}),
     "MATH": ("math", {"Value": "Value"}),
+    "VECT_MATH": ("vector_math", {"Vector": "Vector", "Value": "Value"}),
     "MIX_RGB": ("mix_color", {"Color": "Color"}),
     "MIX": (
         "mix_color",
@@ -65,6 +67,7 @@ OUTPUTS = {
     "BRIGHTCONTRAST": ("bright_contrast", {"Color": "Color"}),
     "HUE_SAT": ("hsv", {"Color": "Color"}),
     "VALTORGB": ("color_ramp", {"Color": "Color", "Alpha": "Alpha"}),
+    "CURVE_RGB": ("rgb_curves", {"Color": "Color"}),
     "SEPXYZ": ("separate", {"X": "X", "Y": "Y", "Z": "Z"}),
     "SEPRGB": ("separate", {"R": "X", "G": "Y", "B": "Z"}),
     "SEPARATE_COLOR": ("separate", {"Red": "X", "Green": "Y", "Blue": "Z"}),
@@ -74,6 +77,8 @@ OUTPUTS = {
     "RGBTOBW": ("to_bw", {"Val": "Val"}),
     "TEX_CHECKER": ("checker", {"Color": "Color", "Fac": "Fac"}),
     "TEX_GRADIENT": ("gradient", {"Color": "Color", "Fac": "Fac"}),
+    "TEX_MAGIC": ("magic", {"Color": "Color", "Fac": "Fac"}),
+    "TEX_WAVE": ("wave", {"Color": "Color", "Fac": "Fac"}),
     "TEX_BRICK": ("brick", {"Color": "Color", "Fac": "Fac"}),
     "TEX_NOISE": ("noise", {"Fac": "Fac", "Color": "Color"}),
     "TEX_VORONOI": ("voronoi", {"Distance": "Distance", "Color": "Color", "Position": "Position"}),
@@ -327,6 +332,20 @@ class GraphReader:
                     made.inputs[name] = v(node, groups, name)
             else:
                 made.settings["type"] = node.gradient_type
+        elif t == "TEX_WAVE":
+            made.inputs["Vector"] = self._vector(node, groups, "Vector")
+            for name in ("Scale", "Distortion", "Detail", "Detail Scale", "Detail Roughness",
+                         "Phase Offset"):  # fmt: skip
+                if node.inputs.get(name) is not None:  # (Detail Roughness and Phase: 2.83 on)
+                    made.inputs[name] = v(node, groups, name)
+            made.settings.update(type=node.wave_type, bands_direction=node.bands_direction,
+                                 rings_direction=node.rings_direction,
+                                 profile=node.wave_profile)  # fmt: skip
+        elif t == "TEX_MAGIC":
+            made.inputs["Vector"] = self._vector(node, groups, "Vector")
+            for name in ("Scale", "Distortion"):
+                made.inputs[name] = v(node, groups, name)
+            made.settings["depth"] = int(node.turbulence_depth)
         elif t == "TEX_BRICK":
             made.inputs["Vector"] = self._vector(node, groups, "Vector")
             for name in ("Color1", "Color2", "Mortar", "Scale", "Mortar Size", "Mortar Smooth",
@@ -359,6 +378,14 @@ class GraphReader:
             made.settings.update(operation=operation, clamp=bool(node.use_clamp))
             for core_name, socket in zip(("A", "B", "C"), node.inputs, strict=False):
                 made.inputs[core_name] = self._socket_value(node, groups, socket)
+        elif t == "VECT_MATH":
+            if node.operation not in core.model.shader.VECTOR_MATH_OPERATIONS:
+                self.note(f"{node_label(node)}'s {node.operation.title()} (used: Add)")
+            operation = node.operation if node.operation in VECTOR_MATH else "ADD"
+            made.settings["operation"] = operation
+            names = ("A", "B", "C", "Scale")
+            for core_name, socket in zip(names, node.inputs, strict=False):
+                made.inputs[core_name] = self._socket_value(node, groups, socket)
         elif t in ("MIX_RGB", "MIX"):
             blend = node.blend_type if node.blend_type in BLENDS else "MIX"
             if node.blend_type not in BLENDS:
@@ -367,6 +394,10 @@ class GraphReader:
             made.settings.update(blend=blend, clamp=bool(clamp))
             for core_name, socket in zip(("Fac", "A", "B"), _mix_inputs(node), strict=True):
                 made.inputs[core_name] = self._socket_value(node, groups, socket)
+        elif t == "CURVE_RGB":
+            made.settings["table"], made.settings["range"] = curves_table(node.mapping)
+            made.settings["extrapolate"] = node.mapping.extend == "EXTRAPOLATED"
+            made.inputs.update(Fac=v(node, groups, "Fac"), Color=v(node, groups, "Color"))
         elif t == "VALTORGB":
             ramp = node.color_ramp
             made.settings["stops"] = tuple((e.position, tuple(e.color)) for e in ramp.elements)
@@ -480,6 +511,24 @@ class GraphReader:
         socket = node.inputs.get(name)
         if socket is not None and feed_of(socket, groups).node is not None:
             self.note(f"{node_label(node)}'s {name} is not read (used: {what})")
+
+
+def curves_table(mapping):
+    """(table, range) of an RGB Curves node's curve mapping, as Cycles bakes it: x over 0..1
+    widened to the curves' points (the lowest first point, the highest last one), each
+    channel's curve applied after the combined C curve (Blender keeps them as R, G, B, C)."""
+    mapping.initialize()
+    curves = mapping.curves
+    low = min(0.0, *(curve.points[0].location[0] for curve in curves))
+    high = max(1.0, *(curve.points[-1].location[0] for curve in curves))
+    size = core.model.shader.CURVE_TABLE_SIZE
+    table = np.empty((size, 3))
+    for i in range(size):
+        x = low + (high - low) * i / (size - 1)
+        combined = mapping.evaluate(curves[3], x)
+        for channel in range(3):
+            table[i, channel] = mapping.evaluate(curves[channel], combined)
+    return table, (low, high)
 
 
 def _mix_inputs(node):

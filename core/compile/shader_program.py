@@ -29,9 +29,14 @@ from ..model.shader import (
     NORMAL_MAP_SPACES,
     RAMP_INTERPOLATIONS,
     SHADER_NODES,
+    VECTOR_MATH_OPERATIONS,
     VORONOI_FEATURES,
     VORONOI_HASHES,
     VORONOI_METRICS,
+    WAVE_BANDS,
+    WAVE_PROFILES,
+    WAVE_RINGS,
+    WAVE_TYPES,
     Link,
 )
 
@@ -320,6 +325,23 @@ class ProgramBuilder:
                      + 8 * int(bool(node.setting("normalize")))
                      + 16 * VORONOI_HASHES.index(node.setting("cell_hash")))  # fmt: skip
             p.step_with_more(row, (*values[3:], modes))
+        elif kind == "wave":
+            row = (sp.OP_WAVE, slots["Color"], slots["Fac"],
+                   v(node.input("Vector"), "triple", sp.COORD_GENERATED),
+                   *(v(node.input(name), "value")
+                     for name in ("Scale", "Distortion", "Detail")))  # fmt: skip
+            modes = (WAVE_TYPES.index(node.setting("type"))
+                     + 2 * WAVE_BANDS.index(node.setting("bands_direction"))
+                     + 8 * WAVE_RINGS.index(node.setting("rings_direction"))
+                     + 32 * WAVE_PROFILES.index(node.setting("profile")))  # fmt: skip
+            names = ("Detail Scale", "Detail Roughness", "Phase Offset")
+            more = (*(v(node.input(name), "value") for name in names), modes)
+            p.step_with_more(row, more)
+        elif kind == "magic":
+            p.step(sp.OP_MAGIC, slots["Color"], slots["Fac"],
+                   v(node.input("Vector"), "triple", sp.COORD_GENERATED),
+                   v(node.input("Scale"), "value"), v(node.input("Distortion"), "value"),
+                   int(node.setting("depth")))  # fmt: skip
         elif kind == "gradient":
             p.step(sp.OP_GRADIENT, slots["Color"], slots["Fac"],
                    v(node.input("Vector"), "triple", sp.COORD_GENERATED),
@@ -329,6 +351,11 @@ class ProgramBuilder:
                    v(node.input("B"), "value"), v(node.input("C"), "value"),
                    MATH_OPERATIONS.index(node.setting("operation")),
                    int(bool(node.setting("clamp"))))  # fmt: skip
+        elif kind == "vector_math":
+            p.step(sp.OP_VECTOR_MATH, slots["Vector"], slots["Value"],
+                   v(node.input("A"), "triple"), v(node.input("B"), "triple"),
+                   v(node.input("C"), "triple"), v(node.input("Scale"), "value"),
+                   VECTOR_MATH_OPERATIONS.index(node.setting("operation")))  # fmt: skip
         elif kind == "mix_color":
             p.step(sp.OP_MIX, slots["Color"], v(node.input("Fac"), "value"),
                    v(node.input("A"), "triple"), v(node.input("B"), "triple"),
@@ -348,6 +375,14 @@ class ProgramBuilder:
             p.step(sp.OP_HSV, slots["Color"], v(node.input("Hue"), "value"),
                    v(node.input("Saturation"), "value"), v(node.input("Value"), "value"),
                    v(node.input("Fac"), "value"), v(node.input("Color"), "triple"))  # fmt: skip
+        elif kind == "rgb_curves":
+            first = len(p.constants)
+            p.constants.extend(float(x) for x in node.setting("range"))
+            p.constants.append(float(bool(node.setting("extrapolate"))))
+            p.constants.extend(float(x) for x in np.ravel(node.setting("table")))
+            p.step(sp.OP_CURVES, slots["Color"], v(node.input("Fac"), "value"),
+                   v(node.input("Color"), "triple"), ("c", first),
+                   len(node.setting("table")))  # fmt: skip
         elif kind == "color_ramp":
             stops = sorted(node.setting("stops"), key=lambda stop: stop[0])
             first = None

@@ -36,13 +36,17 @@ from .shader_values import (
     hue_saturation_value,
     invert,
     luminance,
+    magic,
     mapping,
     math_node,
     mix_colour,
+    rgb_curves,
 )
 from .texture_lookup import image_lookup
 from .vec import add, cross, dot, normalize, scale, sub
+from .vector_math import vector_math
 from .voronoi import voronoi_texture
+from .wave import wave_texture
 
 # Steps (Materials.shader_ops[:, 0])
 OP_COORD = 1  # out, which (COORD_*), where (0 the hit, 1 and 2 a step across: for Bump)
@@ -76,6 +80,13 @@ OP_NOISE = 31
 # (OP_MORE): lacunarity, randomness, exponent, feature + 2 metric + 8 normalize + 16 hash
 OP_VORONOI = 32
 OP_FACING = 33  # out, IOR or Blend, normal (-1 the surface's), which (facing_values.FACING_*)
+OP_VECTOR_MATH = 34  # out vector, out value, a, b, c, scale, operation
+# out, fac, colour, first constant (x's range, 1 to extrapolate, the table's RGB rows), rows
+OP_CURVES = 35
+OP_MAGIC = 36  # out colour, out fac, vector, scale, distortion, depth
+# out colour, out fac, vector, scale, distortion, detail; its next row (OP_MORE): detail
+# scale, detail roughness, phase, type + 2 bands direction + 8 rings direction + 32 profile
+OP_WAVE = 37
 # Closures take their Normal input's slot in the last column (f), or -1 for the surface's
 OP_DIFFUSE = 20  # weight, colour
 OP_GLOSSY = 21  # weight, colour, roughness, distribution (microfacet.DIST_*)
@@ -432,6 +443,20 @@ def run_program(mats, material, stack, lobes, hit, frame, normal_rows, ray):
             _put(s, out, colour)
             s[a] = distance
             _put(s, b, position)
+        elif op == OP_WAVE:
+            m = ops[row]
+            row += 1
+            modes = m[4]
+            fac = wave_texture(
+                scale(_triple(s, b), s[c]), s[d], s[e], s[m[1]], s[m[2]], s[m[3]],
+                modes % 2, (modes // 2) % 4, (modes // 8) % 4, modes // 32,
+            )  # fmt: skip
+            _put(s, out, (fac, fac, fac))
+            s[a] = fac
+        elif op == OP_MAGIC:
+            colour = magic(scale(_triple(s, b), s[c]), e, s[d])
+            _put(s, out, colour)
+            s[a] = (colour[0] + colour[1] + colour[2]) / 3.0
         elif op == OP_GRADIENT:
             fac = gradient(c, _triple(s, b))
             _put(s, out, (fac, fac, fac))
@@ -439,6 +464,10 @@ def run_program(mats, material, stack, lobes, hit, frame, normal_rows, ray):
         elif op == OP_MATH:
             value = math_node(d, s[a], s[b], s[c])
             s[out] = min(max(value, 0.0), 1.0) if e else value
+        elif op == OP_VECTOR_MATH:
+            vector, value = vector_math(f, _triple(s, b), _triple(s, c), _triple(s, d), s[e])
+            _put(s, out, vector)
+            s[a] = value
         elif op == OP_MIX:
             t = min(max(s[a], 0.0), 1.0)
             mixed = mix_colour(d, t, _triple(s, b), _triple(s, c))
@@ -451,6 +480,13 @@ def run_program(mats, material, stack, lobes, hit, frame, normal_rows, ray):
             _put(s, out, bright_contrast(_triple(s, a), s[b], s[c]))
         elif op == OP_HSV:
             _put(s, out, hue_saturation_value(s[a], s[b], s[c], s[d], _triple(s, e)))
+        elif op == OP_CURVES:
+            colour = _triple(s, b)
+            curved = rgb_curves(s, c, d, colour)
+            t = s[a]
+            _put(s, out, (colour[0] + (curved[0] - colour[0]) * t,
+                          colour[1] + (curved[1] - colour[1]) * t,
+                          colour[2] + (curved[2] - colour[2]) * t))  # fmt: skip
         elif op == OP_RAMP:
             rgb, alpha = colour_ramp(s, c, d, e, s[b])
             _put(s, out, rgb)

@@ -18,7 +18,8 @@ from .vec import add, scale, sub
  M_RADIANS, M_DEGREES) = range(41)  # fmt: skip
 # Mix Color blend types (core.model.shader.MIX_BLENDS)
 (B_MIX, B_ADD, B_MULTIPLY, B_SUBTRACT, B_SCREEN, B_DIVIDE, B_DIFFERENCE, B_DARKEN, B_LIGHTEN,
- B_OVERLAY, B_EXCLUSION) = range(11)  # fmt: skip
+ B_OVERLAY, B_EXCLUSION, B_BURN, B_DODGE, B_HUE, B_SATURATION, B_VALUE, B_COLOR, B_SOFT_LIGHT,
+ B_LINEAR_LIGHT) = range(19)  # fmt: skip
 # Gradient texture types (core.model.shader.GRADIENT_TYPES)
 (G_LINEAR, G_QUADRATIC, G_EASING, G_DIAGONAL, G_RADIAL, G_QUADRATIC_SPHERE,
  G_SPHERICAL) = range(7)  # fmt: skip
@@ -188,7 +189,65 @@ def mix_colour(blend, t, c1, c2):
         e = _lerp(c1, (c1[0] + c2[0] - 2.0 * c1[0] * c2[0], c1[1] + c2[1] - 2.0 * c1[1] * c2[1],
                        c1[2] + c2[2] - 2.0 * c1[2] * c2[2]), t)  # fmt: skip
         return (max(e[0], 0.0), max(e[1], 0.0), max(e[2], 0.0))
+    if blend >= B_BURN:
+        return _mix_more(blend, t, c1, c2)
     return _lerp(c1, c2, t)
+
+
+@kernel
+def _burn(t, a, b):
+    """Color Burn of one channel: 1 - (1 - a) / (1 - t + t b), within 0..1."""
+    below = 1.0 - t + t * b
+    if below <= 0.0:
+        return 0.0
+    return min(max(1.0 - (1.0 - a) / below, 0.0), 1.0)
+
+
+@kernel
+def _dodge(t, a, b):
+    """Color Dodge of one channel: a / (1 - t b), at most 1 (0 stays 0)."""
+    if a == 0.0:
+        return a
+    below = 1.0 - t * b
+    if below <= 0.0:
+        return 1.0
+    return min(a / below, 1.0)
+
+
+@kernel
+def _soft(t, a, b):
+    """Soft Light of one channel: towards (1 - a) b a + a screen(a, b)."""
+    screen = 1.0 - (1.0 - b) * (1.0 - a)
+    return (1.0 - t) * a + t * ((1.0 - a) * b * a + a * screen)
+
+
+@kernel
+def _mix_more(blend, t, c1, c2):
+    """Mix Color's Burn, Dodge, the HSV blends (Hue, Saturation, Value, Color), Soft Light
+    and Linear Light, as Blender defines them (Cycles' svm_mix)."""
+    if blend == B_BURN:
+        return _burn(t, c1[0], c2[0]), _burn(t, c1[1], c2[1]), _burn(t, c1[2], c2[2])
+    if blend == B_DODGE:
+        return _dodge(t, c1[0], c2[0]), _dodge(t, c1[1], c2[1]), _dodge(t, c1[2], c2[2])
+    if blend == B_SOFT_LIGHT:
+        return _soft(t, c1[0], c2[0]), _soft(t, c1[1], c2[1]), _soft(t, c1[2], c2[2])
+    if blend == B_LINEAR_LIGHT:
+        return add(c1, scale((2.0 * c2[0] - 1.0, 2.0 * c2[1] - 1.0, 2.0 * c2[2] - 1.0), t))
+    # the HSV blends: take B's hue (Hue), hue and saturation (Color), or blend saturation
+    # (Saturation) or value (Value) towards B's
+    h1, s1, v1 = _rgb_to_hsv(c1)
+    h2, s2, v2 = _rgb_to_hsv(c2)
+    if blend == B_VALUE:
+        return _hsv_to_rgb(h1, s1, (1.0 - t) * v1 + t * v2)
+    if blend == B_SATURATION:
+        if s1 == 0.0:
+            return c1
+        return _hsv_to_rgb(h1, (1.0 - t) * s1 + t * s2, v1)
+    if s2 == 0.0:  # Hue and Color of a grey B change nothing
+        return c1
+    if blend == B_HUE:
+        return _lerp(c1, _hsv_to_rgb(h2, s1, v1), t)
+    return _lerp(c1, _hsv_to_rgb(h2, s2, v1), t)  # B_COLOR
 
 
 @kernel
@@ -309,6 +368,72 @@ def colour_ramp(stack, first, count, interpolation, t):
         stack[k + 3] * (1.0 - f) + stack[k + 8] * f,
     )
     return rgba, stack[k + 4] * (1.0 - f) + stack[k + 9] * f
+
+
+@kernel
+def _curve(stack, first, rows, channel, x):
+    """One channel of an RGB Curves table (see rgb_curves) at x, as Cycles' ramp lookup:
+    linear between rows; beyond them along the end rows' slope (Extend: Extrapolated), or
+    the end row (Extend: Horizontal)."""
+    low, high, extrapolate = stack[first], stack[first + 1], stack[first + 2] != 0.0
+    table = first + 3
+    f = (x - low) / (high - low)
+    last = rows - 1
+    if not extrapolate:
+        f = min(max(f, 0.0), 1.0)
+    if f < 0.0:
+        start = stack[table + channel]
+        return start + (start - stack[table + 3 + channel]) * (-f) * last
+    if f > 1.0:
+        end = stack[table + 3 * last + channel]
+        return end + (end - stack[table + 3 * (last - 1) + channel]) * (f - 1.0) * last
+    position = f * last
+    i = min(int(position), last - 1)
+    t = position - i
+    a = stack[table + 3 * i + channel]
+    return a + (stack[table + 3 * (i + 1) + channel] - a) * t
+
+
+@kernel
+def rgb_curves(stack, first, rows, c):
+    """RGB Curves' colour for c: each channel through its baked curve, whose table of `rows`
+    RGB rows follows x's range (two numbers) and 1 to extrapolate in the stack from
+    `first`."""
+    return (_curve(stack, first, rows, 0, c[0]), _curve(stack, first, rows, 1, c[1]),
+            _curve(stack, first, rows, 2, c[2]))  # fmt: skip
+
+
+@kernel
+def magic(p, depth, distortion):
+    """The Magic texture's colour at p (already scaled): three waves of p's coordinates'
+    sums, each then bent by the others `depth` times (0..10), Blender's formula."""
+    x = math.sin((p[0] + p[1] + p[2]) * 5.0)
+    y = math.cos((-p[0] + p[1] - p[2]) * 5.0)
+    z = -math.cos((-p[0] - p[1] + p[2]) * 5.0)
+    if depth > 0:
+        x, y, z = x * distortion, y * distortion, z * distortion
+        y = -math.cos(x - y + z) * distortion
+    if depth > 1:
+        x = math.cos(x - y - z) * distortion
+    if depth > 2:
+        z = math.sin(-x - y - z) * distortion
+    if depth > 3:
+        x = -math.cos(-x + y - z) * distortion
+    if depth > 4:
+        y = -math.sin(-x + y + z) * distortion
+    if depth > 5:
+        y = -math.cos(-x + y + z) * distortion
+    if depth > 6:
+        x = math.cos(x + y + z) * distortion
+    if depth > 7:
+        z = math.sin(x + y - z) * distortion
+    if depth > 8:
+        x = -math.cos(-x - y + z) * distortion
+    if depth > 9:
+        y = -math.sin(x - y + z) * distortion
+    if distortion != 0.0:
+        x, y, z = x / (2.0 * distortion), y / (2.0 * distortion), z / (2.0 * distortion)
+    return 0.5 - x, 0.5 - y, 0.5 - z
 
 
 @kernel

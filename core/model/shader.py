@@ -154,10 +154,41 @@ SHADER_NODES = {
         outputs={"Color": "triple", "Fac": "value"},
         settings={"type": "LINEAR"},
     ),  # fmt: skip
+    # Blender's Wave texture (WAVE_TYPES, WAVE_BANDS, WAVE_RINGS, WAVE_PROFILES)
+    "wave": dict(
+        inputs={
+            "Vector": None,
+            "Scale": 5.0,
+            "Distortion": 0.0,
+            "Detail": 2.0,
+            "Detail Scale": 1.0,
+            "Detail Roughness": 0.5,
+            "Phase Offset": 0.0,
+        },
+        outputs={"Color": "triple", "Fac": "value"},
+        settings={
+            "type": "BANDS",
+            "bands_direction": "X",
+            "rings_direction": "X",
+            "profile": "SIN",
+        },
+    ),  # fmt: skip
+    # Blender's Magic texture: `depth` its Depth (0..10)
+    "magic": dict(
+        inputs={"Vector": None, "Scale": 5.0, "Distortion": 1.0},
+        outputs={"Color": "triple", "Fac": "value"},
+        settings={"depth": 2},
+    ),  # fmt: skip
     "math": dict(
         inputs={"A": 0.5, "B": 0.5, "C": 0.0},
         outputs={"Value": "value"},
         settings={"operation": "ADD", "clamp": False},
+    ),  # fmt: skip
+    # Blender's Vector Math: A, B, C its three vectors, Scale its number (Scale, Refract)
+    "vector_math": dict(
+        inputs={"A": (0.0, 0.0, 0.0), "B": (0.0, 0.0, 0.0), "C": (0.0, 0.0, 0.0), "Scale": 1.0},
+        outputs={"Vector": "triple", "Value": "value"},
+        settings={"operation": "ADD"},
     ),  # fmt: skip
     "mix_color": dict(
         inputs={"Fac": 0.5, "A": (0.5, 0.5, 0.5), "B": (0.5, 0.5, 0.5)},
@@ -173,6 +204,14 @@ SHADER_NODES = {
     "hsv": dict(
         inputs={"Hue": 0.5, "Saturation": 1.0, "Value": 1.0, "Fac": 1.0, "Color": (0.8, 0.8, 0.8)},
         outputs={"Color": "triple"},
+    ),  # fmt: skip
+    # Blender's RGB Curves: `table` its curves sampled as Cycles bakes them (CURVE_TABLE_SIZE
+    # RGB rows, each channel's curve after the combined C curve), over x from `range`'s first
+    # to its second; beyond it, extended along the end rows' slope (`extrapolate`) or flat
+    "rgb_curves": dict(
+        inputs={"Fac": 1.0, "Color": (0.5, 0.5, 0.5)},
+        outputs={"Color": "triple"},
+        settings={"table": None, "range": (0.0, 1.0), "extrapolate": True},
     ),  # fmt: skip
     "color_ramp": dict(
         inputs={"Fac": 0.5},
@@ -215,11 +254,24 @@ MATH_OPERATIONS = ("ADD", "SUBTRACT", "MULTIPLY", "DIVIDE", "MULTIPLY_ADD", "POW
                    "SMOOTH_MIN", "SMOOTH_MAX", "COMPARE", "TRUNC", "INVERSE_SQRT",
                    "FLOORED_MODULO", "TANGENT", "ARCSINE", "ARCCOSINE", "ARCTANGENT",
                    "ARCTAN2", "SINH", "COSH", "TANH", "RADIANS", "DEGREES")  # fmt: skip
+VECTOR_MATH_OPERATIONS = ("ADD", "SUBTRACT", "MULTIPLY", "DIVIDE", "MULTIPLY_ADD",
+                          "CROSS_PRODUCT", "PROJECT", "REFLECT", "REFRACT", "FACEFORWARD",
+                          "DOT_PRODUCT", "DISTANCE", "LENGTH", "SCALE", "NORMALIZE",
+                          "ABSOLUTE", "POWER", "SIGN", "MINIMUM", "MAXIMUM", "FLOOR", "CEIL",
+                          "FRACTION", "MODULO", "WRAP", "SNAP", "SINE", "COSINE",
+                          "TANGENT")  # fmt: skip
 MIX_BLENDS = ("MIX", "ADD", "MULTIPLY", "SUBTRACT", "SCREEN", "DIVIDE", "DIFFERENCE",
-              "DARKEN", "LIGHTEN", "OVERLAY", "EXCLUSION")  # fmt: skip
+              "DARKEN", "LIGHTEN", "OVERLAY", "EXCLUSION", "BURN", "DODGE", "HUE",
+              "SATURATION", "VALUE", "COLOR", "SOFT_LIGHT", "LINEAR_LIGHT")  # fmt: skip
 GRADIENT_TYPES = ("LINEAR", "QUADRATIC", "EASING", "DIAGONAL", "RADIAL", "QUADRATIC_SPHERE",
                   "SPHERICAL")  # fmt: skip
 MAPPING_TYPES = ("POINT", "TEXTURE", "VECTOR", "NORMAL")
+WAVE_TYPES = ("BANDS", "RINGS")
+WAVE_BANDS = ("X", "Y", "Z", "DIAGONAL")
+WAVE_RINGS = ("X", "Y", "Z", "SPHERICAL")
+WAVE_PROFILES = ("SIN", "SAW", "TRI")
+# The rows of an RGB Curves node's table (Cycles' RAMP_TABLE_SIZE)
+CURVE_TABLE_SIZE = 256
 # The closures with a microfacet distribution
 ROUGH_CLOSURES = ("principled", "glossy", "metallic", "glass", "refraction")
 # The deepest chain of nodes a graph may have: the graph is walked recursively
@@ -311,6 +363,11 @@ def _check_settings(owner, label, node) -> None:
     choices = {
         ("math", "operation"): MATH_OPERATIONS,
         ("mix_color", "blend"): MIX_BLENDS,
+        ("vector_math", "operation"): VECTOR_MATH_OPERATIONS,
+        ("wave", "type"): WAVE_TYPES,
+        ("wave", "bands_direction"): WAVE_BANDS,
+        ("wave", "rings_direction"): WAVE_RINGS,
+        ("wave", "profile"): WAVE_PROFILES,
         ("gradient", "type"): GRADIENT_TYPES,
         ("mapping", "type"): MAPPING_TYPES,
         ("image", "interpolation"): INTERPOLATIONS,
@@ -336,6 +393,16 @@ def _check_settings(owner, label, node) -> None:
         if not isinstance(texture, Texture):
             raise SceneError(owner, f"{label} texture", f"got {texture!r}; need a Texture")
         texture.validate(owner)
+    if node.kind == "magic" and node.setting("depth") not in range(11):
+        given = node.setting("depth")
+        raise SceneError(owner, f"{label} depth", f"got {given!r}; use a whole number from 0 to 10")
+    if node.kind == "rgb_curves":
+        table = node.setting("table")
+        low, high = node.setting("range")
+        if table is None or np.shape(table) != (CURVE_TABLE_SIZE, 3):
+            raise SceneError(owner, f"{label} table", f"give {CURVE_TABLE_SIZE} RGB rows")
+        if not (np.all(np.isfinite(table)) and np.isfinite(low) and high > low):
+            raise SceneError(owner, f"{label} range", "give finite numbers, the first below")
     if node.kind == "color_ramp":
         stops = node.setting("stops")
         if len(stops) < 1 or any(len(colour) != 4 for _, colour in stops):

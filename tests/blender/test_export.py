@@ -268,17 +268,17 @@ def test_nodes_whitted_cannot_evaluate_are_named_in_one_warning_per_material(
     bpy = sys.modules["bpy"]
     _, material = sphere_with_material(bpy, "Marble")
     tree = material.node_tree
-    wave = tree.nodes.new("ShaderNodeTexWave")
-    tree.links.new(wave.outputs["Color"], principled(material).inputs["Base Color"])
-    magic = tree.nodes.new("ShaderNodeTexMagic")
-    tree.links.new(magic.outputs["Color"], principled(material).inputs["Normal"])
+    noise = tree.nodes.new("ShaderNodeTexWhiteNoise")
+    tree.links.new(noise.outputs["Color"], principled(material).inputs["Base Color"])
+    blackbody = tree.nodes.new("ShaderNodeBlackbody")
+    tree.links.new(blackbody.outputs["Color"], principled(material).inputs["Normal"])
     volume = tree.nodes.new("ShaderNodeVolumePrincipled")
     output = next(n for n in tree.nodes if n.type == "OUTPUT_MATERIAL")
     tree.links.new(volume.outputs[0], output.inputs["Volume"])
     scene, _, warnings = exported(bpy, monkeypatch)
     mine = [w for w in warnings if w.startswith("material 'Marble'")]
     assert len(mine) == 1, warnings
-    for named in ("'Wave Texture'", "Base Color", "Normal", "Volume", "used:"):
+    for named in ("'White Noise Texture'", "Base Color", "Normal", "Volume", "used:"):
         assert named in mine[0], mine[0]
     # What was used instead: the Base Color's own value
     base = tuple(principled(material).inputs["Base Color"].default_value[:3])
