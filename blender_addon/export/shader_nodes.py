@@ -79,6 +79,7 @@ OUTPUTS = {
     "TEX_GRADIENT": ("gradient", {"Color": "Color", "Fac": "Fac"}),
     "TEX_MAGIC": ("magic", {"Color": "Color", "Fac": "Fac"}),
     "TEX_WAVE": ("wave", {"Color": "Color", "Fac": "Fac"}),
+    "TEX_WHITE_NOISE": ("white_noise", {"Value": "Value", "Color": "Color"}),
     "TEX_BRICK": ("brick", {"Color": "Color", "Fac": "Fac"}),
     "TEX_NOISE": ("noise", {"Fac": "Fac", "Color": "Color"}),
     "TEX_VORONOI": ("voronoi", {"Distance": "Distance", "Color": "Color", "Position": "Position"}),
@@ -341,6 +342,14 @@ class GraphReader:
             made.settings.update(type=node.wave_type, bands_direction=node.bands_direction,
                                  rings_direction=node.rings_direction,
                                  profile=node.wave_profile)  # fmt: skip
+        elif t == "TEX_WHITE_NOISE":
+            made.settings["dimensions"] = int(node.noise_dimensions[0])
+            made.inputs["Vector"] = self._vector(node, groups, "Vector")
+            if node.inputs.get("W") is not None:  # (5.0 hides what a dimension leaves out)
+                made.inputs["W"] = v(node, groups, "W")
+            if made.inputs["Vector"] is None and made.settings["dimensions"] > 1:
+                self.note(f"{node_label(node)}'s unlinked Vector (Cycles: the point's "
+                          "position; used: Generated coordinates)")  # fmt: skip
         elif t == "TEX_MAGIC":
             made.inputs["Vector"] = self._vector(node, groups, "Vector")
             for name in ("Scale", "Distortion"):

@@ -337,6 +337,10 @@ class ProgramBuilder:
             names = ("Detail Scale", "Detail Roughness", "Phase Offset")
             more = (*(v(node.input(name), "value") for name in names), modes)
             p.step_with_more(row, more)
+        elif kind == "white_noise":
+            p.step(sp.OP_WHITE_NOISE, slots["Color"], slots["Value"],
+                   v(node.input("Vector"), "triple", sp.COORD_GENERATED),
+                   v(node.input("W"), "value"), int(node.setting("dimensions")))  # fmt: skip
         elif kind == "magic":
             p.step(sp.OP_MAGIC, slots["Color"], slots["Fac"],
                    v(node.input("Vector"), "triple", sp.COORD_GENERATED),

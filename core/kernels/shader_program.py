@@ -47,6 +47,7 @@ from .vec import add, cross, dot, normalize, scale, sub
 from .vector_math import vector_math
 from .voronoi import voronoi_texture
 from .wave import wave_texture
+from .white_noise import white_noise
 
 # Steps (Materials.shader_ops[:, 0])
 OP_COORD = 1  # out, which (COORD_*), where (0 the hit, 1 and 2 a step across: for Bump)
@@ -87,6 +88,7 @@ OP_MAGIC = 36  # out colour, out fac, vector, scale, distortion, depth
 # out colour, out fac, vector, scale, distortion, detail; its next row (OP_MORE): detail
 # scale, detail roughness, phase, type + 2 bands direction + 8 rings direction + 32 profile
 OP_WAVE = 37
+OP_WHITE_NOISE = 38  # out colour, out value, vector, w, dimensions
 # Closures take their Normal input's slot in the last column (f), or -1 for the surface's
 OP_DIFFUSE = 20  # weight, colour
 OP_GLOSSY = 21  # weight, colour, roughness, distribution (microfacet.DIST_*)
@@ -453,6 +455,10 @@ def run_program(mats, material, stack, lobes, hit, frame, normal_rows, ray):
             )  # fmt: skip
             _put(s, out, (fac, fac, fac))
             s[a] = fac
+        elif op == OP_WHITE_NOISE:
+            value, colour = white_noise(d, _triple(s, b), s[c])
+            _put(s, out, colour)
+            s[a] = value
         elif op == OP_MAGIC:
             colour = magic(scale(_triple(s, b), s[c]), e, s[d])
             _put(s, out, colour)

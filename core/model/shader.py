@@ -173,6 +173,12 @@ SHADER_NODES = {
             "profile": "SIN",
         },
     ),  # fmt: skip
+    # Blender's White Noise texture: `dimensions` 1 (W), 2, 3 (Vector) or 4 (both)
+    "white_noise": dict(
+        inputs={"Vector": None, "W": 0.0},
+        outputs={"Value": "value", "Color": "triple"},
+        settings={"dimensions": 3},
+    ),  # fmt: skip
     # Blender's Magic texture: `depth` its Depth (0..10)
     "magic": dict(
         inputs={"Vector": None, "Scale": 5.0, "Distortion": 1.0},
@@ -396,6 +402,9 @@ def _check_settings(owner, label, node) -> None:
     if node.kind == "magic" and node.setting("depth") not in range(11):
         given = node.setting("depth")
         raise SceneError(owner, f"{label} depth", f"got {given!r}; use a whole number from 0 to 10")
+    if node.kind == "white_noise" and node.setting("dimensions") not in (1, 2, 3, 4):
+        given = node.setting("dimensions")
+        raise SceneError(owner, f"{label} dimensions", f"got {given!r}; use 1, 2, 3 or 4")
     if node.kind == "rgb_curves":
         table = node.setting("table")
         low, high = node.setting("range")

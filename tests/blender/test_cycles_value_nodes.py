@@ -259,3 +259,38 @@ WAVES = (("BANDS", "X", "SIN", 0.0), ("BANDS", "DIAGONAL", "SAW", 0.0),
 def test_wave_textures_give_cycles_pixels(bpy_with_whitted, tmp_path):
     tiles = [("_".join(map(str, shape)).lower(), _wave(*shape)) for shape in WAVES]
     _assert_tiles_agree(bpy_with_whitted, tmp_path, tiles)
+
+
+def _white_noise(dimensions, output):
+    """White Noise of whole-number cells: the tile's Object coordinates times 3, floored
+    (the same float32 numbers in both renderers), W their x plus 0.5."""
+
+    def build(bpy, tree):
+        coords = tree.nodes.new("ShaderNodeTexCoord")
+        cells = tree.nodes.new("ShaderNodeVectorMath")
+        cells.operation = "SCALE"
+        cells.inputs[3].default_value = 3.0
+        tree.links.new(coords.outputs["Object"], cells.inputs[0])
+        floor = tree.nodes.new("ShaderNodeVectorMath")
+        floor.operation = "FLOOR"
+        tree.links.new(cells.outputs["Vector"], floor.inputs[0])
+        x = tree.nodes.new("ShaderNodeSeparateXYZ")
+        tree.links.new(floor.outputs["Vector"], x.inputs[0])
+        w = tree.nodes.new("ShaderNodeMath")
+        w.inputs[1].default_value = 0.5
+        tree.links.new(x.outputs["X"], w.inputs[0])
+        noise = tree.nodes.new("ShaderNodeTexWhiteNoise")
+        noise.noise_dimensions = dimensions
+        if dimensions != "1D":  # (5.0 hides the inputs a dimension leaves out)
+            tree.links.new(floor.outputs["Vector"], noise.inputs["Vector"])
+        if dimensions in ("1D", "4D"):
+            tree.links.new(w.outputs["Value"], noise.inputs["W"])
+        _glow(tree, noise.outputs[output], "Strength" if output == "Value" else "Color")
+
+    return build
+
+
+def test_white_noise_of_whole_cells_gives_cycles_pixels(bpy_with_whitted, tmp_path):
+    tiles = [(f"white_noise_{d}_{output}", _white_noise(d, output))
+             for d in ("1D", "2D", "3D", "4D") for output in ("Value", "Color")]  # fmt: skip
+    _assert_tiles_agree(bpy_with_whitted, tmp_path, tiles)

@@ -268,8 +268,8 @@ def test_nodes_whitted_cannot_evaluate_are_named_in_one_warning_per_material(
     bpy = sys.modules["bpy"]
     _, material = sphere_with_material(bpy, "Marble")
     tree = material.node_tree
-    noise = tree.nodes.new("ShaderNodeTexWhiteNoise")
-    tree.links.new(noise.outputs["Color"], principled(material).inputs["Base Color"])
+    attribute = tree.nodes.new("ShaderNodeAttribute")
+    tree.links.new(attribute.outputs["Color"], principled(material).inputs["Base Color"])
     blackbody = tree.nodes.new("ShaderNodeBlackbody")
     tree.links.new(blackbody.outputs["Color"], principled(material).inputs["Normal"])
     volume = tree.nodes.new("ShaderNodeVolumePrincipled")
@@ -278,7 +278,7 @@ def test_nodes_whitted_cannot_evaluate_are_named_in_one_warning_per_material(
     scene, _, warnings = exported(bpy, monkeypatch)
     mine = [w for w in warnings if w.startswith("material 'Marble'")]
     assert len(mine) == 1, warnings
-    for named in ("'White Noise Texture'", "Base Color", "Normal", "Volume", "used:"):
+    for named in ("'Attribute'", "Base Color", "Normal", "Volume", "used:"):
         assert named in mine[0], mine[0]
     # What was used instead: the Base Color's own value
     base = tuple(principled(material).inputs["Base Color"].default_value[:3])

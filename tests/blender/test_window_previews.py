@@ -20,6 +20,11 @@ from tests.support import ROOT
 pytestmark = pytest.mark.blender34
 
 DRIVER = ROOT / "tests" / "blender" / "scripts" / "window_previews.py"
+# The window's warm-up waits on the cache folder's lock while another process compiles
+# (core.jit.warmup): under `make test`, lane B's Blender 3.4 run may hold it for minutes. A
+# window run took 74 s cold alone, 104 s beside a compile; one timed out at 300 s in a
+# fresh-clone run, its window still waiting
+WINDOW_TIMEOUT_S = 600
 SAMPLE = ROOT / "sample_blends" / "refraction.blend"
 
 
@@ -32,7 +37,7 @@ def run_window_script(display, script, out):
     return subprocess.run(
         [shutil.which("blender"), "--python-use-system-env", "--addons", "whitted",
          str(SAMPLE), "--python", str(script), "--", str(out)],
-        env=env, capture_output=True, text=True, timeout=300,
+        env=env, capture_output=True, text=True, timeout=WINDOW_TIMEOUT_S,
     )  # fmt: skip
 
 

@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
+from tests.blender.test_window_previews import WINDOW_TIMEOUT_S
 from tests.support import ROOT
 
 pytestmark = pytest.mark.blender34
@@ -39,7 +40,7 @@ def test_rendered_shading_shows_the_scene_and_follows_a_moved_object(display, tm
     run = subprocess.run(
         [shutil.which("blender"), "--python-use-system-env", "--addons", "whitted",
          str(SPHERES), "--python", str(DRIVER), "--", str(out)],
-        env=env, capture_output=True, text=True, timeout=300,
+        env=env, capture_output=True, text=True, timeout=WINDOW_TIMEOUT_S,
     )  # fmt: skip
     assert out.is_file(), run.stdout[-3000:] + run.stderr[-3000:]
     seen = json.loads(out.read_text())
