@@ -18,6 +18,10 @@ TRANSMISSION_INPUTS = ("Transmission Weight", "Transmission")
 # Cycles' Principled BSDF layers its specular over the diffuse from Blender 4.0 (the
 # Principled v2); before, the lobes were added
 PRINCIPLED_LAYERED = bpy.app.version >= (4, 0, 0)
+# What Cycles dims the layers under a rough Coat by: the exact Fresnel at the coat's normal
+# in 4.2 ("NORMAL"), the mean Fresnel over its GGX lobe in 4.5 on ("LOBE"; measured by
+# tests/blender/test_cycles_clear_coat.py; 4.3 and 4.4 not tested, taken as 4.2)
+COAT_ALBEDO = "LOBE" if bpy.app.version >= (4, 5, 0) else "NORMAL"
 
 
 # Blender 5.0 renamed the passes Cycles and EEVEE write (and multilayer EXR files carry, and

@@ -10,13 +10,12 @@ from __future__ import annotations
 import numpy as np
 
 from .. import core
-from ..compat import PRINCIPLED_LAYERED, VORONOI_CELL_HASH
+from ..compat import COAT_ALBEDO, PRINCIPLED_LAYERED, VORONOI_CELL_HASH
 from .shader_graph import Feed, feed_of, node_label, output_node
 
 # Principled BSDF inputs that change the look but are not modelled, with the value that
 # changes nothing and what is used instead
 _UNMODELLED = (
-    ("Coat Weight", 0.0, "no coat"),
     ("Clearcoat", 0.0, "no clearcoat"),
     ("Sheen Weight", 0.0, "no sheen"),
     ("Sheen", 0.0, "no sheen"),
@@ -251,11 +250,12 @@ class GraphReader:
                           f"{node_label(feed.node)}, is not modelled (used: {used})")  # fmt: skip
             elif _number(feed.socket) != neutral:  # its value, or the group's input's
                 self.note(f"{node_label(node)}'s {name} is not modelled (used: {used})")
-        for name in ("Coat Normal", "Clearcoat Normal", "Tangent"):
+        for name in ("Clearcoat Normal", "Tangent"):
             self.linked(node, groups, name, "the surface's own normal")
         v = self.value
         made = core.ShaderNode("principled", name=node.name,
-                               settings={"layered": PRINCIPLED_LAYERED})  # fmt: skip
+                               settings={"layered": PRINCIPLED_LAYERED,
+                                         "coat_albedo": COAT_ALBEDO})  # fmt: skip
         renamed = {
             "Base Color": ("Base Color",),
             "Metallic": ("Metallic",),
@@ -267,6 +267,10 @@ class GraphReader:
             "Emission Strength": ("Emission Strength",),
             "Specular": ("Specular IOR Level", "Specular"),
             "Specular Tint": ("Specular Tint",),
+            "Coat Weight": ("Coat Weight",),
+            "Coat Roughness": ("Coat Roughness",),
+            "Coat IOR": ("Coat IOR",),
+            "Coat Tint": ("Coat Tint",),
         }
         for core_name, names in renamed.items():
             name = next((n for n in names if node.inputs.get(n) is not None), None)
@@ -279,7 +283,19 @@ class GraphReader:
             self.note(f"{node_label(node)}'s Specular Tint on a dielectric (used: white)")
         self._distribution(node, made)
         self._normal(made, node, groups)
+        self._coat_normal(made, node, groups)
         return made
+
+    def _coat_normal(self, made, node, groups) -> None:
+        """The Coat Normal: what feeds it, else the displacement's bump normal (Cycles'
+        coat takes the surface's normal, not the Normal input's)."""
+        socket = node.inputs.get("Coat Normal")
+        if socket is None:
+            return
+        if feed_of(socket, groups).node is not None:
+            made.inputs["Coat Normal"] = self.value(node, groups, "Coat Normal")
+        elif self.displaced is not None:
+            made.inputs["Coat Normal"] = self.displaced
 
     # values
 

@@ -24,10 +24,11 @@ from ..kernels.options import (
     OPTION_PASSES,
     OPTION_PIXEL_SAMPLES,
 )
+from ..kernels.shader_program import OP_CLEAR_COAT, OP_CLEAR_COAT_AT_NORMAL
 from ..kernels.shadow_log import SHADOW_VARIES
 from ..model import Csg, RenderSettings, Scene
 from ..model.emitters import Emitter
-from ..model.shader import emits, is_rough, passes_light, sends_caustics
+from ..model.shader import emits, has_clear_coat, is_rough, passes_light, sends_caustics
 
 
 def used_features(packed: PackedScene) -> frozenset[str]:
@@ -51,6 +52,8 @@ def used_features(packed: PackedScene) -> frozenset[str]:
         # spread only by a rough surface: a folded one's roughness, or a program's per hit
         "glossy": options[OPTION_GLOSSY_SAMPLES] > 0
         and (nodes or bool(np.any(mats.roughness > 0.0))),
+        # a folded coat's row, or a coat step in a program run per hit
+        "clear_coat": bool(np.any(mats.clear_coat[:, 0] > 0.0)) or _programs_coat(mats),
     }
     return frozenset(name for name in FEATURES if used[name])
 
@@ -58,6 +61,15 @@ def used_features(packed: PackedScene) -> frozenset[str]:
 def left_out(packed: PackedScene) -> frozenset[str]:
     """The features `packed` does not use: what its kernel variant leaves out."""
     return frozenset(FEATURES) - used_features(packed)
+
+
+def _programs_coat(mats) -> bool:
+    """Whether a program run per hit has a clear coat's step."""
+    for first, end in mats.shader_range:
+        ops = mats.shader_ops[first:end, 0] if first >= 0 else mats.shader_ops[:0, 0]
+        if np.any((ops == OP_CLEAR_COAT) | (ops == OP_CLEAR_COAT_AT_NORMAL)):
+            return True
+    return False
 
 
 def _may_bounce(mats, nodes: bool) -> bool:
@@ -97,6 +109,7 @@ def expected_features(scene: Scene, settings: RenderSettings) -> frozenset[str]:
         "adaptive": settings.adaptive_threshold > 0.0 and settings.pixel_samples > 1,
         "glossy": settings.glossy_samples > 0
         and (nodes or any(m.roughness > 0.0 for m in materials) or any(map(is_rough, graphs))),
+        "clear_coat": any(map(has_clear_coat, graphs)),
     }
     return frozenset(name for name in FEATURES if used[name])
 

@@ -13,7 +13,7 @@ from ..kernels.layout import Materials
 from ..kernels.shader_fold import FOLDED_COLUMNS, fold_surfaces
 from ..kernels.shader_program import SHADER_STACK
 from ..kernels.shadow_log import SHADOW_VARIES
-from ..kernels.surface_terms import GLOSS_COLUMNS
+from ..kernels.surface_terms import CLEAR_COAT_COLUMNS, GLOSS_COLUMNS, NO_CLEAR_COAT
 from ..model.shader import passes_light
 from ..passes import crypto_id
 from ..textures import load_texture
@@ -82,6 +82,7 @@ def pack_materials(shapes: list) -> tuple[Materials, dict[int, int]]:
         holdout=np.array([m.holdout for m, _ in materials], float),
         roughness=np.array([m.roughness for m, _ in materials], float),
         gloss=_no_gloss(len(materials)),
+        clear_coat=_no_clear_coat(len(materials)),
         texture_alpha=concatenated([a.ravel() for _, a in textures.loaded], (0,), np.float32),
         **_program_tables(programs),
     )
@@ -153,7 +154,8 @@ def _fold_constant_programs(table: Materials, programs: list) -> None:
         table.transparent[k] = row[31:34]
         table.holdout[k] = row[34]
         table.roughness[k] = row[35]
-        table.gloss[k] = row[36:]
+        table.gloss[k] = row[36 : 36 + GLOSS_COLUMNS]
+        table.clear_coat[k] = row[36 + GLOSS_COLUMNS :]
         table.shader_range[k] = (-1, -1)
 
 
@@ -199,7 +201,7 @@ def folded_row(table: Materials, k: int) -> dict:
         refraction_fresnel=table.refraction_fresnel[k], emission=table.emission[k],
         transparent=table.transparent[k], holdout=table.holdout[k],
         roughness=table.roughness[k], programmed=table.shader_range[k, 0] >= 0,
-        gloss=table.gloss[k],
+        gloss=table.gloss[k], clear_coat=table.clear_coat[k],
     )  # fmt: skip
 
 
@@ -208,6 +210,14 @@ def _no_gloss(count: int) -> np.ndarray:
     gloss = np.zeros((count, GLOSS_COLUMNS))
     gloss[:, 15] = 1.5
     return gloss
+
+
+def _no_clear_coat(count: int) -> np.ndarray:
+    """Clear coat rows of no coat."""
+    none = NO_CLEAR_COAT
+    row = (*none[:4], *none.tint, *none.normal, float(none.at_normal))
+    assert len(row) == CLEAR_COAT_COLUMNS
+    return np.tile(np.array(row, float), (count, 1))
 
 
 def _edge(material):

@@ -38,6 +38,7 @@ from ..model.shader import (
     WAVE_RINGS,
     WAVE_TYPES,
     Link,
+    coated,
 )
 
 COORDS = {"UV": sp.COORD_UV, "Generated": sp.COORD_GENERATED, "Object": sp.COORD_OBJECT,
@@ -194,6 +195,16 @@ class ProgramBuilder:
                     v(node.input("Specular Tint"), "triple"),
                     int(bool(node.setting("layered"))), _distribution(node))  # fmt: skip
             p.step_with_more(row, more)
+            if coated(node):
+                coat_normal = node.input("Coat Normal")
+                op = sp.OP_CLEAR_COAT if node.setting("coat_albedo") == "LOBE" \
+                    else sp.OP_CLEAR_COAT_AT_NORMAL  # fmt: skip
+                p.step(op, weight, v(node.input("Coat Weight"), "value"),
+                       v(node.input("Coat Roughness"), "value"),
+                       v(node.input("Coat IOR"), "value"), v(node.input("Coat Tint"), "triple"),
+                       v(node.input("Alpha"), "value"),
+                       self.value(coat_normal, "triple") if isinstance(coat_normal, Link)
+                       else -1)  # fmt: skip
 
     def _normal(self, node):
         """The operand of a closure's Normal input, or -1 (the surface's own normal)."""

@@ -120,7 +120,8 @@ def emitted_colour(frame, lights, geo, stacks, point, phong, key, event, split):
     origin, n, to_viewer = point.origin, point.normal, point.to_viewer
     kd, ks, shininess, gloss = phong.kd, phong.ks, phong.shininess, phong.gloss
     glints = gloss.alpha > 0.0
-    glossy = glints or ks[0] > 0.0 or ks[1] > 0.0 or ks[2] > 0.0
+    coat_glints = phong.coat_gloss.alpha > 0.0
+    glossy = glints or coat_glints or ks[0] > 0.0 or ks[1] > 0.0 or ks[2] > 0.0
     samples = frame.options[OPTION_SHADOW_SAMPLES]
     pattern = frame.options[OPTION_SHADOW_PATTERN]
     adaptive = frame.options[OPTION_SHADOW_ADAPTIVE] != 0
@@ -178,8 +179,11 @@ def emitted_colour(frame, lights, geo, stacks, point, phong, key, event, split):
                 continue
             factor = diffuse * n_dot_l
             seen = seen_through(stacks, j)
+            if specular > 0.0 and coat_glints:
+                glint = gloss_lit(phong.coat_gloss, phong.coat_normal, to_viewer, light_dir)
+                total = add(total, mul(glint, scale(seen, weight)))
             if specular > 0.0 and glints:
-                glint = gloss_lit(gloss, n, to_viewer, light_dir)
+                glint = mul(gloss_lit(gloss, n, to_viewer, light_dir), phong.under)
                 total = add(total, mul(glint, scale(seen, weight)))
             elif specular > 0.0:
                 reflected = sub(scale(n, 2.0 * n_dot_l), light_dir)

@@ -32,6 +32,8 @@ WITH_PASSES = True
 WITH_ADAPTIVE = True
 # Rough mirrors and glass spreading rays over their lobe (core.kernels.glossy)
 WITH_GLOSSY = True
+# A clear coat over a surface (the Principled BSDF's Coat; core.kernels.clear_coat)
+WITH_CLEAR_COAT = True
 
 # The features' names, in the order of their bits in a variant's tag
 FEATURES = (
@@ -44,6 +46,7 @@ FEATURES = (
     "passes",
     "adaptive",
     "glossy",
+    "clear_coat",
 )
 
 

@@ -27,9 +27,10 @@ import math
 
 from ..jit.decorators import inlined_kernel, kernel
 from ..vocabulary import GLASS_SHADOWS_ATTENUATED
+from .clear_coat import NO_GLINT, coat_glint, coat_normal, coat_reflectance, under_coat
 from .emitters_seen import emitters_seen
 from .environment import environment_seen
-from .features import WITH_EMITTERS_SEEN, WITH_GLOSSY, WITH_PASSES
+from .features import WITH_CLEAR_COAT, WITH_EMITTERS_SEEN, WITH_GLOSSY, WITH_PASSES
 from .fresnel import fresnel_dielectric
 from .glossy import visible_normal
 from .layout import VISIBLE_CAMERA, VISIBLE_GLOSSY, VISIBLE_TRANSMISSION
@@ -56,7 +57,8 @@ from .pass_record import (
     record_hit,
     record_lighting,
 )
-from .rng import PURPOSE_GLOSSY, uniform2
+from .rng import PURPOSE_CLEAR_COAT, PURPOSE_GLOSSY, uniform2
+from .shader_program import SHARP_ROUGHNESS
 from .shading import Phong, ShadingPoint
 from .surface import surface_at
 from .trace import closest_hit, spawn_point
@@ -185,6 +187,42 @@ def _glossy_samples(frame, here, depth, rho, coat_reflects, tau):
     return spread, max(1, int(math.ceil(glossy * share)))
 
 
+@kernel
+def _leave_clear_coat(rays, top, coat, n_coat, sample, samples, spread, key, event, d, w,
+                      outside, n_geometric, depth, branch):  # fmt: skip
+    """Push the ray the clear coat reflects (core.kernels.clear_coat) for glossy sample
+    `sample` of `samples`: about the coat's normal, or a microfacet normal drawn from its
+    own lobe (`spread`), its weight the exact Fresnel there."""
+    m = n_coat
+    if WITH_GLOSSY and spread:
+        a, b = uniform2(key, PURPOSE_CLEAR_COAT, event, sample)
+        x0, y0, cell_w, cell_h = stratified_cell(sample, samples)
+        alpha_m = max(coat.roughness * coat.roughness, 1e-6)
+        m = visible_normal(scale(d, -1.0), n_coat, alpha_m, x0 + a * cell_w, y0 + b * cell_h)
+    cos_m = min(1.0, max(0.0, -dot(d, m)))
+    f, _ = fresnel_dielectric(cos_m, 1.0, coat.ior)
+    reflected = sub(d, scale(m, 2.0 * dot(d, m)))
+    if spread and dot(reflected, n_geometric) <= 0.0:
+        return top
+    weight = scale(w, coat.weight * f / samples)
+    kind = RAY_ROUGH_REFLECTED if coat.roughness > SHARP_ROUGHNESS else RAY_REFLECTED
+    mirrored = REC_REFLECTION if depth == 0 else branch
+    return _push(rays, top, outside, reflected, weight, depth + 1, mirrored, kind)
+
+
+@kernel
+def _clear_coat_samples(frame, coat, depth, reflects):
+    """(`spread`, samples) for the clear coat's reflection, as _glossy_samples for the
+    layers below: the coat's share of the light is what it `reflects`."""
+    if not WITH_GLOSSY:
+        return False, 1
+    glossy = frame.options[OPTION_GLOSSY_SAMPLES]
+    spread = glossy > 0 and coat.roughness > 0.0
+    if not spread or depth > 0:
+        return spread, 1
+    return spread, max(1, int(math.ceil(glossy * min(reflects, 1.0))))
+
+
 @inlined_kernel
 def _seen_emitters(lights, o, d, t, came_through, depth, refracted_before):
     """Blender's lights seen in mirrors and through glass by a ray after its first bounce
@@ -269,6 +307,7 @@ def trace_ray(ps, o, d, key, ws):
         p, n_geometric, n_shading, u, v = surface_at(
             geo, surf, shape, part, b1, b2, o, d, t, textured or (first and with_uv)
         )
+        n_smooth = n_shading  # before the graph bends it (a coat keeps it)
         here, n_shading = material_at_hit(geo, surf, mats, ws, shape, material, part, p, d,
                                           n_geometric, n_shading, u, v, depth, first)  # fmt: skip
         tau = here.transparency
@@ -278,9 +317,21 @@ def trace_ray(ps, o, d, key, ws):
         if not entering:
             n_geometric = scale(n_geometric, -1.0)
             n_shading = scale(n_shading, -1.0)
+            n_smooth = scale(n_smooth, -1.0)
         outside = spawn_point(p, n_geometric, o)
         cos_i = min(1.0, max(0.0, -dot(d, n_shading)))
         kd = here.kd
+        # A clear coat over it all (core.kernels.clear_coat): what lies below, `w_below`
+        coat = here.clear_coat
+        coated = WITH_CLEAR_COAT and coat.weight > 0.0
+        w_below, under, n_coat, coat_reflects_all = w, (1.0, 1.0, 1.0), n_smooth, 0.0
+        if coated:
+            n_coat = coat_normal(coat, d, n_geometric, n_smooth)
+            coat_f = coat_reflectance(coat, min(1.0, max(0.0, -dot(d, n_coat))))
+            under = under_coat(coat, min(1.0, max(0.0, -dot(d, n_coat))), coat_f)
+            w_below = mul(w, under)
+            kd = mul(kd, under)
+            coat_reflects_all = coat.weight * coat_f
         coat_reflects = 0.0
         if here.coat > 0.0:
             # a layer on the surface, air on its outer side from either side (Cycles' specular
@@ -298,24 +349,32 @@ def trace_ray(ps, o, d, key, ws):
             record_hit(record, surf, mats, shape, material, p, n_shading, u, v, 1.0 - tau, kd)
         emission = here.emission
         if emission[0] > 0.0 or emission[1] > 0.0 or emission[2] > 0.0:
-            seen = mul(w, emission)
+            seen = mul(w_below, emission)  # under the coat, as in Cycles
             colour = add(colour, seen)
             if WITH_PASSES and first:
                 add_to(record, REC_EMISSION, seen)
             elif WITH_PASSES and recording:
                 add_to(record, branch, seen)
-        if tau < 1.0:
+        if tau < 1.0 or coated:
             point = ShadingPoint(outside, n_shading, scale(d, -1.0))
-            phong = Phong(kd, here.ks, here.shininess, here.gloss)
+            opacity = 1.0 - tau
+            if coated:  # the coat's glint is not under the glass's share: the rest is
+                kd = scale(kd, opacity)
+                phong = Phong(kd, here.ks, here.shininess, here.gloss, scale(under, opacity),
+                              coat_glint(coat), n_coat)  # fmt: skip
+                opacity = 1.0
+            else:
+                phong = Phong(kd, here.ks, here.shininess, here.gloss, (1.0, 1.0, 1.0),
+                              NO_GLINT, n_coat)  # fmt: skip
             local = light_at_point(frame, lights, geo, surf, mats, ws, point, phong, p,
                                    n_geometric, key, event, first and split,
                                    refraction_passes)  # fmt: skip
-            seen = mul(w, scale(local, 1.0 - tau))
+            seen = mul(w, scale(local, opacity))
             colour = add(colour, seen)
             if WITH_PASSES and first:
                 terms = stacks.terms
-                glints = here.ks if here.gloss.alpha == 0.0 else (1.0, 1.0, 1.0)
-                record_lighting(record, terms, local, kd, glints, frame.ambient, 1.0 - tau, split)
+                glints = here.ks if here.gloss.alpha == 0.0 and not coated else (1.0, 1.0, 1.0)
+                record_lighting(record, terms, local, kd, glints, frame.ambient, opacity, split)
             elif WITH_PASSES and recording:
                 add_to(record, branch, seen)
         event += 1
@@ -334,7 +393,14 @@ def trace_ray(ps, o, d, key, ws):
         spread, samples = _glossy_samples(frame, here, depth, rho, coat_reflects, tau)
         for sample in range(samples):
             top = _leave_surface(
-                rays, top, here, sample, samples, spread, key, event, o, d, w, p, n_shading,
-                n_geometric, outside, cos_i, tau, rho, coat_reflects, entering, depth, branch,
+                rays, top, here, sample, samples, spread, key, event, o, d, w_below, p,
+                n_shading, n_geometric, outside, cos_i, tau, rho, coat_reflects, entering,
+                depth, branch,
             )  # fmt: skip
+        if coated:
+            spread, samples = _clear_coat_samples(frame, coat, depth, coat_reflects_all)
+            for sample in range(samples):
+                top = _leave_clear_coat(rays, top, coat, n_coat, sample, samples, spread, key,
+                                        event, d, w, outside, n_geometric, depth,
+                                        branch)  # fmt: skip
     return colour, alpha

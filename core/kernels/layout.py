@@ -125,6 +125,9 @@ class Materials(NamedTuple):
     # float64 (q, GLOSS_COLUMNS): its rough lobes' glints (core.kernels.surface_terms), zero
     # for the report's materials (their highlight is Phong's: specular, shininess)
     gloss: np.ndarray
+    # float64 (q, CLEAR_COAT_COLUMNS): its clear coat (core.kernels.surface_terms), weight 0:
+    # none
+    clear_coat: np.ndarray
 
 
 class Lights(NamedTuple):

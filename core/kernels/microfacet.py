@@ -89,7 +89,7 @@ def ggx_albedo_average(roughness):
 
 
 @kernel
-def _dielectric_fresnel_mean(roughness, mu, ior):
+def dielectric_fresnel_mean(roughness, mu, ior):
     """F_mean(r, mu, z), trilinear in the table (z = sqrt((ior - 1) / (ior + 1)))."""
     last = DIELECTRIC_SIZE - 1
     x = min(max(roughness, 0.0), 1.0) * last
@@ -112,7 +112,7 @@ def rough_coat_albedo(gloss, roughness, cos_i):
     at cos_i, its whole lobe's (Cycles layers the diffuse below by it): F_mean E, and under
     Multiscatter GGX times 1 + Fms (1 - E) / E."""
     e = ggx_albedo(roughness, cos_i)
-    albedo = _dielectric_fresnel_mean(roughness, cos_i, gloss.coat_ior) * e
+    albedo = dielectric_fresnel_mean(roughness, cos_i, gloss.coat_ior) * e
     if gloss.coat_ms > 0.0 and gloss.coat > 0.0:
         albedo *= 1.0 + gloss.coat_ms / gloss.coat * (1.0 - e) / max(e, 1e-6)
     return min(albedo, 1.0)

@@ -16,6 +16,7 @@ PURPOSE_LIGHT = 3  # where on an area light a shadow ray ends
 PURPOSE_LIGHT_SHIFT = 4  # the random shift of a shading point's Halton points
 PURPOSE_GLOSSY = 5  # the microfacet normal a rough surface's ray leaves by
 PURPOSE_PHOTON = 6  # a caustic photon: where it starts, its light sample, its branches
+PURPOSE_CLEAR_COAT = 7  # the microfacet normal a rough clear coat's ray leaves by
 
 _M1 = np.uint64(0xBF58476D1CE4E5B9)
 _M2 = np.uint64(0x94D049BB133111EB)

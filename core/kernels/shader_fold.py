@@ -5,10 +5,16 @@ import numpy as np
 
 from ..jit.decorators import allocating_kernel, kernel
 from .shader_program import LOBE_COUNT, SHADER_STACK, run_program
-from .surface_terms import GLOSS_COLUMNS, gloss_columns, terms_from_lobes
+from .surface_terms import (
+    CLEAR_COAT_COLUMNS,
+    GLOSS_COLUMNS,
+    clear_coat_columns,
+    gloss_columns,
+    terms_from_lobes,
+)
 
 # The columns of a folded row (fold_surfaces' out), in Surface's order
-FOLDED_COLUMNS = 36 + GLOSS_COLUMNS
+FOLDED_COLUMNS = 36 + GLOSS_COLUMNS + CLEAR_COAT_COLUMNS
 
 
 @kernel
@@ -22,7 +28,7 @@ def fold_surfaces(mats, rows, out):
     to a row of `out` (FOLDED_COLUMNS: kd, ks, shininess, reflectivity, transparency, outer
     and inner IOR, mirror normal and edge, hides lights, coat, coat IOR, coat hides, glass
     reflect and transmit, refraction Fresnel, emission, transparent, holdout, roughness,
-    gloss)."""
+    gloss, clear coat)."""
     stack = np.zeros(SHADER_STACK)
     lobes = np.zeros(LOBE_COUNT)
     zero = (0.0, 0.0, 0.0)
@@ -52,3 +58,4 @@ def fold_surfaces(mats, rows, out):
         o[34] = s.holdout
         o[35] = s.roughness
         gloss_columns(s.gloss, o, 36)
+        clear_coat_columns(s.clear_coat, o, 36 + GLOSS_COLUMNS)

@@ -100,6 +100,11 @@ OP_HOLDOUT = 26  # weight
 OP_PRINCIPLED = 27  # weight, base, metallic, roughness, IOR, alpha; its next row (OP_MORE):
 # transmission, emission colour, emission strength, specular level, tint, layered, distribution
 OP_MORE = 28
+# The Principled BSDF's Coat, a step after its OP_PRINCIPLED: weight, coat weight, roughness,
+# IOR, tint, alpha, and the Coat Normal's slot (f); the layers below dimmed by its mean
+# Fresnel over its lobe (Cycles from 4.5), or (AT_NORMAL) by the Fresnel at its normal (4.2)
+OP_CLEAR_COAT = 39
+OP_CLEAR_COAT_AT_NORMAL = 40
 
 # Texture coordinates (OP_COORD)
 COORD_UV, COORD_GENERATED, COORD_OBJECT, COORD_NORMAL = 0, 1, 2, 3
@@ -144,7 +149,18 @@ L_GLOSS_COAT_MS = 49
 L_GLOSS_ALPHA = 50  # alpha times weight
 L_GLOSS_WEIGHT = 51
 L_GLOSS_BECKMANN = 52  # the weight of Beckmann lobes
-LOBE_COUNT = 53
+# The clear coats over the surface (core.kernels.surface_terms.ClearCoat, its sums): their
+# reflection's weight, the weight of the closures they cover, IOR, roughness, tint, normal
+# (each times the reflection's weight)
+L_CLEAR = 53
+L_CLEAR_COVER = 54
+L_CLEAR_IOR = 55
+L_CLEAR_ROUGHNESS = 56
+L_CLEAR_TINT = 57  # RGB
+L_CLEAR_NORMAL = 60  # RGB, from coats given a Coat Normal
+L_CLEAR_NORMAL_WEIGHT = 63
+L_CLEAR_AT_NORMAL = 64  # the weight of coats dimming by the Fresnel at their normal
+LOBE_COUNT = 65
 
 # Slots of a program's stack: constants first, then every node output (a triple each)
 SHADER_STACK = 4096
@@ -312,6 +328,27 @@ def _principled(lobes, w, base, metallic, roughness, ior, alpha, more):
             (1.0 - tint_share) + clamped[2] * tint_share,
         )
         add_glass(lobes, w * glass, ior, reflect, clamped, 1.0, roughness)
+
+
+@kernel
+def _clear_coat(lobes, stack, w, coat, roughness, ior, tint, alpha, normal_slot, at_normal):
+    """Cycles' Principled Coat (from Blender 4.0): a GGX dielectric over every other layer
+    of the closure (what it does to them is core.kernels.clear_coat's, per ray)."""
+    coat = max(coat, 0.0)  # not clamped above: Cycles lets a coat reflect more than once
+    cover = w * min(max(alpha, 0.0), 1.0)
+    weight = cover * coat
+    if weight <= WEIGHT_CUTOFF:
+        return
+    lobes[L_CLEAR] += weight
+    lobes[L_CLEAR_COVER] += cover
+    lobes[L_CLEAR_IOR] += weight * max(ior, 1.0)
+    lobes[L_CLEAR_ROUGHNESS] += weight * min(max(roughness, 0.0), 1.0)
+    _add3(lobes, L_CLEAR_TINT, weight, _nonnegative(tint))
+    if at_normal:
+        lobes[L_CLEAR_AT_NORMAL] += weight
+    if normal_slot >= 0:
+        _add3(lobes, L_CLEAR_NORMAL, weight, _triple(stack, normal_slot))
+        lobes[L_CLEAR_NORMAL_WEIGHT] += weight
 
 
 @kernel
@@ -536,6 +573,9 @@ def run_program(mats, material, stack, lobes, hit, frame, normal_rows, ray):
             _add3(lobes, L_EMISSION, s[out] * max(s[b], 0.0), _nonnegative(_triple(s, a)))
         elif op == OP_HOLDOUT:
             lobes[L_HOLDOUT] += s[out]
+        elif OP_CLEAR_COAT <= op <= OP_CLEAR_COAT_AT_NORMAL:  # the two rules, 39 and 40
+            _clear_coat(lobes, s, s[out], s[a], s[b], s[c], _triple(s, d), s[e], f,
+                        op == OP_CLEAR_COAT_AT_NORMAL)  # fmt: skip
         elif op == OP_PRINCIPLED:
             _add_normal(lobes, s, s[out], f)
             m_op, m0, m1, m2 = ops[row, 0], ops[row, 1], ops[row, 2], ops[row, 3]

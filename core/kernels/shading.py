@@ -55,12 +55,17 @@ class ShadingPoint(NamedTuple):
 class Phong(NamedTuple):
     """The report's material terms: diffuse kd, specular ks (RGB) and the Phong exponent;
     and a node material's rough lobes, which glint in Blender's lights instead
-    (core.kernels.microfacet.Gloss; alpha 0 for the report's materials)."""
+    (core.kernels.microfacet.Gloss; alpha 0 for the report's materials). Under a clear
+    coat (core.kernels.clear_coat) the glints are times `under` (kd already is), and the
+    coat's own rough lobe glints about its normal (alpha 0: none)."""
 
     kd: tuple
     ks: tuple
     shininess: float
     gloss: tuple
+    under: tuple
+    coat_gloss: tuple
+    coat_normal: tuple
 
 
 class AreaLight(NamedTuple):

@@ -8,6 +8,14 @@ from typing import NamedTuple
 from ..jit.decorators import kernel
 from .microfacet import Gloss
 from .shader_program import (
+    L_CLEAR,
+    L_CLEAR_AT_NORMAL,
+    L_CLEAR_COVER,
+    L_CLEAR_IOR,
+    L_CLEAR_NORMAL,
+    L_CLEAR_NORMAL_WEIGHT,
+    L_CLEAR_ROUGHNESS,
+    L_CLEAR_TINT,
     L_COAT,
     L_COAT_HIDES,
     L_COAT_IOR,
@@ -44,6 +52,25 @@ from .vec import row
 SURFACE_CUTOFF = 1e-9
 
 
+class ClearCoat(NamedTuple):
+    """A clear layer over the whole surface (the Principled BSDF's Coat, Blender 4.0 on):
+    it reflects as a dielectric of its own IOR, roughness and normal, and what lies below it
+    is dimmed by what it reflects and tinted by what it absorbs (core.kernels.clear_coat)."""
+
+    weight: float  # its reflection's weight (the Coat Weight times the closure's share)
+    layer: float  # the Coat Weight of the closures it covers: what dims the layers below
+    ior: float
+    roughness: float  # 0 sharp; past SHARP_ROUGHNESS it glints in Blender's lights
+    tint: tuple  # RGB at normal incidence (Coat Tint)
+    normal: tuple  # world, unit, or zero: the surface's own smooth normal
+    at_normal: bool  # dims by the Fresnel at its normal (Blender 4.2), else its lobe's mean
+
+
+# Materials.clear_coat's columns: ClearCoat's fields, its triples as three
+CLEAR_COAT_COLUMNS = 11
+NO_CLEAR_COAT = ClearCoat(0.0, 0.0, 1.5, 0.0, (1.0, 1.0, 1.0), (0.0, 0.0, 0.0), False)
+
+
 class Surface(NamedTuple):
     """A material at one hit (core.model.Material names the terms)."""
 
@@ -69,6 +96,7 @@ class Surface(NamedTuple):
     normal: tuple  # the shading normal its graph gives (world), or zero: the surface's own
     roughness: float  # its mirror's and glass's, 0 sharp (blurred when glossy rays are sampled)
     gloss: Gloss  # its rough lobes' glints (core.kernels.microfacet); alpha 0: none
+    clear_coat: ClearCoat  # weight 0: none
 
 
 # Materials.gloss's columns: Gloss's fields, its triples as three
@@ -94,6 +122,28 @@ def gloss_columns(gloss, o, first):
         o[first + 8 + c] = gloss.ms_normal[c]
         o[first + 11 + c] = gloss.ms_edge[c]
     o[first + 14], o[first + 15], o[first + 16] = gloss.coat, gloss.coat_ior, gloss.coat_ms
+
+
+@kernel
+def _clear_coat_row(table, material):
+    c = table[material]
+    return ClearCoat(c[0], c[1], c[2], c[3], (c[4], c[5], c[6]), (c[7], c[8], c[9]), c[10] != 0.0)
+
+
+@kernel
+def clear_coat_columns(coat, o, first):
+    """Write a ClearCoat to o[first : first + CLEAR_COAT_COLUMNS] (the inverse of
+    _clear_coat_row)."""
+    o[first], o[first + 1], o[first + 2], o[first + 3] = (
+        coat.weight,
+        coat.layer,
+        coat.ior,
+        coat.roughness,
+    )
+    for c in range(3):
+        o[first + 4 + c] = coat.tint[c]
+        o[first + 7 + c] = coat.normal[c]
+    o[first + 10] = 1.0 if coat.at_normal else 0.0
 
 
 @kernel
@@ -132,6 +182,7 @@ def table_surface(mats, material, kd):
         (0.0, 0.0, 0.0),
         mats.roughness[material],
         _gloss_row(mats.gloss, material),
+        _clear_coat_row(mats.clear_coat, material),
     )
 
 
@@ -184,6 +235,7 @@ def terms_from_lobes(lobes):
         _normal(lobes),
         _mean_roughness(lobes),
         _gloss(lobes, per_rest),
+        _clear_coat(lobes),
     )
 
 
@@ -209,6 +261,25 @@ def _gloss(lobes, per_rest):
 
 
 @kernel
+def _clear_coat(lobes):
+    """The clear coats' weighted means (their weight, not shares of the rest: the coat lies
+    over the glass too)."""
+    weight = lobes[L_CLEAR]
+    if weight <= 0.0:
+        return NO_CLEAR_COAT
+    per = 1.0 / weight
+    return ClearCoat(
+        weight,
+        weight / lobes[L_CLEAR_COVER],
+        lobes[L_CLEAR_IOR] * per,
+        lobes[L_CLEAR_ROUGHNESS] * per,
+        _scaled(lobes, L_CLEAR_TINT, per),
+        _unit_or_zero(lobes, L_CLEAR_NORMAL, L_CLEAR_NORMAL_WEIGHT),
+        lobes[L_CLEAR_AT_NORMAL] > 0.5 * weight,  # the rule of most of the coats
+    )
+
+
+@kernel
 def _mean_roughness(lobes):
     """The mirror, coat and glass lobes' roughness, weighted by the lobes' weights."""
     weight = lobes[L_ROUGHNESS_WEIGHT]
@@ -218,9 +289,14 @@ def _mean_roughness(lobes):
 @kernel
 def _normal(lobes):
     """The weighted mean of the Normal inputs the closures were given, unit, or zero."""
-    if lobes[L_NORMAL_WEIGHT] <= 0.0:
+    return _unit_or_zero(lobes, L_NORMAL, L_NORMAL_WEIGHT)
+
+
+@kernel
+def _unit_or_zero(lobes, slot, weight_slot):
+    if lobes[weight_slot] <= 0.0:
         return 0.0, 0.0, 0.0
-    n = (lobes[L_NORMAL], lobes[L_NORMAL + 1], lobes[L_NORMAL + 2])
+    n = (lobes[slot], lobes[slot + 1], lobes[slot + 2])
     length = math.sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2])
     if length == 0.0:
         return 0.0, 0.0, 0.0

@@ -130,8 +130,9 @@ def new_workspace(
     # Depth-first, each shading point pops one ray and pushes at most two that bounce, so no
     # more than max_depth + 2 of those ever wait; each surface passed straight through
     # (MAX_CROSSINGS) may leave two more waiting, and a camera ray's rough hit two per
-    # glossy sample (a reflected and a refracted ray)
-    rays = max_depth + 2 + 2 * MAX_CROSSINGS + 2 * glossy_samples
+    # glossy sample (a reflected and a refracted ray); a clear coat's reflection one more
+    # per sample (at least one)
+    rays = max_depth + 3 + 2 * MAX_CROSSINGS + 3 * glossy_samples
     return Workspace(
         Stacks(
             np.empty(MAX_TREE_DEPTH, np.int32),

@@ -37,9 +37,17 @@ SHADER_NODES = {
             "Specular": 0.5,
             "Specular Tint": (1.0, 1.0, 1.0),
             "Normal": None,
+            # A clear layer over the rest (Blender 4.0 on; core.kernels.clear_coat); its
+            # Normal None: the surface's own smooth normal
+            "Coat Weight": 0.0,
+            "Coat Roughness": 0.03,
+            "Coat IOR": 1.5,
+            "Coat Tint": (1.0, 1.0, 1.0),
+            "Coat Normal": None,
         },
         closure=True,
-        settings={"layered": True, "distribution": "GGX"},
+        # coat_albedo (COAT_ALBEDOS): what dims the layers under a rough coat
+        settings={"layered": True, "distribution": "GGX", "coat_albedo": "LOBE"},
     ),  # fmt: skip
     "diffuse": dict(inputs={"Color": RGB, "Normal": None}, closure=True),
     # A rough lobe's microfacet distribution (DISTRIBUTIONS; core.kernels.microfacet)
@@ -247,6 +255,9 @@ SHADER_NODES = {
 NORMAL_MAP_SPACES = ("TANGENT", "OBJECT", "WORLD")
 # Microfacet distributions, in the order of core.kernels.microfacet's DIST_* numbers
 DISTRIBUTIONS = ("GGX", "MULTI_GGX", "BECKMANN")
+# What dims the layers under a rough coat (core.kernels.clear_coat): the mean Fresnel over
+# its lobe (Cycles from 4.5), or the exact Fresnel at its normal (4.2)
+COAT_ALBEDOS = ("LOBE", "NORMAL")
 # The Voronoi texture's Feature and Distance Whitted evaluates, and its two cell hashes
 # (core.kernels.voronoi), in the order of the kernel's numbers
 VORONOI_FEATURES = ("F1", "F2")
@@ -383,6 +394,7 @@ def _check_settings(owner, label, node) -> None:
         ("voronoi", "feature"): VORONOI_FEATURES,
         ("voronoi", "distance"): VORONOI_METRICS,
         ("voronoi", "cell_hash"): VORONOI_HASHES,
+        ("principled", "coat_albedo"): COAT_ALBEDOS,
         **{(kind, "distribution"): DISTRIBUTIONS for kind in ROUGH_CLOSURES},
     }
     for (kind, name), allowed in choices.items():
@@ -489,6 +501,21 @@ def passes_light(surface, refraction_passes: bool = True) -> bool:
             if refraction_passes and _given(node, "Transmission", 0.0):
                 return True
     return False
+
+
+def coated(node) -> bool:
+    """Whether a closure node is a layered Principled BSDF whose Coat Weight is linked or
+    above 0 (a clear coat, core.kernels.clear_coat)."""
+    return (
+        node.kind == "principled"
+        and bool(node.setting("layered"))
+        and _given(node, "Coat Weight", 0.0)
+    )
+
+
+def has_clear_coat(surface) -> bool:
+    """Whether a graph has a coated closure (`coated`)."""
+    return any(map(coated, _closures(surface)))
 
 
 def is_rough(surface) -> bool:

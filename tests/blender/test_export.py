@@ -286,24 +286,24 @@ def test_nodes_whitted_cannot_evaluate_are_named_in_one_warning_per_material(
 
 
 def test_an_unmodelled_principled_input_driven_by_a_texture_is_named(empty_scene, monkeypatch):
-    """Coat or Sheen weight from a texture (as importers link coat maps) is named with the
-    node that drives it, though the socket's own value is the neutral 0; a weight at 0
-    with nothing linked says nothing."""
+    """Sheen weight from a texture (as importers link sheen maps) is named with the node
+    that drives it, though the socket's own value is the neutral 0; a weight at 0 with
+    nothing linked says nothing."""
     bpy = sys.modules["bpy"]
-    _, material = sphere_with_material(bpy, "Car paint")
+    _, material = sphere_with_material(bpy, "Velvet")
     tree = material.node_tree
     node = principled(material)
-    coat = "Coat Weight" if node.inputs.get("Coat Weight") is not None else "Clearcoat"
+    sheen = "Sheen Weight" if node.inputs.get("Sheen Weight") is not None else "Sheen"
     _, _, warnings = exported(bpy, monkeypatch)
-    assert not [w for w in warnings if w.startswith("material 'Car paint'")], warnings
+    assert not [w for w in warnings if w.startswith("material 'Velvet'")], warnings
     image = tree.nodes.new("ShaderNodeTexImage")
-    image.image = bpy.data.images.new("Coat map", 2, 2)
-    tree.links.new(image.outputs["Color"], node.inputs[coat])
-    assert node.inputs[coat].default_value == 0.0
+    image.image = bpy.data.images.new("Sheen map", 2, 2)
+    tree.links.new(image.outputs["Color"], node.inputs[sheen])
+    assert node.inputs[sheen].default_value == 0.0
     _, _, warnings = exported(bpy, monkeypatch)
-    mine = [w for w in warnings if w.startswith("material 'Car paint'")]
+    mine = [w for w in warnings if w.startswith("material 'Velvet'")]
     assert len(mine) == 1, warnings
-    assert f"{coat}, driven by node 'Image Texture', is not modelled" in mine[0], mine[0]
+    assert f"{sheen}, driven by node 'Image Texture', is not modelled" in mine[0], mine[0]
 
 
 def test_a_noise_texture_is_read_and_its_other_kinds_are_named(empty_scene, monkeypatch):
