@@ -106,16 +106,21 @@ def plain_scene():
 
 def blender_scene():
     """Node materials (one varying by Layer Weight, whose veil lets shadows through by the
-    angle), Blender's lights seen in the mirror, a rough mirror spread over its lobe."""
+    angle; one under a rough clear coat), Blender's lights seen in the mirror, a rough mirror
+    spread over its lobe."""
     facing = ShaderNode("layer_weight", {"Blend": 0.5})
     clear, red = ShaderNode("transparent", {}), ShaderNode("diffuse", {"Color": (0.8, 0.1, 0.1)})
     veil = ShaderNode("mix_shader", {"Fac": Link(facing, "Facing"), "Shader A": Link(clear),
                                      "Shader B": Link(red)})  # fmt: skip
     rough = Material(diffuse=(0.0, 0.0, 0.0), reflectivity=0.9, roughness=0.3)
+    coated = ShaderNode("principled", {"Base Color": (0.5, 0.05, 0.1), "Metallic": 0.5,
+                                       "Coat Weight": 1.0, "Coat Roughness": 0.2,
+                                       "Coat Tint": (0.9, 0.8, 0.7)})  # fmt: skip
     shapes = [
         *_basics(),
         Sphere("Veil", Material(surface=veil), _placed(0.5, -0.5, 1.2, 0.5)),
         Box("Rough mirror", rough, _placed(-2.5, 1.0, 0.0, 0.6)),
+        Sphere("Car paint", Material(surface=coated), _placed(1.8, 1.5, 0.6, 0.6)),
     ]
     lights = [
         *_report_lights(),
@@ -142,7 +147,8 @@ def test_each_scene_uses_the_features_it_was_made_for():
     each feature is left out of at least one variant."""
     used = {name: used_features(compile_scene(*make()).packed) for name, make in SCENES.items()}
     assert used["plain"] == frozenset()
-    assert used["blender"] == {"nodes", "emitters", "emitters_seen", "varying_shadows", "glossy"}
+    assert used["blender"] == {"nodes", "emitters", "emitters_seen", "varying_shadows", "glossy",
+                               "clear_coat"}  # fmt: skip
     assert used["world"] == {"emitters", "emitters_seen", "environment", "caustics", "passes",
                              "adaptive"}  # fmt: skip
     assert used["blender"] | used["world"] == set(FEATURES)
