@@ -276,11 +276,6 @@ class GraphReader:
             name = next((n for n in names if node.inputs.get(n) is not None), None)
             if name is not None:
                 made.inputs[core_name] = v(node, groups, name)
-        tint = made.inputs.get("Specular Tint")
-        constant_tint = tint is not None and not isinstance(tint, core.Link)
-        dielectric = made.inputs.get("Metallic", 0.0) != 1.0
-        if PRINCIPLED_LAYERED and constant_tint and dielectric and not np.allclose(tint, 1.0):
-            self.note(f"{node_label(node)}'s Specular Tint on a dielectric (used: white)")
         self._distribution(node, made)
         self._normal(made, node, groups)
         self._coat_normal(made, node, groups)

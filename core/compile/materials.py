@@ -73,7 +73,10 @@ def pack_materials(shapes: list) -> tuple[Materials, dict[int, int]]:
         pass_index=np.array([m.pass_index for m, _ in materials], np.int32),
         crypto=np.array([crypto_id(m.name) for m, _ in materials], np.float32),
         mirror=_pairs([(m.mirror_colour, _edge(m)) for m, _ in materials]),
-        coat=rows([(m.coat, m.coat_ior, float(m.coat_hides)) for m, _ in materials]),
+        # the clear layer, its Specular Tint white (a node material's folds in below)
+        coat=rows(
+            [(m.coat, m.coat_ior, float(m.coat_hides), 1.0, 1.0, 1.0) for m, _ in materials], 6
+        ),  # fmt: skip
         glass_tint=_pairs([(m.glass_reflect, m.glass_transmit) for m, _ in materials]),
         refraction_fresnel=np.array([m.refraction_fresnel for m, _ in materials], float),
         mirror_hides_lights=np.array([not m.mirror_sees_lights for m, _ in materials], np.uint8),
@@ -83,6 +86,7 @@ def pack_materials(shapes: list) -> tuple[Materials, dict[int, int]]:
         roughness=np.array([m.roughness for m, _ in materials], float),
         gloss=_no_gloss(len(materials)),
         clear_coat=_no_clear_coat(len(materials)),
+        mirror_dip=np.zeros((len(materials), 3)),
         texture_alpha=concatenated([a.ravel() for _, a in textures.loaded], (0,), np.float32),
         **_program_tables(programs),
     )
@@ -147,7 +151,7 @@ def _fold_constant_programs(table: Materials, programs: list) -> None:
         table.ior[k] = row[9:11]
         table.mirror[k, 0], table.mirror[k, 1] = row[11:14], row[14:17]
         table.mirror_hides_lights[k] = row[17] != 0.0
-        table.coat[k] = row[18:21]
+        table.coat[k, :3] = row[18:21]
         table.glass_tint[k, 0], table.glass_tint[k, 1] = row[21:24], row[24:27]
         table.refraction_fresnel[k] = row[27]
         table.emission[k] = row[28:31]
@@ -155,7 +159,9 @@ def _fold_constant_programs(table: Materials, programs: list) -> None:
         table.holdout[k] = row[34]
         table.roughness[k] = row[35]
         table.gloss[k] = row[36 : 36 + GLOSS_COLUMNS]
-        table.clear_coat[k] = row[36 + GLOSS_COLUMNS :]
+        table.clear_coat[k] = row[36 + GLOSS_COLUMNS : 36 + GLOSS_COLUMNS + CLEAR_COAT_COLUMNS]
+        table.coat[k, 3:] = row[36 + GLOSS_COLUMNS + CLEAR_COAT_COLUMNS :][:3]
+        table.mirror_dip[k] = row[39 + GLOSS_COLUMNS + CLEAR_COAT_COLUMNS :]
         table.shader_range[k] = (-1, -1)
 
 
@@ -209,6 +215,7 @@ def _no_gloss(count: int) -> np.ndarray:
     """Gloss rows of no glint (core.kernels.surface_terms), a coat IOR of 1.5 as its default."""
     gloss = np.zeros((count, GLOSS_COLUMNS))
     gloss[:, 15] = 1.5
+    gloss[:, 17:20] = 1.0  # no Specular Tint
     return gloss
 
 

@@ -30,7 +30,7 @@ from .shader_program import SHARP_ROUGHNESS
 from .vec import dot, scale
 
 ZERO3 = (0.0, 0.0, 0.0)
-NO_GLINT = Gloss(0.0, False, ZERO3, ZERO3, ZERO3, ZERO3, 0.0, 1.5, 0.0)
+NO_GLINT = Gloss(0.0, False, ZERO3, ZERO3, ZERO3, ZERO3, 0.0, 1.5, 0.0, (1.0, 1.0, 1.0), ZERO3)
 
 
 @kernel
@@ -76,4 +76,5 @@ def coat_glint(coat):
     if coat.roughness <= SHARP_ROUGHNESS:
         return NO_GLINT
     alpha = coat.roughness * coat.roughness
-    return Gloss(alpha, False, ZERO3, ZERO3, ZERO3, ZERO3, coat.weight, coat.ior, 0.0)
+    white = (1.0, 1.0, 1.0)
+    return Gloss(alpha, False, ZERO3, ZERO3, ZERO3, ZERO3, coat.weight, coat.ior, 0.0, white, ZERO3)

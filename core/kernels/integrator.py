@@ -37,7 +37,13 @@ from .layout import VISIBLE_CAMERA, VISIBLE_GLOSSY, VISIBLE_TRANSMISSION
 from .light_at_point import light_at_point
 from .light_samples import stratified_cell
 from .material_at_hit import material_at_hit
-from .microfacet import rough_coat_albedo
+from .microfacet import (
+    dielectric_fresnel_mean,
+    is_white,
+    rough_coat_albedo,
+    schlick_dip,
+    tinted_fresnel,
+)
 from .options import (
     OPTION_GLASS_SHADOWS,
     OPTION_GLOSSY_SAMPLES,
@@ -112,15 +118,15 @@ def channel_mean(w):
 
 @kernel
 def mirror_tint(here, cos_i):
-    """The mirror's tint at this incidence: Schlick's c0 + (c90 - c0)(1 - cos)^5."""
-    toward_edge = (1.0 - cos_i) ** 5
-    return add(here.mirror_normal, scale(sub(here.mirror_edge, here.mirror_normal), toward_edge))
+    """The mirror's tint at this incidence: Schlick's c0 + (c90 - c0)(1 - cos)^5, less F82's
+    dip where a metal has an F82 tint (core.kernels.microfacet.schlick_dip)."""
+    return schlick_dip(here.mirror_normal, here.mirror_edge, here.mirror_dip, cos_i)
 
 
 @kernel
 def _leave_surface(rays, top, here, sample, samples, spread, key, event, o, d, w, p, n_shading,
-                   n_geometric, outside, cos_i, tau, rho, coat_reflects, entering, depth,
-                   branch):  # fmt: skip
+                   n_geometric, outside, cos_i, tau, rho, coat_reflects, coat_colour, entering,
+                   depth, branch):  # fmt: skip
     """Push the reflected and refracted rays of glossy sample `sample` of `samples` leaving a
     surface (`spread`: by a microfacet normal drawn from its lobe, core.kernels.glossy; else
     by the shading normal, one sample). A call of its own: in the integrator's body its loop
@@ -138,7 +144,7 @@ def _leave_surface(rays, top, here, sample, samples, spread, key, event, o, d, w
     if rho > 0.0:
         reflect = scale(mirror_tint(here, cos_m), (1.0 - tau) * rho)
     if coat_reflects > 0.0:
-        reflect = add(reflect, scale((1.0, 1.0, 1.0), (1.0 - tau) * coat_reflects))
+        reflect = add(reflect, scale(coat_colour, (1.0 - tau) * coat_reflects))
     if tau > 0.0:
         outer, inner = here.outer_ior, here.inner_ior
         n1, n2 = (outer, inner) if entering else (inner, outer)
@@ -333,15 +339,22 @@ def trace_ray(ps, o, d, key, ws):
             kd = mul(kd, under)
             coat_reflects_all = coat.weight * coat_f
         coat_reflects = 0.0
+        coat_colour = (1.0, 1.0, 1.0)  # its Specular Tint's, per channel
         if here.coat > 0.0:
             # a layer on the surface, air on its outer side from either side (Cycles' specular
             # layer does not flip its IOR on back faces)
             coat_f, _ = fresnel_dielectric(cos_i, 1.0, here.coat_ior)
-            if here.gloss.coat > 0.0:  # a rough layer: its whole lobe's reflectance
+            rough = here.gloss.coat > 0.0
+            if not is_white(here.coat_tint):  # the Fresnel the tint reshapes: rough, the mean
+                fresnel = coat_f
+                if rough:
+                    fresnel = dielectric_fresnel_mean(here.roughness, cos_i, here.coat_ior)
+                coat_colour = tinted_fresnel(fresnel, here.coat_ior, here.coat_tint)
+            if rough:  # a rough layer: its whole lobe's reflectance
                 coat_f = rough_coat_albedo(here.gloss, here.roughness, cos_i)
             coat_reflects = here.coat * coat_f
-            if here.coat_hides:
-                kd = scale(kd, 1.0 - coat_reflects)  # the diffuse seen through the coat
+            if here.coat_hides:  # the diffuse seen through the coat (Cycles: by its most)
+                kd = scale(kd, 1.0 - coat_reflects * max(coat_colour))
         if depth == 0 and here.holdout > 0.0:
             alpha -= channel_mean(w) * here.holdout
         if WITH_PASSES and first:
@@ -394,8 +407,8 @@ def trace_ray(ps, o, d, key, ws):
         for sample in range(samples):
             top = _leave_surface(
                 rays, top, here, sample, samples, spread, key, event, o, d, w_below, p,
-                n_shading, n_geometric, outside, cos_i, tau, rho, coat_reflects, entering,
-                depth, branch,
+                n_shading, n_geometric, outside, cos_i, tau, rho, coat_reflects, coat_colour,
+                entering, depth, branch,
             )  # fmt: skip
         if coated:
             spread, samples = _clear_coat_samples(frame, coat, depth, coat_reflects_all)

@@ -104,7 +104,9 @@ class Materials(NamedTuple):
     crypto: np.ndarray  # float32 (q,): the Cryptomatte id of its name
     # what Blender's node materials add (core.model.Material; core.kernels.integrator)
     mirror: np.ndarray  # float64 (q, 2, 3): the mirror's tint at normal and grazing incidence
-    coat: np.ndarray  # float64 (q, 3): clear layer's weight, its IOR, 1 if it hides the diffuse
+    # float64 (q, 6): clear layer's weight, its IOR, 1 if it hides the diffuse, its Specular
+    # Tint (RGB)
+    coat: np.ndarray
     glass_tint: np.ndarray  # float64 (q, 2, 3): the dielectric's reflection, transmission tint
     refraction_fresnel: np.ndarray  # float64 (q,): 1 glass, 0 all refracts (Refraction BSDF)
     mirror_hides_lights: np.ndarray  # uint8 (q,): 1 if its highlight holds the lights instead
@@ -128,6 +130,8 @@ class Materials(NamedTuple):
     # float64 (q, CLEAR_COAT_COLUMNS): its clear coat (core.kernels.surface_terms), weight 0:
     # none
     clear_coat: np.ndarray
+    # float64 (q, 3): F82's dip below the mirror's Schlick curve (core.kernels.microfacet.f82_dip)
+    mirror_dip: np.ndarray
 
 
 class Lights(NamedTuple):

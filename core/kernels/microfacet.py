@@ -35,7 +35,7 @@ from .ggx_albedo_values import (
     DIELECTRIC_SIZE,
     TABLE_SIZE,
 )
-from .vec import add, dot, normalize, scale
+from .vec import add, dot, normalize, scale, sub
 
 # Closure distributions (a closure step's operand; core.model.shader.DISTRIBUTIONS)
 DIST_GGX, DIST_MULTI_GGX, DIST_BECKMANN = 0, 1, 2
@@ -53,6 +53,8 @@ class Gloss(NamedTuple):
     coat: float  # sum of the dielectric lobes' weights
     coat_ior: float  # their IOR
     coat_ms: float  # sum of their weight x Fms
+    coat_tint: tuple  # their Specular Tint (RGB, white: none; `tinted_fresnel`)
+    dip: tuple  # sum of weight x F82's dip (`f82_dip`) of the Schlick lobes
 
 
 E_TABLE = np.array(ALBEDO.split(), float).reshape(TABLE_SIZE, TABLE_SIZE)
@@ -116,6 +118,58 @@ def rough_coat_albedo(gloss, roughness, cos_i):
     if gloss.coat_ms > 0.0 and gloss.coat > 0.0:
         albedo *= 1.0 + gloss.coat_ms / gloss.coat * (1.0 - e) / max(e, 1e-6)
     return min(albedo, 1.0)
+
+
+@kernel
+def f82_dip(f0, tint):
+    """Cycles' F82 tint (metals, from Blender 4.0): Schlick's curve from f0 to white, less
+    b mu (1 - mu)^6, b chosen per channel so that at mu = 1/7 (82 degrees) the curve is
+    Schlick's times the tint: b = Schlick(1/7) (1 - tint) 7 / (6/7)^6 (derived from that
+    condition, as Cycles derives it). b: the dip (`schlick_dip` evaluates the curve)."""
+    f = 6.0 / 7.0
+    f5 = f**5
+    return (
+        (f0[0] + (1.0 - f0[0]) * f5) * 7.0 / (f5 * f) * (1.0 - tint[0]),
+        (f0[1] + (1.0 - f0[1]) * f5) * 7.0 / (f5 * f) * (1.0 - tint[1]),
+        (f0[2] + (1.0 - f0[2]) * f5) * 7.0 / (f5 * f) * (1.0 - tint[2]),
+    )
+
+
+@kernel
+def schlick_dip(normal, edge, dip, mu):
+    """Schlick's normal + (edge - normal)(1 - mu)^5, less F82's dip mu (1 - mu)^6, in 0..1
+    (just Schlick's where there is no dip)."""
+    s = (1.0 - mu) ** 5
+    curve = add(normal, scale((edge[0] - normal[0], edge[1] - normal[1], edge[2] - normal[2]), s))
+    if dip[0] == 0.0 and dip[1] == 0.0 and dip[2] == 0.0:
+        return curve
+    d = mu * s * (1.0 - mu)
+    return (
+        min(max(curve[0] - dip[0] * d, 0.0), 1.0),
+        min(max(curve[1] - dip[1] * d, 0.0), 1.0),
+        min(max(curve[2] - dip[2] * d, 0.0), 1.0),
+    )
+
+
+@kernel
+def is_white(tint):
+    return tint[0] == 1.0 and tint[1] == 1.0 and tint[2] == 1.0
+
+
+@kernel
+def tinted_fresnel(fresnel, ior, tint):
+    """A specular layer's Fresnel under Cycles' Specular Tint (from Blender 4.0), per channel,
+    as a factor on the untinted `fresnel` of the same IOR: Cycles keeps the real Fresnel's
+    shape, s = (F - F0) / (1 - F0), and tints only its start, F0 t + (1 - F0 t) s."""
+    f0 = ((ior - 1.0) / (ior + 1.0)) ** 2
+    if fresnel <= 0.0 or f0 >= 1.0:
+        return 1.0, 1.0, 1.0
+    s = max(fresnel - f0, 0.0) / (1.0 - f0)
+    return (
+        (f0 * tint[0] + (1.0 - f0 * tint[0]) * s) / fresnel,
+        (f0 * tint[1] + (1.0 - f0 * tint[1]) * s) / fresnel,
+        (f0 * tint[2] + (1.0 - f0 * tint[2]) * s) / fresnel,
+    )
 
 
 @kernel
@@ -191,14 +245,19 @@ def gloss_lit(gloss, n, to_viewer, light_dir):
     v_h = min(max(dot(to_viewer, h), 0.0), 1.0)
     s = (1.0 - v_h) ** 5
     fresnel = _fresnel_sum(gloss.normal, gloss.edge, s)
+    if gloss.dip[0] != 0.0 or gloss.dip[1] != 0.0 or gloss.dip[2] != 0.0:  # F82's
+        fresnel = sub(fresnel, scale(gloss.dip, v_h * s * (1.0 - v_h)))
     coat_f = 0.0
+    coat_colour = (1.0, 1.0, 1.0)
     if gloss.coat > 0.0:
         coat_f, _ = fresnel_dielectric(v_h, 1.0, gloss.coat_ior)
-        fresnel = add(fresnel, scale((1.0, 1.0, 1.0), gloss.coat * coat_f))
+        if not is_white(gloss.coat_tint):
+            coat_colour = tinted_fresnel(coat_f, gloss.coat_ior, gloss.coat_tint)
+        fresnel = add(fresnel, scale(coat_colour, gloss.coat * coat_f))
     if max(gloss.ms_normal) > 0.0 or max(gloss.ms_edge) > 0.0 or gloss.coat_ms > 0.0:
         e = ggx_albedo(math.sqrt(gloss.alpha), cos_v)
         missing = (1.0 - e) / max(e, 1e-6)
         bounced = _fresnel_sum(gloss.ms_normal, gloss.ms_edge, s)
-        bounced = add(bounced, scale((1.0, 1.0, 1.0), gloss.coat_ms * coat_f))
+        bounced = add(bounced, scale(coat_colour, gloss.coat_ms * coat_f))
         fresnel = add(fresnel, scale(bounced, missing))
     return scale(fresnel, single)

@@ -14,7 +14,7 @@ from .surface_terms import (
 )
 
 # The columns of a folded row (fold_surfaces' out), in Surface's order
-FOLDED_COLUMNS = 36 + GLOSS_COLUMNS + CLEAR_COAT_COLUMNS
+FOLDED_COLUMNS = 36 + GLOSS_COLUMNS + CLEAR_COAT_COLUMNS + 6
 
 
 @kernel
@@ -28,7 +28,7 @@ def fold_surfaces(mats, rows, out):
     to a row of `out` (FOLDED_COLUMNS: kd, ks, shininess, reflectivity, transparency, outer
     and inner IOR, mirror normal and edge, hides lights, coat, coat IOR, coat hides, glass
     reflect and transmit, refraction Fresnel, emission, transparent, holdout, roughness,
-    gloss, clear coat)."""
+    gloss, clear coat, coat tint, mirror dip)."""
     stack = np.zeros(SHADER_STACK)
     lobes = np.zeros(LOBE_COUNT)
     zero = (0.0, 0.0, 0.0)
@@ -59,3 +59,5 @@ def fold_surfaces(mats, rows, out):
         o[35] = s.roughness
         gloss_columns(s.gloss, o, 36)
         clear_coat_columns(s.clear_coat, o, 36 + GLOSS_COLUMNS)
+        _three(o, 36 + GLOSS_COLUMNS + CLEAR_COAT_COLUMNS, s.coat_tint)
+        _three(o, 39 + GLOSS_COLUMNS + CLEAR_COAT_COLUMNS, s.mirror_dip)

@@ -20,6 +20,7 @@ from .microfacet import (
     DIST_BECKMANN,
     DIST_MULTI_GGX,
     dielectric_average,
+    f82_dip,
     ggx_albedo_average,
     multiscatter_fresnel,
     schlick_average,
@@ -160,7 +161,14 @@ L_CLEAR_TINT = 57  # RGB
 L_CLEAR_NORMAL = 60  # RGB, from coats given a Coat Normal
 L_CLEAR_NORMAL_WEIGHT = 63
 L_CLEAR_AT_NORMAL = 64  # the weight of coats dimming by the Fresnel at their normal
-LOBE_COUNT = 65
+# The specular layers' Specular Tint (RGB, times weight): all of them, and the rough ones'
+L_COAT_TINT = 65
+L_GLOSS_COAT_TINT = 68
+# F82's dip below Schlick's curve near grazing (RGB, times weight; microfacet.f82_dip): the
+# mirror lobes', and the rough ones'
+L_DIP = 71
+L_GLOSS_DIP = 74
+LOBE_COUNT = 77
 
 # Slots of a program's stack: constants first, then every node output (a triple each)
 SHADER_STACK = 4096
@@ -209,7 +217,7 @@ def _glint_shape(lobes, weight, roughness, distribution):
 
 
 @kernel
-def _glint(lobes, weight, normal, edge, roughness, distribution):
+def _glint(lobes, weight, normal, edge, roughness, distribution, dip):
     """A rough mirror lobe's glint: Schlick's Fresnel from `normal` to `edge` (the same
     colour, and no Fresnel, for a Glossy BSDF), and under Multiscatter GGX the light its
     microfacets pass on (core.kernels.microfacet; a Glossy BSDF's colour is its Fss, as
@@ -220,21 +228,24 @@ def _glint(lobes, weight, normal, edge, roughness, distribution):
         return
     _add3(lobes, L_GLOSS_NORMAL, weight, normal)
     _add3(lobes, L_GLOSS_EDGE, weight, edge)
+    _add3(lobes, L_GLOSS_DIP, weight, dip)
     _glint_shape(lobes, weight, roughness, distribution)
     if distribution == DIST_MULTI_GGX:
         e_average = ggx_albedo_average(roughness)
         for c in range(3):
-            fms = multiscatter_fresnel(schlick_average(normal[c], edge[c]), e_average)
+            fss = schlick_average(normal[c], edge[c]) - dip[c] / 126.0  # F82's mean: Cycles'
+            fms = multiscatter_fresnel(fss, e_average)
             lobes[L_GLOSS_MS_NORMAL + c] += weight * fms * normal[c]
             lobes[L_GLOSS_MS_EDGE + c] += weight * fms * edge[c]
 
 
 @kernel
-def _coat_glint(lobes, weight, ior, roughness, distribution):
+def _coat_glint(lobes, weight, ior, roughness, distribution, tint):
     """A rough dielectric layer's glint: the exact Fresnel of its IOR."""
     if roughness <= SHARP_ROUGHNESS or weight <= 0.0:
         return
     lobes[L_GLOSS_COAT] += weight
+    _add3(lobes, L_GLOSS_COAT_TINT, weight, tint)
     lobes[L_GLOSS_COAT_IOR] += weight * ior
     _glint_shape(lobes, weight, roughness, distribution)
     if distribution == DIST_MULTI_GGX:
@@ -249,21 +260,23 @@ def _roughness(lobes, weight, roughness):
 
 
 @kernel
-def add_mirror(lobes, weight, normal, edge, roughness, distribution):
+def add_mirror(lobes, weight, normal, edge, roughness, distribution, dip):
     _roughness(lobes, weight, roughness)
     _add3(lobes, L_MIRROR, weight, normal)
     _add3(lobes, L_EDGE, weight, edge)
-    _glint(lobes, weight, normal, edge, roughness, distribution)
+    _add3(lobes, L_DIP, weight, dip)
+    _glint(lobes, weight, normal, edge, roughness, distribution, dip)
 
 
 @kernel
-def add_coat(lobes, weight, ior, roughness, hides, distribution):
+def add_coat(lobes, weight, ior, roughness, hides, distribution, tint):
     _roughness(lobes, weight, roughness)
     lobes[L_COAT] += weight
     lobes[L_COAT_IOR] += weight * ior
+    _add3(lobes, L_COAT_TINT, weight, tint)
     if hides:
         lobes[L_COAT_HIDES] = 1.0
-    _coat_glint(lobes, weight, ior, roughness, distribution)
+    _coat_glint(lobes, weight, ior, roughness, distribution, tint)
 
 
 @kernel
@@ -297,8 +310,10 @@ def _principled(lobes, w, base, metallic, roughness, ior, alpha, more):
     _add3(lobes, L_EMISSION, w * max(strength, 0.0), _nonnegative(emission))
     if layered:
         tint = _nonnegative(tint)
-        if metallic > WEIGHT_CUTOFF:
-            add_mirror(lobes, w * metallic, clamped, (1.0, 1.0, 1.0), roughness, distribution)
+        if metallic > WEIGHT_CUTOFF:  # Cycles' F82 tint, the Specular Tint its tint
+            f82 = (min(tint[0], 1.0), min(tint[1], 1.0), min(tint[2], 1.0))
+            add_mirror(lobes, w * metallic, clamped, (1.0, 1.0, 1.0), roughness, distribution,
+                       f82_dip(clamped, f82))  # fmt: skip
             w *= 1.0 - metallic
         if transmission > WEIGHT_CUTOFF:
             root = (math.sqrt(clamped[0]), math.sqrt(clamped[1]), math.sqrt(clamped[2]))
@@ -306,7 +321,7 @@ def _principled(lobes, w, base, metallic, roughness, ior, alpha, more):
             w *= 1.0 - transmission
         f0 = f0_of_ior(ior) * 2.0 * max(level, 0.0)
         if f0 > 0.0 and w > WEIGHT_CUTOFF:
-            add_coat(lobes, w, ior_of_f0(f0), roughness, True, distribution)
+            add_coat(lobes, w, ior_of_f0(f0), roughness, True, distribution, tint)
         _add3(lobes, L_DIFFUSE, w, base)
         return
     # Before Blender 4.0: additive lobes; `level` is Specular, tint[0] the Specular Tint
@@ -317,10 +332,10 @@ def _principled(lobes, w, base, metallic, roughness, ior, alpha, more):
     spec_weight = w * (1.0 - glass)
     if metallic > WEIGHT_CUTOFF:
         add_mirror(lobes, spec_weight * metallic, clamped, (1.0, 1.0, 1.0), roughness,
-                   distribution)  # fmt: skip
+                   distribution, (0.0, 0.0, 0.0))  # fmt: skip
     if specular > 0.0 and metallic < 1.0:
         add_coat(lobes, spec_weight * (1.0 - metallic), ior_of_f0(0.08 * specular), roughness,
-                 False, distribution)  # fmt: skip
+                 False, distribution, (1.0, 1.0, 1.0))  # fmt: skip
     if glass > WEIGHT_CUTOFF:
         reflect = (
             (1.0 - tint_share) + clamped[0] * tint_share,
@@ -555,11 +570,12 @@ def run_program(mats, material, stack, lobes, hit, frame, normal_rows, ray):
             _add_normal(lobes, s, s[out], f)
         elif op == OP_GLOSSY:
             tint = _nonnegative(_triple(s, a))
-            add_mirror(lobes, s[out], tint, tint, min(max(s[b], 0.0), 1.0), c)
+            add_mirror(lobes, s[out], tint, tint, min(max(s[b], 0.0), 1.0), c, (0.0, 0.0, 0.0))
             _add_normal(lobes, s, s[out], f)
         elif op == OP_METALLIC:
-            add_mirror(lobes, s[out], clamp01(_triple(s, a)), clamp01(_triple(s, b)),
-                       min(max(s[c], 0.0), 1.0), d)  # fmt: skip
+            base = clamp01(_triple(s, a))  # Cycles' F82 tint: Base Color, Edge Tint
+            add_mirror(lobes, s[out], base, (1.0, 1.0, 1.0), min(max(s[c], 0.0), 1.0), d,
+                       f82_dip(base, clamp01(_triple(s, b))))  # fmt: skip
             _add_normal(lobes, s, s[out], f)
         elif op == OP_GLASS:
             tint = _nonnegative(_triple(s, a))

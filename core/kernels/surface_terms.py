@@ -19,7 +19,9 @@ from .shader_program import (
     L_COAT,
     L_COAT_HIDES,
     L_COAT_IOR,
+    L_COAT_TINT,
     L_DIFFUSE,
+    L_DIP,
     L_EDGE,
     L_EMISSION,
     L_FRESNEL,
@@ -32,6 +34,8 @@ from .shader_program import (
     L_GLOSS_COAT,
     L_GLOSS_COAT_IOR,
     L_GLOSS_COAT_MS,
+    L_GLOSS_COAT_TINT,
+    L_GLOSS_DIP,
     L_GLOSS_EDGE,
     L_GLOSS_MS_EDGE,
     L_GLOSS_MS_NORMAL,
@@ -97,10 +101,12 @@ class Surface(NamedTuple):
     roughness: float  # its mirror's and glass's, 0 sharp (blurred when glossy rays are sampled)
     gloss: Gloss  # its rough lobes' glints (core.kernels.microfacet); alpha 0: none
     clear_coat: ClearCoat  # weight 0: none
+    coat_tint: tuple  # the coat's Specular Tint (RGB; microfacet.tinted_fresnel), white: none
+    mirror_dip: tuple  # F82's dip below the mirror's Schlick curve (microfacet.f82_dip)
 
 
 # Materials.gloss's columns: Gloss's fields, its triples as three
-GLOSS_COLUMNS = 17
+GLOSS_COLUMNS = 23
 
 
 @kernel
@@ -108,7 +114,8 @@ def _gloss_row(table, material):
     g = table[material]
     return Gloss(
         g[0], g[1] != 0.0, (g[2], g[3], g[4]), (g[5], g[6], g[7]), (g[8], g[9], g[10]),
-        (g[11], g[12], g[13]), g[14], g[15], g[16],
+        (g[11], g[12], g[13]), g[14], g[15], g[16], (g[17], g[18], g[19]),
+        (g[20], g[21], g[22]),
     )  # fmt: skip
 
 
@@ -122,6 +129,9 @@ def gloss_columns(gloss, o, first):
         o[first + 8 + c] = gloss.ms_normal[c]
         o[first + 11 + c] = gloss.ms_edge[c]
     o[first + 14], o[first + 15], o[first + 16] = gloss.coat, gloss.coat_ior, gloss.coat_ms
+    for c in range(3):
+        o[first + 17 + c] = gloss.coat_tint[c]
+        o[first + 20 + c] = gloss.dip[c]
 
 
 @kernel
@@ -183,6 +193,8 @@ def table_surface(mats, material, kd):
         mats.roughness[material],
         _gloss_row(mats.gloss, material),
         _clear_coat_row(mats.clear_coat, material),
+        (mats.coat[material, 3], mats.coat[material, 4], mats.coat[material, 5]),
+        row(mats.mirror_dip, material),
     )
 
 
@@ -236,6 +248,8 @@ def terms_from_lobes(lobes):
         _mean_roughness(lobes),
         _gloss(lobes, per_rest),
         _clear_coat(lobes),
+        _mean_tint(lobes, L_COAT_TINT, coat),
+        _scaled(lobes, L_DIP, per_rest) if mirrors else (0.0, 0.0, 0.0),
     )
 
 
@@ -245,7 +259,8 @@ def _gloss(lobes, per_rest):
     weight = lobes[L_GLOSS_WEIGHT]
     if weight <= 0.0:
         return Gloss(0.0, False, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0), (0.0, 0.0, 0.0),
-                     (0.0, 0.0, 0.0), 0.0, 1.5, 0.0)  # fmt: skip
+                     (0.0, 0.0, 0.0), 0.0, 1.5, 0.0, (1.0, 1.0, 1.0),
+                     (0.0, 0.0, 0.0))  # fmt: skip
     coat = lobes[L_GLOSS_COAT]
     return Gloss(
         lobes[L_GLOSS_ALPHA] / weight,
@@ -257,7 +272,17 @@ def _gloss(lobes, per_rest):
         coat * per_rest,
         lobes[L_GLOSS_COAT_IOR] / coat if coat > 0.0 else 1.5,
         lobes[L_GLOSS_COAT_MS] * per_rest,
+        _mean_tint(lobes, L_GLOSS_COAT_TINT, coat),
+        _scaled(lobes, L_GLOSS_DIP, per_rest),
     )
+
+
+@kernel
+def _mean_tint(lobes, slot, weight):
+    """The weighted mean of the tints summed in `slot` (white if none)."""
+    if weight <= 0.0:
+        return 1.0, 1.0, 1.0
+    return _scaled(lobes, slot, 1.0 / weight)
 
 
 @kernel

@@ -55,6 +55,18 @@ def _plastic(bpy):
     return _principled(bpy, "Plastic", Base_Color=(0.1, 0.2, 0.6), Roughness=0.5)[0]
 
 
+def _tinted_plastic(bpy):
+    """A dielectric whose Specular Tint colours its specular layer (from Blender 4.0)."""
+    return _principled(bpy, "Tinted plastic", Base_Color=(0.1, 0.2, 0.6), Roughness=0.5,
+                       Specular_Tint=(1.0, 0.5, 0.2))[0]  # fmt: skip
+
+
+def _tinted_gold(bpy):
+    """A metal whose Specular Tint is F82's edge tint (from Blender 4.0)."""
+    return _principled(bpy, "Tinted gold", Base_Color=(1.0, 0.77, 0.34), Metallic=1.0,
+                       Roughness=0.4, Specular_Tint=(0.9, 0.6, 0.6))[0]  # fmt: skip
+
+
 GLINTS = {
     "rough_gold": _rough_gold,
     "satin_steel": _satin_steel,
@@ -62,6 +74,8 @@ GLINTS = {
     "glossy_ggx": _glossy("GGX", 0.3),
     "glossy_multiscatter": _glossy("MULTI_GGX", 0.6),
     "glossy_beckmann": _glossy("BECKMANN", 0.3),
+    "tinted_plastic": _tinted_plastic,
+    "tinted_gold": _tinted_gold,
 }
 
 
