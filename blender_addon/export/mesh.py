@@ -1,8 +1,8 @@
 """Blender meshes into `core.TriangleMesh`, through `foreach_get` into numpy (no Python loop
-over triangles), with per-face smooth flags, Blender's corner (split) normals and the
-active UV map. Each distinct evaluated mesh is converted once per render and shared by every
-object instance that uses it, and `MeshCache` keeps it from frame to frame while it does not
-change, so an animation re-exports only what moved."""
+over triangles), with per-face smooth flags, Blender's corner (split) normals, the active UV
+map and the colour attributes. Each distinct evaluated mesh is converted once per render
+and shared by every object instance that uses it, and `MeshCache` keeps it from frame to
+frame while it does not change, so an animation re-exports only what moved."""
 
 from __future__ import annotations
 
@@ -64,6 +64,10 @@ def _fingerprint(mesh) -> tuple:
         uvs = np.empty(len(mesh.loops) * 2, np.float32)
         uv_layer.data.foreach_get("uv", uvs)
         parts.append(hash(uvs.tobytes()))
+    for attribute in getattr(mesh, "color_attributes", ()):
+        values = np.empty(len(attribute.data) * 4, np.float32)
+        attribute.data.foreach_get("color", values)
+        parts.append((attribute.name, attribute.domain, hash(values.tobytes())))
     return (*parts, *auto_smooth(mesh))
 
 
@@ -99,6 +103,7 @@ def convert(mesh, name: str):
         corner_uvs = uvs.reshape(-1, 2)[loops].reshape(count, 3, 2)
     material_index = np.empty(count, np.int32)
     triangles_blender.foreach_get("material_index", material_index)
+    corner_colors, default_color = _colour_attributes(mesh, triangles_blender, count)
     return core.TriangleMesh(
         vertices=vertices.reshape(-1, 3),
         triangles=triangles.reshape(-1, 3),
@@ -106,7 +111,33 @@ def convert(mesh, name: str):
         corner_normals=corner_normals,
         corner_uvs=corner_uvs,
         name=name,
+        corner_colors=corner_colors,
+        default_color=default_color,
     ), material_index
+
+
+def _colour_attributes(mesh, triangles, count: int):
+    """({name: (t, 3, 4) linear RGBA per triangle corner} of the mesh's colour attributes,
+    vertex or face-corner, byte or float alike (Blender gives both as linear floats); the
+    name of its render colour, which a Color Attribute node naming none reads, or "")."""
+    attributes = getattr(mesh, "color_attributes", None)
+    if attributes is None or not len(attributes) or not count:
+        return None, ""
+    loops = np.empty(count * 3, np.int32)
+    triangles.foreach_get("loops", loops)
+    vertex_of_loop = np.empty(len(mesh.loops), np.int32)
+    mesh.loops.foreach_get("vertex_index", vertex_of_loop)
+    colours = {}
+    for attribute in attributes:
+        if attribute.domain not in ("CORNER", "POINT"):
+            continue
+        values = np.empty(len(attribute.data) * 4, np.float32)
+        attribute.data.foreach_get("color", values)
+        at = loops if attribute.domain == "CORNER" else vertex_of_loop[loops]
+        colours[attribute.name] = values.reshape(-1, 4)[at].reshape(count, 3, 4)
+    render = getattr(attributes, "render_color_index", -1)
+    default = attributes[render].name if 0 <= render < len(attributes) else ""
+    return colours, default if default in colours else ""
 
 
 def by_material(whole: core.TriangleMesh, material_index) -> dict[int, core.TriangleMesh]:
@@ -129,5 +160,8 @@ def by_material(whole: core.TriangleMesh, material_index) -> dict[int, core.Tria
             corner_normals=pick(whole.corner_normals),
             corner_uvs=pick(whole.corner_uvs),
             name=f"{whole.name}[{slot}]",
-        )
+            corner_colors=None if whole.corner_colors is None
+            else {key: table[rows] for key, table in whole.corner_colors.items()},
+            default_color=whole.default_color,
+        )  # fmt: skip
     return parts

@@ -38,6 +38,12 @@ OUTPUTS = {
         {"UV": "UV", "Generated": "Generated", "Object": "Object", "Normal": "Normal"},
     ),  # fmt: skip
     "UVMAP": ("tex_coord", {"UV": "UV"}),
+    # a mesh's colour attribute (core.kernels.attributes)
+    "VERTEX_COLOR": ("attribute", {"Color": "Color", "Alpha": "Alpha"}),
+    "ATTRIBUTE": (
+        "attribute",
+        {"Color": "Color", "Vector": "Vector", "Fac": "Fac", "Alpha": "Alpha"},
+    ),  # fmt: skip
     "LIGHT_PATH": (
         "light_path",
         {
@@ -337,6 +343,12 @@ class GraphReader:
                 self.note(f"{node_label(node)}'s {node.projection.title()} projection (used: "
                           "Flat)")  # fmt: skip
             made.inputs["Vector"] = self._vector(node, groups, "Vector")
+        elif t == "VERTEX_COLOR":
+            made.settings["name"] = node.layer_name
+        elif t == "ATTRIBUTE":
+            if node.attribute_type != "GEOMETRY":  # an object's, instancer's, view layer's
+                return None
+            made.settings["name"] = node.attribute_name
         elif t in ("TEX_CHECKER", "TEX_GRADIENT"):
             made.inputs["Vector"] = self._vector(node, groups, "Vector")
             if t == "TEX_CHECKER":

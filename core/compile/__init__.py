@@ -32,7 +32,8 @@ import numpy as np
 from ..kernels.layout import PackedScene
 from ..kernels.options import OPTION_GLASS_SHADOWS
 from ..memory_estimate import check_fits, estimate
-from ..model import RenderSettings, Scene
+from ..model import Mesh, RenderSettings, Scene
+from ..model.shader import attribute_names
 from .caustics import CausticReport, add_caustics
 from .csg import owner_rows, pack_csg
 from .frame import pack_frame
@@ -45,7 +46,7 @@ from .surfaces import pack_surfaces
 
 # The mesh arrays, in whichever group each lives (for CompiledScene.mesh_bytes)
 MESH_FIELDS = ("node_boxes", "node_links", "tri_corners", "tri_smooth", "tri_normal_index",
-               "normals", "tri_uv_index", "uvs")  # fmt: skip
+               "normals", "tri_uv_index", "uvs", "tri_color_index", "colors")  # fmt: skip
 
 
 class CompiledScene(NamedTuple):
@@ -74,8 +75,10 @@ def compile_scene(scene: Scene, settings: RenderSettings, on_photons=None,
         [s.world_from_object for s in scene.shapes] + [w for _, w in csg.operands], float
     ).reshape(len(shapes), 4, 4)
     check_fits(estimate(shapes, settings))
-    materials, material_of = pack_materials(shapes)
-    meshes, mesh_of = pack_meshes(shapes)
+    # the colour attributes the programs read, numbered for the kernels (core.kernels.attributes)
+    names = attribute_names([s.material.surface for s in shapes if s.material.surface is not None])
+    materials, material_of = pack_materials(shapes, names)
+    meshes, mesh_of = pack_meshes(shapes, names)
     graph_of_row = {material_of[id(s.material)]: s.material.surface for s in shapes}
     graphs = [graph_of_row.get(k) for k in range(len(materials.transparency))]
     refraction_passes = settings.glass_shadows == "attenuated"
@@ -100,6 +103,7 @@ def compile_scene(scene: Scene, settings: RenderSettings, on_photons=None,
         ]
         + glowing.warnings
         + caustic_warnings
+        + _missing_attributes(shapes)
     )
     mesh_bytes = sum(
         getattr(group, name).nbytes
@@ -108,6 +112,26 @@ def compile_scene(scene: Scene, settings: RenderSettings, on_photons=None,
         if name in group._fields
     )
     return CompiledScene(packed, warnings, meshes.counts["tris"], mesh_bytes, caustics)
+
+
+def _missing_attributes(shapes: list) -> list[str]:
+    """A warning for each mesh whose material reads a colour attribute it lacks (read as 0,
+    as Cycles reads a missing attribute; an Attribute node naming a UV map or a number
+    attribute reads the same: only colour attributes are exported)."""
+    warnings = []
+    for shape in shapes:
+        surface = shape.material.surface
+        if not isinstance(shape, Mesh) or surface is None:
+            continue
+        colors = shape.mesh.corner_colors or {}
+        for name in attribute_names([surface]):
+            if (name or shape.mesh.default_color) not in colors:
+                shown = f"colour attribute '{name}'" if name else "default colour attribute"
+                text = (f"mesh '{shape.mesh.name}' (on {shape.owner}) has no {shown} that "
+                        f"material '{shape.material.name}' reads (read as 0)")  # fmt: skip
+                if text not in warnings:
+                    warnings.append(text)
+    return warnings
 
 
 def with_frame(compiled: CompiledScene, scene: Scene, settings: RenderSettings) -> CompiledScene:

@@ -126,9 +126,11 @@ def _materials(shapes):
 def _varies(graph) -> bool:
     """Whether a node graph's program reads the hit (so runs per hit, not folded); a graph
     the compile will refuse counts as varying, the safe side."""
+    from ..model.shader import attribute_names
     from .shader_program import ProgramBuilder
 
     try:
-        return ProgramBuilder(lambda texture, owner="": 0).build(graph).varying
+        builder = ProgramBuilder(lambda texture, owner="": 0, attribute_names([graph]))
+        return builder.build(graph).varying
     except Exception:
         return True

@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import SceneError
+from ..kernels.attributes import READS_ATTRIBUTES, READS_FRAME
 from ..kernels.layout import Materials
 from ..kernels.shader_fold import FOLDED_COLUMNS, fold_surfaces
 from ..kernels.shader_program import SHADER_STACK
@@ -39,8 +40,10 @@ class _Textures:
         return self.row_of[id(texture)]
 
 
-def pack_materials(shapes: list) -> tuple[Materials, dict[int, int]]:
-    """The material table for these shapes, and each material's row by id()."""
+def pack_materials(shapes: list, attribute_names=()) -> tuple[Materials, dict[int, int]]:
+    """The material table for these shapes, and each material's row by id();
+    `attribute_names` the colour attributes the programs may read, in the kernels' order
+    (core.model.shader.attribute_names)."""
     materials, row_of = [], {}
     for shape in shapes:
         if id(shape.material) not in row_of:
@@ -52,7 +55,7 @@ def pack_materials(shapes: list) -> tuple[Materials, dict[int, int]]:
         owner = f"material '{material.name}' (on {user})"
         texture = material.texture
         texture_rows.append(-1 if texture is None else textures.row(texture, owner))
-    programs = [_program(m, user, textures) for m, user in materials]
+    programs = [_program(m, user, textures, attribute_names) for m, user in materials]
     table = Materials(
         diffuse=rows([m.diffuse for m, _ in materials]),
         specular=rows([m.specular for m, _ in materials]),
@@ -94,13 +97,13 @@ def pack_materials(shapes: list) -> tuple[Materials, dict[int, int]]:
     return table, row_of
 
 
-def _program(material, user: str, textures: _Textures):
+def _program(material, user: str, textures: _Textures, attribute_names=()):
     """The material's shader program, or None; one too large for the kernels' stack is
     refused (the kernels do not check bounds)."""
     if material.surface is None:
         return None
-    program = ProgramBuilder(textures.row).build(material.surface)
-    needed = len(program.constants) + program.values
+    program = ProgramBuilder(textures.row, attribute_names).build(material.surface)
+    needed = len(program.constants) + program.values + 4 * program.attributes
     if needed > SHADER_STACK:
         raise SceneError(
             f"material '{material.name}' (on {user})",
@@ -127,12 +130,19 @@ def _program_tables(programs: list) -> dict:
         step += len(program_ops)
         constant += len(program_constants)
     return dict(
-        shader_frame=np.array([p is not None and p.needs_frame for p in programs], np.uint8),
+        shader_frame=np.array([_reads(p) for p in programs], np.uint8),
         shader_range=np.array(ranges, np.int64).reshape(-1, 2),
         shader_constant_range=np.array(constant_ranges, np.int64).reshape(-1, 2),
         shader_ops=concatenated(ops, (0, 8), np.int32),
         shader_constants=concatenated(constants, (0,), np.float64),
     )
+
+
+def _reads(program) -> int:
+    """Materials.shader_frame's bits for a program (core.kernels.attributes)."""
+    if program is None:
+        return 0
+    return READS_FRAME * program.needs_frame + READS_ATTRIBUTES * (program.attributes > 0)
 
 
 def _fold_constant_programs(table: Materials, programs: list) -> None:

@@ -50,6 +50,14 @@ class MeshTables:
     normals: list = field(default_factory=list)
     tri_uv_index: list = field(default_factory=list)
     uvs: list = field(default_factory=list)
+    # the colour attributes the programs read (core.kernels.attributes), each mesh's rows
+    # of them (-1: it lacks one), and those rows
+    attribute_names: list = field(default_factory=list)
+    color_offset: list = field(default_factory=list)
+    tri_color_index: list = field(default_factory=list)
+    colors: list = field(default_factory=list)
+    color_rows: int = 0
+    color_entries: int = 0
     # nodes, triangles, and triangle slots (four a leaf block, some empty)
     counts: dict = field(default_factory=lambda: {"nodes": 0, "tris": 0, "slots": 0})
     normal_rows: int = 0
@@ -118,6 +126,9 @@ def add_mesh(tables: MeshTables, mesh: TriangleMesh) -> int:
 
     tables.normal_offset.append(_add_normals(tables, mesh, triangles, slot_source, smooth))
     tables.uv_offset.append(_add_uvs(tables, mesh, triangles, slot_source))
+    tables.color_offset.append(
+        [_add_colors(tables, mesh, slot_source, name) for name in tables.attribute_names]
+    )
     tables.counts["nodes"] += len(links)
     tables.counts["tris"] += len(source)
     tables.counts["slots"] += len(slot_source)
@@ -161,9 +172,27 @@ def _add_uvs(tables, mesh, triangles, source) -> int:
     return offset
 
 
-def pack_meshes(shapes: list) -> tuple[MeshTables, dict[int, int]]:
-    """Every distinct `TriangleMesh` of these shapes, once; each one's index by id()."""
-    tables, index = MeshTables(), {}
+def _add_colors(tables, mesh, source, name: str) -> int:
+    """The mesh's colour attribute `name` ("": its default one) for its triangle slots;
+    its first row, or -1 if it has none of that name."""
+    colors = mesh.corner_colors or {}
+    key = name or mesh.default_color
+    if key not in colors:
+        return -1
+    table = np.asarray(colors[key], np.float32).reshape(-1, 4)
+    index = 3 * source[:, None] + np.arange(3)
+    offset = tables.color_rows
+    tables.tri_color_index.append((index + tables.color_entries).astype(np.int32))
+    tables.colors.append(table)
+    tables.color_rows += len(index)
+    tables.color_entries += len(table)
+    return offset
+
+
+def pack_meshes(shapes: list, attribute_names=()) -> tuple[MeshTables, dict[int, int]]:
+    """Every distinct `TriangleMesh` of these shapes, once; each one's index by id();
+    with the colour attributes named (core.model.shader.attribute_names)."""
+    tables, index = MeshTables(attribute_names=list(attribute_names)), {}
     for shape in shapes:
         if isinstance(shape, Mesh) and id(shape.mesh) not in index:
             index[id(shape.mesh)] = add_mesh(tables, shape.mesh)

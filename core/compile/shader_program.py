@@ -60,6 +60,7 @@ class Program:
     values: int = 0  # computed slots used
     varying: bool = False  # reads the hit (coordinates, images)
     needs_frame: bool = False  # reads the surface's tangents or steps across it
+    attributes: int = 0  # how many colour attributes its caller puts on the stack (0: none)
     textures: list = field(default_factory=list)  # core Textures the image steps read
 
     def constant(self, value) -> tuple:
@@ -127,9 +128,12 @@ class ProgramBuilder:
     """Builds one material's program; `texture_row(texture)` gives the row of a core
     Texture in the material table's textures."""
 
-    def __init__(self, texture_row):
+    def __init__(self, texture_row, attribute_names=()):
         self.program = Program()
         self.texture_row = texture_row
+        # the scene's colour attribute names (core.model.shader.attribute_names): their
+        # numbers on the stack
+        self.attribute_names = list(attribute_names)
         self.outputs: dict = {}  # (id(node), output, where) -> (operand, shape)
         # where the values are wanted: 0 the hit, 1 and 2 a step across (a Bump's heights)
         self.where = 0
@@ -260,6 +264,13 @@ class ProgramBuilder:
             for name, which in COORDS.items():
                 p.step(sp.OP_COORD, slots[name], which, self.where)
             p.varying = True
+        elif kind == "attribute":
+            k = self.attribute_names.index(node.setting("name"))
+            p.step(sp.OP_ATTRIBUTE, slots["Color"], slots["Alpha"], sp.attribute_slot(k))
+            p.step(sp.OP_COPY, slots["Vector"], slots["Color"])
+            p.step(sp.OP_AVERAGE, slots["Fac"], slots["Color"])
+            p.varying = True
+            p.attributes = len(self.attribute_names)
         elif kind == "light_path":
             for name, which in RAY_COORDS.items():
                 p.step(sp.OP_COORD, slots[name], which, self.where)

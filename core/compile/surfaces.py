@@ -30,6 +30,11 @@ def pack_surfaces(shapes: list, owners: list, material_of: dict, meshes: MeshTab
         normals=concatenated(meshes.normals, (0, 3), np.float32),
         tri_uv_index=concatenated(meshes.tri_uv_index, (0, 3), np.int32),
         uvs=concatenated(meshes.uvs, (0, 2), np.float32),
+        mesh_color_offset=np.array(meshes.color_offset, np.int64).reshape(
+            len(meshes.root), len(meshes.attribute_names)
+        ),
+        tri_color_index=concatenated(meshes.tri_color_index, (0, 3), np.int32),
+        colors=concatenated(meshes.colors, (0, 4), np.float32),
         shape_pass_index=np.array([o.pass_index for o in owners], np.int32),
         shape_holdout=np.array([o.holdout for o in owners], np.uint8),
         shape_crypto=np.array([ids[o.name] for o in owners], np.float32),

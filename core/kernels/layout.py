@@ -78,6 +78,11 @@ class Surfaces(NamedTuple):
     normals: np.ndarray  # float32 (r, 3)
     tri_uv_index: np.ndarray  # int32 (rows, 3): rows of uvs per corner
     uvs: np.ndarray  # float32 (r, 2)
+    # colour attributes (core.kernels.attributes): per mesh, for each name the programs
+    # read, its first row in tri_color_index or -1; the rows of colours per corner; RGBA
+    mesh_color_offset: np.ndarray  # int64 (m, names)
+    tri_color_index: np.ndarray  # int32 (rows, 3)
+    colors: np.ndarray  # float32 (r, 4)
     # per row, of the scene shape it belongs to (a CSG operand: its tree's top node)
     shape_pass_index: np.ndarray  # int32 (n,): the object index pass's value
     shape_holdout: np.ndarray  # uint8 (n,): 1 if camera rays see a hole there
@@ -117,8 +122,9 @@ class Materials(NamedTuple):
     shader_constant_range: np.ndarray  # int64 (q, 2)
     shader_ops: np.ndarray  # int32 (steps, 8)
     shader_constants: np.ndarray  # float64 (c,)
-    # uint8 (q,): 1 if its program needs the surface's frame and the steps across it (Bump,
-    # Normal Map); the others are given the hit's own coordinates only
+    # uint8 (q,): what its program reads beyond the hit's own coordinates, bits
+    # (core.kernels.attributes): READS_FRAME the surface's frame and the steps across it
+    # (Bump, Normal Map), READS_ATTRIBUTES colour attributes
     shader_frame: np.ndarray
     emission: np.ndarray  # float64 (q, 3): emitted radiance
     transparent: np.ndarray  # float64 (q, 3): share passing straight through

@@ -4,6 +4,7 @@ material whose terms vary over the surface runs its shader program at the hit (t
 interpreter nor the hit's frame); every other material reads its row of the table."""
 
 from ..jit.decorators import inlined_kernel
+from .attributes import READS_ATTRIBUTES, READS_FRAME, put_attributes
 from .bent_normal import kept_above
 from .features import WITH_NODES
 from .shader_program import ray_at, run_program
@@ -17,8 +18,11 @@ def material_at_hit(geo, surf, mats, ws, shape, material, part, p, d, n_geometri
     """(the `Surface` at the hit, its shading normal). `first`: the camera ray's hit whose
     passes are recorded (its diffuse colour is needed even under glass)."""
     if WITH_NODES and mats.shader_range[material, 0] >= 0:
-        with_frame = mats.shader_frame[material] != 0
-        hit, across = hit_frame(geo, surf, shape, part, p, n_shading, u, v, with_frame)
+        reads = mats.shader_frame[material]
+        hit, across = hit_frame(geo, surf, shape, part, p, n_shading, u, v,
+                                (reads & READS_FRAME) != 0)  # fmt: skip
+        if reads & READS_ATTRIBUTES:
+            put_attributes(geo, surf, shape, part, p, ws.shader_stack)
         rows = normal_rows(geo.shape_object_from_world, shape)
         # Light Path: a camera ray until it reflects or refracts (passing a transparent
         # surface keeps it one, as in Cycles)

@@ -61,6 +61,7 @@ import math
 import numpy as np
 
 from ..jit.decorators import kernel
+from .attributes import READS_ATTRIBUTES, READS_FRAME, put_attributes
 from .bent_normal import kept_above
 from .caster_hulls import hull_centre, hull_point, hull_start, hulls_entered, start_density
 from .emitters import emitter_sample
@@ -287,9 +288,11 @@ def trace_photons(geo, surf, mats, lights, casters, containing, plan, seed, bran
                     # a node material varying over the surface: its program's terms here, as
                     # a camera ray's (core.kernels.integrator); Light Path: neither a camera
                     # nor a shadow ray, `bounce` bounces
-                    with_frame = mats.shader_frame[material] != 0
+                    reads = mats.shader_frame[material]
                     hit, across = hit_frame(geo, surf, shape, part, p, n_shading, u, v,
-                                            with_frame)  # fmt: skip
+                                            (reads & READS_FRAME) != 0)  # fmt: skip
+                    if reads & READS_ATTRIBUTES:
+                        put_attributes(geo, surf, shape, part, p, shader_stack)
                     rows = normal_rows(geo.shape_object_from_world, shape)
                     ray = ray_at(0.0, 0.0, bounce, d, n_geometric)
                     run_program(mats, material, shader_stack, lobes, hit, across, rows, ray)

@@ -106,6 +106,9 @@ OP_MORE = 28
 # Fresnel over its lobe (Cycles from 4.5), or (AT_NORMAL) by the Fresnel at its normal (4.2)
 OP_CLEAR_COAT = 39
 OP_CLEAR_COAT_AT_NORMAL = 40
+# out colour, out alpha, the stack slot its caller left the attribute's RGBA in
+# (core.kernels.attributes: the stack's top rows, attribute k's at attribute_slot(k))
+OP_ATTRIBUTE = 41
 
 # Texture coordinates (OP_COORD)
 COORD_UV, COORD_GENERATED, COORD_OBJECT, COORD_NORMAL = 0, 1, 2, 3
@@ -170,8 +173,15 @@ L_DIP = 71
 L_GLOSS_DIP = 74
 LOBE_COUNT = 77
 
-# Slots of a program's stack: constants first, then every node output (a triple each)
+# Slots of a program's stack: constants first, then every node output (a triple each); a
+# program that reads colour attributes finds them at the top (`attribute_slot`)
 SHADER_STACK = 4096
+
+
+def attribute_slot(k: int) -> int:
+    """Where colour attribute k's RGBA lies on the stack (core.kernels.attributes)."""
+    return SHADER_STACK - 4 * (k + 1)
+
 
 # Past this roughness a mirror or coat lobe also glints; below it
 # the lobe is a sharp mirror, in which lights are seen (core.kernels.emitters_seen)
@@ -445,6 +455,9 @@ def run_program(mats, material, stack, lobes, hit, frame, normal_rows, ray):
                 _put(s, out, (value, value, value))
             else:
                 _put(s, out, hit[b][a])
+        elif op == OP_ATTRIBUTE:
+            _put(s, out, _triple(s, b))
+            s[a] = s[b + 3]
         elif op == OP_BUMP:
             _bump(s, out, s[a], s[b], s[c], s[d], s[e], f != 0, frame)
         elif op == OP_NORMAL_MAP:

@@ -4,6 +4,7 @@ integrator (the photon pass, core.kernels.photons, compiles its own call)."""
 
 from ..jit.decorators import inlined_kernel, kernel
 from ..vocabulary import GLASS_SHADOWS_ATTENUATED
+from .attributes import READS_ATTRIBUTES, READS_FRAME, put_attributes
 from .light_pyramid import TRAVERSE_ALL
 from .options import OPTION_GLASS_SHADOWS
 from .shader_program import ray_at, run_program
@@ -22,8 +23,10 @@ def crossing_share(geo, surf, mats, ws, shape, part, b1, b2, o, d, t, refraction
     gives there; and its colour, per channel over that share."""
     material = surf.shape_material[shape]
     p, n_geometric, n_shading, u, v = surface_at(geo, surf, shape, part, b1, b2, o, d, t, True)
-    with_frame = mats.shader_frame[material] != 0
-    hit, across = hit_frame(geo, surf, shape, part, p, n_shading, u, v, with_frame)
+    reads = mats.shader_frame[material]
+    hit, across = hit_frame(geo, surf, shape, part, p, n_shading, u, v, (reads & READS_FRAME) != 0)
+    if reads & READS_ATTRIBUTES:
+        put_attributes(geo, surf, shape, part, p, ws.shader_stack)
     rows = normal_rows(geo.shape_object_from_world, shape)
     # Light Path: a shadow ray (its depth is not known here: read as 0)
     ray = ray_at(0.0, 1.0, 0, d, n_geometric)

@@ -81,6 +81,13 @@ SHADER_NODES = {
         inputs={},
         outputs={"UV": "triple", "Generated": "triple", "Object": "triple", "Normal": "triple"},
     ),  # fmt: skip
+    # A mesh's colour attribute by name, "" its default one (Blender's Color Attribute and
+    # Attribute nodes; core.kernels.attributes): RGB, its mean, alpha; zero where absent
+    "attribute": dict(
+        inputs={},
+        outputs={"Color": "triple", "Vector": "triple", "Fac": "value", "Alpha": "value"},
+        settings={"name": ""},
+    ),  # fmt: skip
     # What the ray that met the surface is: 1 or 0, and its bounces (Blender's Light Path)
     "light_path": dict(
         inputs={},
@@ -411,6 +418,9 @@ def _check_settings(owner, label, node) -> None:
         if not isinstance(texture, Texture):
             raise SceneError(owner, f"{label} texture", f"got {texture!r}; need a Texture")
         texture.validate(owner)
+    if node.kind == "attribute" and not isinstance(node.setting("name"), str):
+        given = node.setting("name")
+        raise SceneError(owner, f"{label} name", f'got {given!r}; use a text ("": the default)')
     if node.kind == "magic" and node.setting("depth") not in range(11):
         given = node.setting("depth")
         raise SceneError(owner, f"{label} depth", f"got {given!r}; use a whole number from 0 to 10")
@@ -501,6 +511,23 @@ def passes_light(surface, refraction_passes: bool = True) -> bool:
             if refraction_passes and _given(node, "Transmission", 0.0):
                 return True
     return False
+
+
+def attribute_names(surfaces) -> list[str]:
+    """The colour attribute names the graphs' Attribute nodes read, each once, sorted (the
+    kernels' numbering of them, core.kernels.attributes)."""
+    names = set()
+    for surface in surfaces:
+        stack, seen = [surface], set()
+        while stack:
+            node = stack.pop()
+            if node is None or id(node) in seen:
+                continue
+            seen.add(id(node))
+            if node.kind == "attribute":
+                names.add(node.setting("name"))
+            stack.extend(g.node for g in node.inputs.values() if isinstance(g, Link))
+    return sorted(names)
 
 
 def coated(node) -> bool:

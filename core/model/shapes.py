@@ -166,6 +166,11 @@ class TriangleMesh:
                        with neither, smooth faces use area-weighted vertex normals
     vertex_uvs      -- (v, 2) texture coordinates per vertex, or None
     corner_uvs      -- (t, 3, 2) texture coordinates per triangle corner, or None
+    corner_colors   -- {name: (t, 3, 4) linear RGBA per triangle corner}: the colour
+                       attributes a shader's Color Attribute and Attribute nodes read by
+                       name (Blender's vertex and face-corner colours), or None
+    default_color   -- the name of the one read where the node names none (Blender's
+                       render colour), "" for none
     """
 
     vertices: np.ndarray
@@ -176,6 +181,8 @@ class TriangleMesh:
     vertex_uvs: np.ndarray | None = None
     corner_uvs: np.ndarray | None = None
     name: str = "Mesh"
+    corner_colors: dict | None = None
+    default_color: str = ""
 
     def open_edge_count(self) -> int:
         """How many directed edges have no opposite edge (b, a) used exactly once: 0 for
@@ -221,6 +228,24 @@ class TriangleMesh:
                 raise SceneError(owner, name, f"got shape {a.shape}; use {shape} numbers")
             if not np.all(np.isfinite(a)):
                 raise SceneError(owner, name, "contains NaN or infinity; use finite numbers")
+        self._validate_colors(owner, t)
+
+    def _validate_colors(self, owner: str, t: int) -> None:
+        colors = self.corner_colors or {}
+        if not isinstance(colors, dict):
+            raise SceneError(owner, "corner_colors", "use a dict of name: (t, 3, 4) RGBA")
+        for name, value in colors.items():
+            a = np.asarray(value)
+            if not isinstance(name, str) or a.shape != (t, 3, 4) or a.dtype.kind not in "iuf":
+                raise SceneError(owner, f"corner_colors[{name!r}]",
+                                 f"got shape {a.shape}; use ({t}, 3, 4) numbers")  # fmt: skip
+            if not np.all(np.isfinite(a)):
+                raise SceneError(owner, f"corner_colors[{name!r}]",
+                                 "contains NaN or infinity; use finite numbers")  # fmt: skip
+        if self.default_color and self.default_color not in colors:
+            named = ", ".join(map(repr, colors)) or "none"
+            raise SceneError(owner, "default_color", f"got {self.default_color!r}; name one of "
+                             f"corner_colors ({named}) or ''")  # fmt: skip
 
 
 @dataclass(eq=False)

@@ -269,6 +269,7 @@ def test_nodes_whitted_cannot_evaluate_are_named_in_one_warning_per_material(
     _, material = sphere_with_material(bpy, "Marble")
     tree = material.node_tree
     attribute = tree.nodes.new("ShaderNodeAttribute")
+    attribute.attribute_type = "OBJECT"  # an object's property: not evaluated (a mesh's is)
     tree.links.new(attribute.outputs["Color"], principled(material).inputs["Base Color"])
     blackbody = tree.nodes.new("ShaderNodeBlackbody")
     tree.links.new(blackbody.outputs["Color"], principled(material).inputs["Normal"])

@@ -1,0 +1,74 @@
+"""A mesh's colour attributes at a hit (Blender's Color Attribute and Attribute nodes): each
+attribute the scene's programs read, k = 0, 1, ... in core.model.shader.attribute_names'
+order, interpolated over the hit triangle from its corners' RGBA by the barycentric
+weights of the hit point, and left on the program's stack at attribute_slot(k), where
+OP_ATTRIBUTE reads it. A shape without the attribute (an analytic shape, a mesh that lacks
+it) reads zero, as Cycles reads a missing attribute.
+
+Called before the program runs, only for a material whose program reads attributes
+(Materials.shader_frame's READS_ATTRIBUTES bit).
+"""
+
+from ..jit.decorators import kernel
+from .shader_program import SHADER_STACK
+from .shapes import SHAPE_MESH
+from .triangles import block_and_lane
+from .vec import affine_point, dot, sub
+
+# Materials.shader_frame's bits: what a program reads beyond the hit's own coordinates
+READS_FRAME = 1  # the surface's tangents and steps across it (Bump, Normal Map)
+READS_ATTRIBUTES = 2  # colour attributes
+
+
+@kernel
+def _corner(corners, slot, first):
+    block, lane = block_and_lane(slot)
+    return (
+        float(corners[block, first, lane]),
+        float(corners[block, first + 1, lane]),
+        float(corners[block, first + 2, lane]),
+    )
+
+
+@kernel
+def _barycentric(geo, tri, p_object):
+    """(b0, b1, b2) of the object-space point in mesh triangle slot `tri` (projected on
+    its plane)."""
+    corners = geo.tri_corners
+    v0 = _corner(corners, tri, 0)
+    e1 = sub(_corner(corners, tri, 3), v0)
+    e2 = sub(_corner(corners, tri, 6), v0)
+    w = sub(p_object, v0)
+    d00, d01, d11 = dot(e1, e1), dot(e1, e2), dot(e2, e2)
+    d20, d21 = dot(w, e1), dot(w, e2)
+    det = d00 * d11 - d01 * d01
+    if det == 0.0:
+        return 1.0, 0.0, 0.0
+    b1 = (d11 * d20 - d01 * d21) / det
+    b2 = (d00 * d21 - d01 * d20) / det
+    return 1.0 - b1 - b2, b1, b2
+
+
+@kernel
+def put_attributes(geo, surf, shape, part, p, stack):
+    """Write every colour attribute at world point p of shape row `shape` (mesh triangle
+    slot `part`) to the stack's top (the module's layout)."""
+    count = surf.mesh_color_offset.shape[1]
+    mesh = geo.shape_index[shape] if geo.shape_kind[shape] == SHAPE_MESH else -1
+    weights = (0.0, 0.0, 0.0)
+    if mesh >= 0:
+        p_object = affine_point(geo.shape_object_from_world, shape, p)
+        weights = _barycentric(geo, part, p_object)
+    for k in range(count):
+        slot = SHADER_STACK - 4 * (k + 1)
+        first = surf.mesh_color_offset[mesh, k] if mesh >= 0 else -1
+        if first < 0:
+            for c in range(4):
+                stack[slot + c] = 0.0
+            continue
+        r = first + part - surf.mesh_tri_offset[mesh]
+        index, colours = surf.tri_color_index, surf.colors
+        i0, i1, i2 = index[r, 0], index[r, 1], index[r, 2]
+        for c in range(4):
+            stack[slot + c] = (weights[0] * colours[i0, c] + weights[1] * colours[i1, c]
+                               + weights[2] * colours[i2, c])  # fmt: skip
