@@ -368,7 +368,7 @@ def trace_ray(ps, o, d, key, ws):
                 add_to(record, REC_EMISSION, seen)
             elif WITH_PASSES and recording:
                 add_to(record, branch, seen)
-        if tau < 1.0 or coated:
+        if tau < 1.0 or (coated and coat.roughness > SHARP_ROUGHNESS):  # a coat's glint
             point = ShadingPoint(outside, n_shading, scale(d, -1.0))
             opacity = 1.0 - tau
             if coated:  # the coat's glint is not under the glass's share: the rest is

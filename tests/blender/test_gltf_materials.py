@@ -11,7 +11,8 @@ step and its second row, which it then missed (core.compile.shader_program)."""
 import numpy as np
 import pytest
 
-from tests.support.cycles import new_scene, side_by_side
+from tests.blender.test_cycles_glints import disagreement
+from tests.support.cycles import add_light, new_scene, side_by_side, turned
 from tests.support.gltf_files import checker, import_gltf, write_quad
 
 pytestmark = pytest.mark.bpy
@@ -45,3 +46,32 @@ def test_an_emissive_map_glows_as_in_cycles(bpy_with_whitted, tmp_path, factor):
     assert cycles.max() > 0.1  # the premise: something glows
     off = np.abs(whitted - cycles).max(axis=-1) > CLOSE
     assert off.mean() <= EDGE_SHARE, (off.mean(), whitted.mean(), cycles.mean())
+
+
+def test_a_vertex_coloured_model_is_lit_as_in_cycles(bpy_with_whitted, tmp_path):
+    """COLOR_0 times the base colour factor, as glTF asks: the importer makes a colour
+    attribute and a Color Attribute node multiplied into the Base Color by a Mix node.
+    Before issue 61's colour attributes the node was named in a warning and the quad drawn
+    in the Mix's other colour."""
+    bpy = bpy_with_whitted
+    if bpy.app.version < (4, 0, 0):
+        pytest.skip("Principled v1's Disney diffuse is drawn as Lambert (3% off)")
+    scene = new_scene(bpy)
+    bpy.data.objects.remove(bpy.data.objects["Plane"])
+    material = dict(name="Painted", pbrMetallicRoughness=dict(
+        baseColorFactor=[0.9, 0.8, 0.7, 1.0], metallicFactor=0.0, roughnessFactor=0.5))  # fmt: skip
+    corners = [
+        [1.0, 0.1, 0.1, 1.0],
+        [0.1, 1.0, 0.1, 1.0],
+        [0.1, 0.1, 1.0, 1.0],
+        [1.0, 1.0, 0.1, 1.0],
+    ]
+    import_gltf(bpy, write_quad(tmp_path / "painted.gltf", material, [], 3.8, corners))
+    tree = bpy.data.materials["Painted"].node_tree
+    assert any(n.type == "VERTEX_COLOR" for n in tree.nodes)  # the importer's shape
+    add_light(bpy, scene, "SUN", (0.0, 0.0, 5.0), turned(20.0, 10.0), energy=3.0, angle=0.0)
+    cycles, whitted = side_by_side(bpy, scene, tmp_path, samples=16)
+    error = disagreement(cycles, whitted)
+    print(f"vertex-coloured glTF quad: {error:.4f}")
+    assert np.ptp(cycles[..., 0]) > 0.1  # the premise: the colours vary over the quad
+    assert error < 0.03, error

@@ -35,17 +35,21 @@ def _data(blob: bytes) -> str:
     return "data:application/octet-stream;base64," + base64.b64encode(blob).decode()
 
 
-def write_quad(path: Path, material: dict, images: list, half_size: float = 10.0) -> Path:
+def write_quad(path: Path, material: dict, images: list, half_size: float = 10.0,
+               colors=None) -> Path:  # fmt: skip
     """A glTF file of one square, 2 half_size across, in glTF's y = 0 plane facing +Y (z = 0
     facing up once Blender's importer turns Y-up into Z-up), UVs (0, 0) to (1, 1), with
     `material` (a glTF material object; its textures index `images`, uint8 RGB arrays,
-    sampled nearest) on it. The object and mesh are named "Quad"."""
+    sampled nearest) on it, and `colors` (4 linear RGBA, one a corner) as its COLOR_0 if
+    given. The object and mesh are named "Quad"."""
     s = half_size
     positions = np.array([[-s, 0, s], [s, 0, s], [s, 0, -s], [-s, 0, -s]], np.float32)
     normals = np.tile(np.array([[0, 1, 0]], np.float32), (4, 1))
     uvs = np.array([[0, 1], [1, 1], [1, 0], [0, 0]], np.float32)  # glTF's v runs down
     indices = np.array([0, 1, 2, 0, 2, 3], np.uint16)
     parts = [positions.tobytes(), normals.tobytes(), uvs.tobytes(), indices.tobytes()]
+    if colors is not None:
+        parts.append(np.asarray(colors, np.float32).reshape(4, 4).tobytes())
     offsets = np.cumsum([0, *map(len, parts)])
     blob = b"".join(parts)
     views = [dict(buffer=0, byteOffset=int(offsets[k]), byteLength=len(part))
@@ -57,7 +61,11 @@ def write_quad(path: Path, material: dict, images: list, half_size: float = 10.0
         dict(bufferView=2, componentType=FLOAT, count=4, type="VEC2"),
         dict(bufferView=3, componentType=UNSIGNED_SHORT, count=6, type="SCALAR"),
     ]  # fmt: skip
+    if colors is not None:
+        accessors.append(dict(bufferView=4, componentType=FLOAT, count=4, type="VEC4"))
     primitive = dict(attributes=dict(POSITION=0, NORMAL=1, TEXCOORD_0=2), indices=3, material=0)
+    if colors is not None:
+        primitive["attributes"]["COLOR_0"] = 4
     gltf = dict(
         asset=dict(version="2.0"),
         scene=0,

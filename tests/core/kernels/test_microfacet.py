@@ -78,7 +78,7 @@ def _white(roughness, multiscatter):
     ms = WHITE if multiscatter else BLACK
     fms = multiscatter_fresnel(1.0, ggx_albedo_average(roughness))
     assert fms == pytest.approx(1.0)
-    return Gloss(roughness * roughness, False, WHITE, WHITE, ms, ms, 0.0, 1.5, 0.0)
+    return Gloss(roughness * roughness, False, WHITE, WHITE, ms, ms, 0.0, 1.5, 0.0, WHITE, BLACK)
 
 
 @pytest.mark.parametrize("roughness", [0.4, 0.7, 1.0])
@@ -97,7 +97,7 @@ def test_a_glint_is_the_same_with_light_and_view_exchanged(beckmann):
     """f(v, l) = f(l, v): gloss_lit / cos(l) is symmetric, for GGX's and Beckmann's lobes,
     with Fresnel and a coat."""
     rng = np.random.default_rng(61)
-    gloss = Gloss(0.3, beckmann, (0.9, 0.6, 0.2), WHITE, BLACK, BLACK, 0.5, 1.5, 0.0)
+    gloss = Gloss(0.3, beckmann, (0.9, 0.6, 0.2), WHITE, BLACK, BLACK, 0.5, 1.5, 0.0, WHITE, BLACK)
     normal = (0.0, 0.0, 1.0)
     for _ in range(200):
         v, lt = (tuple(x / np.linalg.norm(x)) for x in np.abs(rng.normal(size=(2, 3))))
@@ -110,7 +110,7 @@ def test_a_glint_is_the_same_with_light_and_view_exchanged(beckmann):
 def test_a_rough_layer_turning_smooth_reflects_the_exact_fresnel(ior):
     """At roughness 0 the dielectric table's mean Fresnel is the exact Fresnel of the view
     (the lobe is the mirror direction alone), and rough_coat_albedo with it."""
-    gloss = Gloss(0.0, False, BLACK, BLACK, BLACK, BLACK, 1.0, ior, 0.0)
+    gloss = Gloss(0.0, False, BLACK, BLACK, BLACK, BLACK, 1.0, ior, 0.0, WHITE, BLACK)
     for cos in (0.25, 0.5, 0.75, 1.0):
         exact, _ = fresnel_dielectric(cos, 1.0, ior)
         assert rough_coat_albedo(gloss, 0.0, cos) == pytest.approx(exact, abs=4e-3)
