@@ -10,7 +10,7 @@ what a node reads, so that each pixel is the attribute at that point in both ren
   Mix node, under a sun (from Blender 4.0: 3.4's Principled v1 diffuse is Disney's, which
   Whitted draws as Lambert, 3% off here whatever the colour).
 
-Every pixel is Cycles' to 0.002 but one or two on triangle edges. Before, Whitted named the
+Every pixel is Cycles' to 0.002 but 3 to 6 of 1,024 on triangle edges. Before, Whitted named the
 node in a warning and drew the input's own value."""
 
 import numpy as np
@@ -25,9 +25,10 @@ RNG = np.random.default_rng(7)
 CELLS = 4  # quads across the grid
 
 
-def _painted_grid(bpy, scene, material, half=3.8):
-    """A CELLS x CELLS grid of quads at z = 0, `half` wide each way, with "Paint" (float,
-    point) and "Dirt" (byte, corner, the render colour) colour attributes."""
+def _painted_grid(bpy, scene, material, half=4.5):
+    """A CELLS x CELLS grid of quads at z = 0, `half` wide each way (past the picture's
+    edges: Cycles 4.5 and 5.0 catch a few samples of a nearby edge outside it), with
+    "Paint" (float, point) and "Dirt" (byte, corner, the render colour) colour attributes."""
     n = CELLS + 1
     xs = np.linspace(-half, half, n)
     vertices = [(x, y, 0.0) for y in xs for x in xs]
@@ -95,8 +96,9 @@ def test_a_colour_attribute_glows_as_in_cycles(bpy_with_whitted, tmp_path, kind)
     print(f"{kind}: {off:.4f} of the pixels off by 0.002, largest {difference.max():.5f}")
     assert cycles.max() > 0.1
     # Cycles' samples spread 0.01 px about the centre: a pixel centred on a triangle's edge
-    # may take the other triangle's side (measured: 3 pixels of 1024, at most 0.007)
-    assert off <= 0.005 and difference.max() < 0.02, (off, difference.max())
+    # may take the other triangle's side (measured: 3 pixels of 1024 in 4.2, 4.5 and 5.2,
+    # 6 in 5.0; at most 0.008)
+    assert off <= 0.01 and difference.max() < 0.02, (off, difference.max())
 
 
 def test_the_gltf_importers_vertex_colour_times_base_colour_lit_as_in_cycles(bpy_with_whitted,
