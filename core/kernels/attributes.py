@@ -12,22 +12,12 @@ Called before the program runs, only for a material whose program reads attribut
 from ..jit.decorators import kernel
 from .shader_program import SHADER_STACK
 from .shapes import SHAPE_MESH
-from .triangles import block_and_lane
+from .surface import _corner  # a leaf block's triangle corner
 from .vec import affine_point, dot, sub
 
 # Materials.shader_frame's bits: what a program reads beyond the hit's own coordinates
 READS_FRAME = 1  # the surface's tangents and steps across it (Bump, Normal Map)
 READS_ATTRIBUTES = 2  # colour attributes
-
-
-@kernel
-def _corner(corners, slot, first):
-    block, lane = block_and_lane(slot)
-    return (
-        float(corners[block, first, lane]),
-        float(corners[block, first + 1, lane]),
-        float(corners[block, first + 2, lane]),
-    )
 
 
 @kernel
