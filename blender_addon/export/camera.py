@@ -46,10 +46,10 @@ def convert(scene, depsgraph, settings: core.RenderSettings) -> core.Camera:
         )
     rotation = camera.matrix_world.to_3x3().normalized()
     eye, view = camera.matrix_world.translation, -rotation.col[2]
-    return from_projection(
-        projection, eye, view, rotation.col[1], camera.name,
-        depth_of_field(scene, camera, eye, view), orthographic=camera.data.type == "ORTHO",
-    )  # fmt: skip
+    # Clip Start: camera rays start there, as in Cycles
+    lens = {**depth_of_field(scene, camera, eye, view), "clip_start": camera.data.clip_start}
+    return from_projection(projection, eye, view, rotation.col[1], camera.name, lens,
+                           orthographic=camera.data.type == "ORTHO")  # fmt: skip
 
 
 # The largest lens shift read, in sensor widths (Blender's panel offers -2 to 2): past it a

@@ -34,7 +34,7 @@ def convert(material, warn=None) -> core.Material:
         return core.Material(name="(no material)")
     if material.whitted.use_whitted:
         return _whitted_settings(material)
-    surface, problems = read_graph(material)
+    surface, problems, absorption = read_graph(material)
     if problems and warn is not None:
         warn(warning_text(material, problems))
     if surface is None:
@@ -43,7 +43,8 @@ def convert(material, warn=None) -> core.Material:
         colour = lambert if tree is None else (0.0, 0.0, 0.0)  # nothing linked: black
         return core.Material(diffuse=colour, name=material.name, pass_index=material.pass_index)
     return core.Material(name=material.name, pass_index=material.pass_index, surface=surface,
-                         emission_lights=emission_lights(material))  # fmt: skip
+                         emission_lights=emission_lights(material),
+                         absorption=absorption)  # fmt: skip
 
 
 def emission_lights(material) -> bool:
@@ -61,11 +62,12 @@ def emission_lights(material) -> bool:
 
 
 def read_graph(material, textures: bool = True):
-    """(core closure node or None, what could not be honoured) of the material's tree.
-    Without `textures`, images are not read (the panel's quick look)."""
+    """(core closure node or None, what could not be honoured, the absorption of the medium
+    it encloses) of the material's tree. Without `textures`, images are not read (the
+    panel's quick look)."""
     tree = node_tree_in_use(material)
     if tree is None:
-        return None, []
+        return None, [], (0.0, 0.0, 0.0)
     owner = f"material '{material.name}'"
     made: dict = {}  # one core Texture per image, however many nodes show it
 
@@ -76,7 +78,7 @@ def read_graph(material, textures: bool = True):
         return made[image.as_pointer()]
 
     reader = GraphReader(material, make)
-    return reader.read(tree), reader.problems
+    return reader.read(tree), reader.problems, reader.absorption
 
 
 def _placeholder(image):

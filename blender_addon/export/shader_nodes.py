@@ -25,6 +25,7 @@ _UNMODELLED = (
     ("Thin Film Thickness", 0.0, "no thin film"),
     ("Diffuse Roughness", 0.0, "Lambert"),
 )
+NO_ABSORPTION = (0.0, 0.0, 0.0)
 # Blender's Math operations Whitted computes (the others: noted, their A used)
 MATH = set(core.model.shader.MATH_OPERATIONS)
 BLENDS = set(core.model.shader.MIX_BLENDS)
@@ -44,14 +45,8 @@ OUTPUTS = {
         "attribute",
         {"Color": "Color", "Vector": "Vector", "Fac": "Fac", "Alpha": "Alpha"},
     ),  # fmt: skip
-    "LIGHT_PATH": (
-        "light_path",
-        {
-            "Is Camera Ray": "Is Camera Ray",
-            "Is Shadow Ray": "Is Shadow Ray",
-            "Ray Depth": "Ray Depth",
-        },
-    ),  # fmt: skip
+    # (Is Singular Ray and Is Volume Scatter Ray are not evaluated: noted)
+    "LIGHT_PATH": ("light_path", {name: name for name in core.model.shader.LIGHT_PATH_OUTPUTS}),
     "FRESNEL": ("fresnel", {"Fac": "Fac"}),
     "LAYER_WEIGHT": ("layer_weight", {"Fresnel": "Fresnel", "Facing": "Facing"}),
     "MAPPING": ("mapping", {"Vector": "Vector"}),
@@ -104,6 +99,8 @@ class GraphReader:
         self.made: dict = {}  # (node, group path) -> core ShaderNode
         self.depth = 0  # value nodes being read, one inside the other
         self.displaced = None  # the Material Output's Displacement, as a bump normal
+        # the medium inside: the Material Output's Volume Absorption (core Material.absorption)
+        self.absorption = NO_ABSORPTION
 
     def note(self, text: str) -> None:
         if text not in self.problems:
@@ -115,11 +112,40 @@ class GraphReader:
         if output is None:
             self.note("its node tree has no Material Output: rendered black")
             return None
-        volume = output.inputs.get("Volume")
-        if volume is not None and volume.is_linked:
-            self.note("the Material Output's Volume is not rendered (used: nothing)")
+        self.absorption = self._volume(output)
         self.displaced = self._displacement(output)
         return self.shader(feed_of(output.inputs["Surface"]))
+
+    def _volume(self, output) -> tuple:
+        """The absorption coefficient (RGB, per unit of world length) of the medium the
+        surface encloses: a Volume Absorption on the Material Output's Volume, as Cycles
+        computes it, (1 - Color) x Density (glTF's attenuation imports as one). Any other
+        volume is noted and not rendered."""
+        socket = output.inputs.get("Volume")
+        feed = feed_of(socket) if socket is not None else None
+        if feed is None or feed.node is None or getattr(feed.node, "mute", False):
+            return NO_ABSORPTION
+        node = feed.node
+        if node.type != "VOLUME_ABSORPTION":
+            self.note(f"{node_label(node)} on the Material Output's Volume is not rendered "
+                      "(used: no volume; a Volume Absorption is rendered)")  # fmt: skip
+            return NO_ABSORPTION
+        colour = self._volume_input(node, feed.groups, "Color")
+        density = max(0.0, float(self._volume_input(node, feed.groups, "Density")))
+        if max(colour) > 1.0:  # Cycles would give light back: a medium that glows
+            self.note(f"{node_label(node)}'s Color above 1 (used: 1 there, no absorption)")
+        return tuple((1.0 - min(1.0, max(0.0, c))) * density for c in colour)
+
+    def _volume_input(self, node, groups, name):
+        """A Volume Absorption input's constant: a medium is uniform to Whitted (Cycles'
+        homogeneous volume); what is linked to it is evaluated only if it is a constant."""
+        feed = feed_of(node.inputs[name], groups)
+        if feed.node is None or feed.node.type in ("VALUE", "RGB"):
+            return _constant(feed.socket)
+        value = _constant(node.inputs[name])
+        self.note(f"node {node_label(feed.node)} feeding {node_label(node)}'s {name}: a "
+                  f"medium is uniform (used: its value {_shown(value)})")  # fmt: skip
+        return value
 
     def _displacement(self, output):
         """The Material Output's Displacement as a Link to the bump normal it makes (Cycles'
@@ -184,6 +210,7 @@ class GraphReader:
             return self._principled(node, groups)
         simple = {
             "BSDF_DIFFUSE": ("diffuse", ("Color",)),
+            "BSDF_TRANSLUCENT": ("translucent", ("Color",)),
             "BSDF_GLOSSY": ("glossy", ("Color", "Roughness")),
             "BSDF_ANISOTROPIC": ("glossy", ("Color", "Roughness")),
             "BSDF_METALLIC": ("metallic", ("Base Color", "Edge Tint", "Roughness")),
@@ -194,12 +221,7 @@ class GraphReader:
             "HOLDOUT": ("holdout", ()),
         }
         if kind not in simple:
-            if kind == "BSDF_TRANSLUCENT":
-                self.note(f"{node_label(node)}: light through thin surfaces is not computed "
-                          "(used: black)")  # fmt: skip
-            else:
-                self.note(f"node {node_label(node)} is not a shader Whitted renders "
-                          "(used: black)")  # fmt: skip
+            self.note(f"node {node_label(node)} is not a shader Whitted renders (used: black)")
             return None
         core_kind, names = simple[kind]
         made = core.ShaderNode(core_kind, name=node.name)
@@ -435,8 +457,9 @@ class GraphReader:
             made.settings["stops"] = tuple((e.position, tuple(e.color)) for e in ramp.elements)
             interpolation = ramp.interpolation
             if interpolation not in ("LINEAR", "CONSTANT", "EASE") or ramp.color_mode != "RGB":
-                self.note(f"{node_label(node)}'s {interpolation.title()} interpolation in "
-                          f"{ramp.color_mode} (used: Linear in RGB)")  # fmt: skip
+                # B-Spline, Cardinal, HSV and HSL: the ramp as Cycles bakes it, Blender's own
+                # curve at RAMP_TABLE_SIZE points, linear between them
+                made.settings["stops"] = ramp_table(ramp)
                 interpolation = "LINEAR"
             made.settings["interpolation"] = interpolation
             made.inputs["Fac"] = v(node, groups, "Fac")
@@ -561,6 +584,17 @@ def curves_table(mapping):
         for channel in range(3):
             table[i, channel] = mapping.evaluate(curves[channel], combined)
     return table, (low, high)
+
+
+# The points of a Color Ramp Cycles bakes (its RAMP_TABLE_SIZE), looked up linearly
+RAMP_TABLE_SIZE = 256
+
+
+def ramp_table(ramp) -> tuple:
+    """A Color Ramp as Cycles renders it: Blender's own evaluation at RAMP_TABLE_SIZE evenly
+    spaced points of 0..1, as (position, RGBA) stops of a Linear ramp."""
+    last = RAMP_TABLE_SIZE - 1
+    return tuple((i / last, tuple(ramp.evaluate(i / last))) for i in range(RAMP_TABLE_SIZE))
 
 
 def _mix_inputs(node):

@@ -49,11 +49,14 @@ class WHITTED_PT_material(WhittedPanel, bpy.types.Panel):
             layout.label(text="No nodes: its Viewport Display colour, as Lambert", icon="INFO")
             layout.prop(material, "diffuse_color", text="Color")
             return
-        surface, problems = read_graph(material, textures=False)
+        surface, problems, absorption = read_graph(material, textures=False)
         layout.label(text="Read from the node tree", icon="NODETREE")
         kinds = closure_kinds(surface) if surface is not None else []
         shown = ", ".join(kind.replace("_", " ") for kind in kinds) or "nothing (black)"
         layout.label(text="Renders as: " + shown)
+        if max(absorption) > 0.0:
+            per_metre = ", ".join(f"{a:.3g}" for a in absorption)
+            layout.label(text=f"Inside: absorbs {per_metre} per metre (Volume Absorption)")
         if surface is not None and emits(surface):
             layout.prop(material.whitted, "emission_lights", text="Lights")
         draw_warnings(layout, context, [f"material '{material.name}': {p}" for p in problems])

@@ -104,6 +104,7 @@ def compile_scene(scene: Scene, settings: RenderSettings, on_photons=None,
         + glowing.warnings
         + caustic_warnings
         + _missing_attributes(shapes)
+        + _unabsorbed_shadows(materials, lets_through, shapes, material_of)
     )
     mesh_bytes = sum(
         getattr(group, name).nbytes
@@ -131,6 +132,23 @@ def _missing_attributes(shapes: list) -> list[str]:
                         f"material '{shape.material.name}' reads (read as 0)")  # fmt: skip
                 if text not in warnings:
                     warnings.append(text)
+    return warnings
+
+
+def _unabsorbed_shadows(materials, lets_through, shapes, material_of) -> list[str]:
+    """A warning for each material that absorbs inside (core.kernels.absorption) and lets
+    shadow rays through: they are not absorbed (under Cycles' "blocked" rule no shadow ray
+    crosses glass, and its light comes as photons, which are)."""
+    warnings = []
+    for shape in shapes:
+        k = material_of[id(shape.material)]
+        if lets_through[k] != 0.0 and materials.absorption[k].max() > 0.0:
+            text = (f"material '{shape.material.name}': shadow rays through it are not "
+                    "absorbed by its medium (Volume Absorption): its shadow is lighter than "
+                    "Cycles'; Glass Shadows 'blocked' with caustics carries the absorbed "
+                    "light")  # fmt: skip
+            if text not in warnings:
+                warnings.append(text)
     return warnings
 
 

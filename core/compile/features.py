@@ -24,11 +24,18 @@ from ..kernels.options import (
     OPTION_PASSES,
     OPTION_PIXEL_SAMPLES,
 )
-from ..kernels.shader_program import OP_CLEAR_COAT, OP_CLEAR_COAT_AT_NORMAL
+from ..kernels.shader_program import OP_CLEAR_COAT, OP_CLEAR_COAT_AT_NORMAL, OP_TRANSLUCENT
 from ..kernels.shadow_log import SHADOW_VARIES
 from ..model import Csg, RenderSettings, Scene
 from ..model.emitters import Emitter
-from ..model.shader import emits, has_clear_coat, is_rough, passes_light, sends_caustics
+from ..model.shader import (
+    emits,
+    has_clear_coat,
+    is_rough,
+    is_translucent,
+    passes_light,
+    sends_caustics,
+)
 
 
 def used_features(packed: PackedScene) -> frozenset[str]:
@@ -54,6 +61,10 @@ def used_features(packed: PackedScene) -> frozenset[str]:
         and (nodes or bool(np.any(mats.roughness > 0.0))),
         # a folded coat's row, or a coat step in a program run per hit
         "clear_coat": bool(np.any(mats.clear_coat[:, 0] > 0.0)) or _programs_coat(mats),
+        # a medium to be in: a material that absorbs (core.kernels.absorption)
+        "absorption": bool(np.any(mats.absorption > 0.0)),
+        # a folded translucent row, or a Translucent step in a program run per hit
+        "translucent": bool(np.any(mats.translucent > 0.0)) or _programs_use(mats, OP_TRANSLUCENT),
     }
     return frozenset(name for name in FEATURES if used[name])
 
@@ -65,9 +76,14 @@ def left_out(packed: PackedScene) -> frozenset[str]:
 
 def _programs_coat(mats) -> bool:
     """Whether a program run per hit has a clear coat's step."""
+    return _programs_use(mats, OP_CLEAR_COAT, OP_CLEAR_COAT_AT_NORMAL)
+
+
+def _programs_use(mats, *steps) -> bool:
+    """Whether a program run per hit has one of these steps."""
     for first, end in mats.shader_range:
         ops = mats.shader_ops[first:end, 0] if first >= 0 else mats.shader_ops[:0, 0]
-        if np.any((ops == OP_CLEAR_COAT) | (ops == OP_CLEAR_COAT_AT_NORMAL)):
+        if np.any(np.isin(ops, steps)):
             return True
     return False
 
@@ -110,6 +126,9 @@ def expected_features(scene: Scene, settings: RenderSettings) -> frozenset[str]:
         "glossy": settings.glossy_samples > 0
         and (nodes or any(m.roughness > 0.0 for m in materials) or any(map(is_rough, graphs))),
         "clear_coat": any(map(has_clear_coat, graphs)),
+        "absorption": any(max(m.absorption) > 0.0 for m in materials),
+        "translucent": any(max(m.translucent) > 0.0 for m in materials)
+        or any(map(is_translucent, graphs)),
     }
     return frozenset(name for name in FEATURES if used[name])
 

@@ -90,6 +90,8 @@ def pack_materials(shapes: list, attribute_names=()) -> tuple[Materials, dict[in
         gloss=_no_gloss(len(materials)),
         clear_coat=_no_clear_coat(len(materials)),
         mirror_dip=np.zeros((len(materials), 3)),
+        absorption=rows([m.absorption for m, _ in materials]),
+        translucent=rows([m.translucent for m, _ in materials]),
         texture_alpha=concatenated([a.ravel() for _, a in textures.loaded], (0,), np.float32),
         **_program_tables(programs),
     )
@@ -171,7 +173,8 @@ def _fold_constant_programs(table: Materials, programs: list) -> None:
         table.gloss[k] = row[36 : 36 + GLOSS_COLUMNS]
         table.clear_coat[k] = row[36 + GLOSS_COLUMNS : 36 + GLOSS_COLUMNS + CLEAR_COAT_COLUMNS]
         table.coat[k, 3:] = row[36 + GLOSS_COLUMNS + CLEAR_COAT_COLUMNS :][:3]
-        table.mirror_dip[k] = row[39 + GLOSS_COLUMNS + CLEAR_COAT_COLUMNS :]
+        table.mirror_dip[k] = row[39 + GLOSS_COLUMNS + CLEAR_COAT_COLUMNS :][:3]
+        table.translucent[k] = row[42 + GLOSS_COLUMNS + CLEAR_COAT_COLUMNS :]
         table.shader_range[k] = (-1, -1)
 
 
@@ -218,6 +221,7 @@ def folded_row(table: Materials, k: int) -> dict:
         transparent=table.transparent[k], holdout=table.holdout[k],
         roughness=table.roughness[k], programmed=table.shader_range[k, 0] >= 0,
         gloss=table.gloss[k], clear_coat=table.clear_coat[k],
+        translucent=table.translucent[k],
     )  # fmt: skip
 
 

@@ -43,8 +43,24 @@ from ..model.shader import (
 
 COORDS = {"UV": sp.COORD_UV, "Generated": sp.COORD_GENERATED, "Object": sp.COORD_OBJECT,
           "Normal": sp.COORD_NORMAL}  # fmt: skip
-RAY_COORDS = {"Is Camera Ray": sp.COORD_IS_CAMERA, "Is Shadow Ray": sp.COORD_IS_SHADOW,
-              "Ray Depth": sp.COORD_RAY_DEPTH}  # fmt: skip
+# Light Path's outputs: the entry of the kernels' `ray` each reads (core.kernels.shader_program)
+RAY_COORDS = {
+    name: sp.COORD_IS_CAMERA + entry
+    for name, entry in (
+        ("Is Camera Ray", sp.RAY_IS_CAMERA),
+        ("Is Shadow Ray", sp.RAY_IS_SHADOW),
+        ("Is Diffuse Ray", sp.RAY_NEVER),
+        ("Is Glossy Ray", sp.RAY_IS_GLOSSY),
+        ("Is Reflection Ray", sp.RAY_IS_REFLECTION),
+        ("Is Transmission Ray", sp.RAY_IS_TRANSMISSION),
+        ("Ray Length", sp.RAY_LENGTH),
+        ("Ray Depth", sp.RAY_DEPTH),
+        ("Diffuse Depth", sp.RAY_NEVER),
+        ("Glossy Depth", sp.RAY_GLOSSY_DEPTH),
+        ("Transparent Depth", sp.RAY_TRANSPARENT_DEPTH),
+        ("Transmission Depth", sp.RAY_TRANSMISSION_DEPTH),
+    )
+}
 FACING_OUTPUTS = {
     "fresnel": {"Fac": FACING_FRESNEL},
     "layer_weight": {"Fresnel": FACING_LAYER_FRESNEL, "Facing": FACING_LAYER_FACING},
@@ -167,6 +183,9 @@ class ProgramBuilder:
         v = self.value
         if kind == "diffuse":
             p.step(sp.OP_DIFFUSE, weight, v(node.input("Color"), "triple"), 0, 0, 0, 0,
+                   self._normal(node))  # fmt: skip
+        elif kind == "translucent":
+            p.step(sp.OP_TRANSLUCENT, weight, v(node.input("Color"), "triple"), 0, 0, 0, 0,
                    self._normal(node))  # fmt: skip
         elif kind == "glossy":
             p.step(sp.OP_GLOSSY, weight, v(node.input("Color"), "triple"),

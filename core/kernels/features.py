@@ -34,6 +34,10 @@ WITH_ADAPTIVE = True
 WITH_GLOSSY = True
 # A clear coat over a surface (the Principled BSDF's Coat; core.kernels.clear_coat)
 WITH_CLEAR_COAT = True
+# Light absorbed inside a closed surface, Beer-Lambert (Volume Absorption; core.kernels.absorption)
+WITH_ABSORPTION = True
+# Light through a surface from its other side (the Translucent BSDF; core.kernels.translucent)
+WITH_TRANSLUCENT = True
 
 # The features' names, in the order of their bits in a variant's tag
 FEATURES = (
@@ -47,6 +51,8 @@ FEATURES = (
     "adaptive",
     "glossy",
     "clear_coat",
+    "absorption",
+    "translucent",
 )
 
 

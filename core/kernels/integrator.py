@@ -16,7 +16,9 @@ transparency, F the exact dielectric Fresnel reflectance for the indices on the 
 (outer and inner IOR, swapped when the ray leaves the object; past the critical angle F = 1,
 total internal reflection), Gr and Gt the glass tints, T what passes straight through. With
 the report's materials (tints 1, no coat, nothing straight through) this is the report's
-formula to the bit. Rays stop after `max_depth` bounces, or once their weight can no longer
+formula to the bit. Inside an object whose material absorbs (Volume Absorption), each ray
+keeps exp(-sigma t) of its weight over the length t it travels there (core.kernels.absorption).
+Rays stop after `max_depth` bounces, or once their weight can no longer
 show (MIN_WEIGHT); rays going straight on do not bounce, and stop after MAX_CROSSINGS.
 
 A shape that the ray's kind does not see (core.model.Shape.seen_by_camera, seen_in_mirrors,
@@ -27,10 +29,17 @@ import math
 
 from ..jit.decorators import inlined_kernel, kernel
 from ..vocabulary import GLASS_SHADOWS_ATTENUATED
+from .absorption import NO_MEDIUM, absorbed, medium_beyond
 from .clear_coat import NO_GLINT, coat_glint, coat_normal, coat_reflectance, under_coat
 from .emitters_seen import emitters_seen
 from .environment import environment_seen
-from .features import WITH_CLEAR_COAT, WITH_EMITTERS_SEEN, WITH_GLOSSY, WITH_PASSES
+from .features import (
+    WITH_CLEAR_COAT,
+    WITH_EMITTERS_SEEN,
+    WITH_GLOSSY,
+    WITH_PASSES,
+    WITH_TRANSLUCENT,
+)
 from .fresnel import fresnel_dielectric
 from .glossy import visible_normal
 from .layout import VISIBLE_CAMERA, VISIBLE_GLOSSY, VISIBLE_TRANSMISSION
@@ -54,6 +63,7 @@ from .options import (
     PASSES_UV,
 )
 from .pass_record import (
+    REC_DIFFUSE,
     REC_EMISSION,
     REC_ENVIRONMENT,
     REC_REFLECTION,
@@ -64,10 +74,11 @@ from .pass_record import (
     record_lighting,
 )
 from .rng import PURPOSE_CLEAR_COAT, PURPOSE_GLOSSY, uniform2
-from .shader_program import SHARP_ROUGHNESS
+from .shader_program import SHARP_ROUGHNESS, path_ray_at
 from .shading import Phong, ShadingPoint
 from .surface import surface_at
 from .trace import closest_hit, spawn_point
+from .translucent import translucent_light
 from .vec import add, dot, mul, normalize, row, scale, sub
 from .workspace import MAX_CROSSINGS, RAYS_TRACED
 
@@ -85,9 +96,12 @@ def refract(d, n, eta, cos_i, cos_t):
 
 
 @kernel
-def _push(rays, top, o, d, w, depth, branch, refracted, crossed=0):
+def _push(rays, top, o, d, w, depth, branch, refracted, medium, crossed, refractions):
     """Put a ray on the stack; one too faint to show, or with no room left, is dropped
-    (`core.kernels.workspace` sizes the stack for max_depth and MAX_CROSSINGS)."""
+    (`core.kernels.workspace` sizes the stack for max_depth and MAX_CROSSINGS). `medium`:
+    the material row of the medium it travels in (core.kernels.absorption); `crossed` and
+    `refractions`: the transparent surfaces it passed and the refractions among its
+    bounces, for Light Path."""
     if max(w[0], w[1], w[2]) < MIN_WEIGHT or top >= rays.depth.shape[0]:
         return top
     for a in range(3):
@@ -98,6 +112,8 @@ def _push(rays, top, o, d, w, depth, branch, refracted, crossed=0):
     rays.branch[top] = branch
     rays.refracted[top] = refracted
     rays.crossed[top] = crossed
+    rays.medium[top] = medium
+    rays.refractions[top] = refractions
     return top + 1
 
 
@@ -126,11 +142,13 @@ def mirror_tint(here, cos_i):
 @kernel
 def _leave_surface(rays, top, here, sample, samples, spread, key, event, o, d, w, p, n_shading,
                    n_geometric, outside, cos_i, tau, rho, coat_reflects, coat_colour, entering,
-                   depth, branch):  # fmt: skip
+                   depth, branch, medium, beyond, refractions):  # fmt: skip
     """Push the reflected and refracted rays of glossy sample `sample` of `samples` leaving a
     surface (`spread`: by a microfacet normal drawn from its lobe, core.kernels.glossy; else
-    by the shading normal, one sample). A call of its own: in the integrator's body its loop
-    cost the render kernel's cold compile 11 s more (183 s against 172)."""
+    by the shading normal, one sample); the reflected ray stays in `medium`, the refracted
+    one travels in `beyond` (core.kernels.absorption). A call of its own: in the
+    integrator's body its loop cost the render kernel's cold compile 11 s more (183 s
+    against 172)."""
     share = 1.0 / samples
     m, cos_m = n_shading, cos_i
     if WITH_GLOSSY and spread:
@@ -159,14 +177,15 @@ def _leave_surface(rays, top, here, sample, samples, spread, key, event, o, d, w
                 through = REC_REFRACTION if depth == 0 else branch
                 weight = mul(w, scale(here.glass_transmit, tau * (1.0 - f_lost) * share))
                 top = _push(rays, top, inside, refracted, weight, depth + 1, through,
-                            RAY_REFRACTED)  # fmt: skip
+                            RAY_REFRACTED, beyond, 0, refractions + 1)  # fmt: skip
     if reflect[0] > 0.0 or reflect[1] > 0.0 or reflect[2] > 0.0:
         reflected = sub(d, scale(m, 2.0 * dot(d, m)))
         if not spread or dot(reflected, n_geometric) > 0.0:
             mirrored = REC_REFLECTION if depth == 0 else branch
             weight = mul(w, scale(reflect, share))
             kind = RAY_ROUGH_REFLECTED if here.mirror_hides_lights else RAY_REFLECTED
-            top = _push(rays, top, outside, reflected, weight, depth + 1, mirrored, kind)
+            top = _push(rays, top, outside, reflected, weight, depth + 1, mirrored, kind,
+                        medium, 0, refractions)  # fmt: skip
     return top
 
 
@@ -195,7 +214,7 @@ def _glossy_samples(frame, here, depth, rho, coat_reflects, tau):
 
 @kernel
 def _leave_clear_coat(rays, top, coat, n_coat, sample, samples, spread, key, event, d, w,
-                      outside, n_geometric, depth, branch):  # fmt: skip
+                      outside, n_geometric, depth, branch, medium, refractions):  # fmt: skip
     """Push the ray the clear coat reflects (core.kernels.clear_coat) for glossy sample
     `sample` of `samples`: about the coat's normal, or a microfacet normal drawn from its
     own lobe (`spread`), its weight the exact Fresnel there."""
@@ -213,7 +232,8 @@ def _leave_clear_coat(rays, top, coat, n_coat, sample, samples, spread, key, eve
     weight = scale(w, coat.weight * f / samples)
     kind = RAY_ROUGH_REFLECTED if coat.roughness > SHARP_ROUGHNESS else RAY_REFLECTED
     mirrored = REC_REFLECTION if depth == 0 else branch
-    return _push(rays, top, outside, reflected, weight, depth + 1, mirrored, kind)
+    return _push(rays, top, outside, reflected, weight, depth + 1, mirrored, kind, medium, 0,
+                 refractions)  # fmt: skip
 
 
 @kernel
@@ -266,7 +286,7 @@ def trace_ray(ps, o, d, key, ws):
         clear(record, 0.0)
     colour = (0.0, 0.0, 0.0)
     alpha = 1.0
-    top = _push(rays, 0, o, d, (1.0, 1.0, 1.0), 0, REC_ENVIRONMENT, 0)
+    top = _push(rays, 0, o, d, (1.0, 1.0, 1.0), 0, REC_ENVIRONMENT, 0, NO_MEDIUM, 0, 0)
     event = 0
     hit_recorded = False
     while top > 0:
@@ -277,8 +297,11 @@ def trace_ray(ps, o, d, key, ws):
         refracted_before = rays.refracted[top]
         came_through = refracted_before == RAY_REFRACTED
         crossed = rays.crossed[top]
+        medium, refractions = rays.medium[top], rays.refractions[top]
         stacks.ray_counts[RAYS_TRACED] += 1
         shape, t, part, b1, b2 = closest_hit(geo, o, d, math.inf, stacks)
+        # what the medium it crossed let through (core.kernels.absorption)
+        w = absorbed(mats, medium, w, t if shape >= 0 else math.inf)
         glimpse = _seen_emitters(lights, o, d, t if shape >= 0 else math.inf, came_through,
                                  depth, refracted_before)  # fmt: skip
         if glimpse[0] > 0.0 or glimpse[1] > 0.0 or glimpse[2] > 0.0:
@@ -302,7 +325,8 @@ def trace_ray(ps, o, d, key, ws):
                 p, n_geometric, _, _, _ = surface_at(geo, surf, shape, part, b1, b2, o, d, t, False)
                 along = n_geometric if dot(d, n_geometric) > 0.0 else scale(n_geometric, -1.0)
                 beyond = spawn_point(p, along, o)
-                top = _push(rays, top, beyond, d, w, depth, branch, refracted_before, crossed + 1)
+                top = _push(rays, top, beyond, d, w, depth, branch, refracted_before, medium,
+                            crossed + 1, refractions)  # fmt: skip
             continue
         if depth == 0 and surf.shape_holdout[shape] != 0:
             alpha -= channel_mean(w)  # a hole in the picture, as Cycles cuts: nothing behind shows
@@ -314,8 +338,9 @@ def trace_ray(ps, o, d, key, ws):
             geo, surf, shape, part, b1, b2, o, d, t, textured or (first and with_uv)
         )
         n_smooth = n_shading  # before the graph bends it (a coat keeps it)
+        ray = path_ray_at(depth, d, n_geometric, came_through, t, crossed, refractions)
         here, n_shading = material_at_hit(geo, surf, mats, ws, shape, material, part, p, d,
-                                          n_geometric, n_shading, u, v, depth, first)  # fmt: skip
+                                          n_geometric, n_shading, u, v, ray, first)  # fmt: skip
         tau = here.transparency
         rho = here.reflectivity
         # Face the side the ray came from
@@ -326,6 +351,7 @@ def trace_ray(ps, o, d, key, ws):
             n_smooth = scale(n_smooth, -1.0)
         outside = spawn_point(p, n_geometric, o)
         cos_i = min(1.0, max(0.0, -dot(d, n_shading)))
+        beyond_medium = medium_beyond(mats, material, entering, medium)
         kd = here.kd
         # A clear coat over it all (core.kernels.clear_coat): what lies below, `w_below`
         coat = here.clear_coat
@@ -390,6 +416,17 @@ def trace_ray(ps, o, d, key, ws):
                 record_lighting(record, terms, local, kd, glints, frame.ambient, opacity, split)
             elif WITH_PASSES and recording:
                 add_to(record, branch, seen)
+        if WITH_TRANSLUCENT and max(here.translucent) > 0.0:  # light from the other side
+            share = mul(scale(here.translucent, 1.0 - tau), under)  # as kd's
+            through = translucent_light(frame, lights, geo, surf, mats, ws, share, p, n_shading,
+                                        n_geometric, o, d, key, event,
+                                        refraction_passes)  # fmt: skip
+            seen = mul(w, through)
+            colour = add(colour, seen)
+            if WITH_PASSES and first and split:
+                add_to(record, REC_DIFFUSE, through)  # Cycles' Diffuse passes hold it
+            elif WITH_PASSES and recording and not first:
+                add_to(record, branch, seen)
         event += 1
         straight = here.transparent
         if (
@@ -398,9 +435,8 @@ def trace_ray(ps, o, d, key, ws):
             # What passes straight through: on from the far side, unbent, no bounce counted
             beyond = spawn_point(p, scale(n_geometric, -1.0), o)
             onward = REC_REFRACTION if depth == 0 else branch
-            top = _push(
-                rays, top, beyond, d, mul(w, straight), depth, onward, refracted_before, crossed + 1
-            )
+            top = _push(rays, top, beyond, d, mul(w, straight), depth, onward, refracted_before,
+                        beyond_medium, crossed + 1, refractions)  # fmt: skip
         if depth >= max_depth:
             continue
         spread, samples = _glossy_samples(frame, here, depth, rho, coat_reflects, tau)
@@ -408,12 +444,12 @@ def trace_ray(ps, o, d, key, ws):
             top = _leave_surface(
                 rays, top, here, sample, samples, spread, key, event, o, d, w_below, p,
                 n_shading, n_geometric, outside, cos_i, tau, rho, coat_reflects, coat_colour,
-                entering, depth, branch,
+                entering, depth, branch, medium, beyond_medium, refractions,
             )  # fmt: skip
         if coated:
             spread, samples = _clear_coat_samples(frame, coat, depth, coat_reflects_all)
             for sample in range(samples):
                 top = _leave_clear_coat(rays, top, coat, n_coat, sample, samples, spread, key,
                                         event, d, w, outside, n_geometric, depth,
-                                        branch)  # fmt: skip
+                                        branch, medium, refractions)  # fmt: skip
     return colour, alpha

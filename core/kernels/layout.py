@@ -138,6 +138,10 @@ class Materials(NamedTuple):
     clear_coat: np.ndarray
     # float64 (q, 3): F82's dip below the mirror's Schlick curve (core.kernels.microfacet.f82_dip)
     mirror_dip: np.ndarray
+    # float64 (q, 3): the absorption coefficient of the medium inside (core.kernels.absorption)
+    absorption: np.ndarray
+    # float64 (q, 3): Lambertian transmission (core.kernels.translucent)
+    translucent: np.ndarray
 
 
 class Lights(NamedTuple):

@@ -7,16 +7,17 @@ from ..jit.decorators import inlined_kernel
 from .attributes import READS_ATTRIBUTES, READS_FRAME, put_attributes
 from .bent_normal import kept_above
 from .features import WITH_NODES
-from .shader_program import ray_at, run_program
+from .shader_program import run_program
 from .surface import diffuse_colour, hit_frame, normal_rows
 from .surface_terms import table_surface, terms_from_lobes
 
 
 @inlined_kernel
 def material_at_hit(geo, surf, mats, ws, shape, material, part, p, d, n_geometric, n_shading,
-                    u, v, depth, first):  # fmt: skip
-    """(the `Surface` at the hit, its shading normal). `first`: the camera ray's hit whose
-    passes are recorded (its diffuse colour is needed even under glass)."""
+                    u, v, ray, first):  # fmt: skip
+    """(the `Surface` at the hit, its shading normal). `ray`: what the ray is, for Light
+    Path (shader_program.path_ray_at). `first`: the camera ray's hit whose passes are
+    recorded (its diffuse colour is needed even under glass)."""
     if WITH_NODES and mats.shader_range[material, 0] >= 0:
         reads = mats.shader_frame[material]
         hit, across = hit_frame(geo, surf, shape, part, p, n_shading, u, v,
@@ -24,9 +25,6 @@ def material_at_hit(geo, surf, mats, ws, shape, material, part, p, d, n_geometri
         if reads & READS_ATTRIBUTES:
             put_attributes(geo, surf, shape, part, p, ws.shader_stack)
         rows = normal_rows(geo.shape_object_from_world, shape)
-        # Light Path: a camera ray until it reflects or refracts (passing a transparent
-        # surface keeps it one, as in Cycles)
-        ray = ray_at(1.0 if depth == 0 else 0.0, 0.0, depth, d, n_geometric)
         run_program(mats, material, ws.shader_stack, ws.lobes, hit, across, rows, ray)
         here = terms_from_lobes(ws.lobes)
         if here.normal[0] != 0.0 or here.normal[1] != 0.0 or here.normal[2] != 0.0:

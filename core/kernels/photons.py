@@ -35,7 +35,9 @@ photon it sends below the surface is lost. A photon that has reflected or refrac
 least once is stored where it meets a surface with a diffuse part (its incident power,
 position and direction); the shading point multiplies in its own colour
 (core.kernels.caustics). Light that passes straight (Transparent BSDF, Alpha) is not a
-caustic: shadow rays see it. A node material whose terms vary over the surface (a textured
+caustic: shadow rays see it. Inside an object whose material absorbs, a photon keeps
+exp(-sigma t) of its power over the length t it travels there (core.kernels.absorption).
+A node material whose terms vary over the surface (a textured
 chrome, a glass whose colour or mix follows Fresnel or Layer Weight, a textured floor) has
 them from its program at each hit, as camera rays do: its reflection and refraction carry
 photons on, and a photon it receives is stored with the incident power, the shading point's
@@ -61,6 +63,7 @@ import math
 import numpy as np
 
 from ..jit.decorators import kernel
+from .absorption import NO_MEDIUM, absorbed, medium_beyond
 from .attributes import READS_ATTRIBUTES, READS_FRAME, put_attributes
 from .bent_normal import kept_above
 from .caster_hulls import hull_centre, hull_point, hull_start, hulls_entered, start_density
@@ -276,10 +279,12 @@ def trace_photons(geo, surf, mats, lights, casters, containing, plan, seed, bran
             power = scale(power, 1.0 / max(entered, 1))
             travelled = t_light  # from the light, for the report's falloff
             specular = False
+            medium = NO_MEDIUM  # what it travels in (core.kernels.absorption)
             for bounce in range(max_bounces + 1):
                 if shape < 0:
                     break
                 travelled += t
+                power = absorbed(mats, medium, power, t)
                 material = surf.shape_material[shape]
                 programmed = mats.shader_range[material, 0] >= 0
                 p, n_geometric, n_shading, u, v = surface_at(geo, surf, shape, part, b1, b2, o,
@@ -302,7 +307,9 @@ def trace_photons(geo, surf, mats, lights, casters, containing, plan, seed, bran
                 else:
                     here = table_surface(mats, material, row(mats.diffuse, material))
                 tau, rho = here.transparency, here.reflectivity
-                diffuse = mats.texture[material] >= 0 or channel_mean(here.kd) > 0.0
+                # (a translucent surface gathers the photons on its back for its front)
+                diffuse = (mats.texture[material] >= 0 or channel_mean(here.kd) > 0.0
+                           or channel_mean(here.translucent) > 0.0)  # fmt: skip
                 # a varying material's diffuse colour is its program's at each shading point,
                 # which multiplies it in (core.kernels.caustics)
                 if specular and tau < 1.0 and (diffuse or programmed):
@@ -366,9 +373,11 @@ def trace_photons(geo, surf, mats, lights, casters, containing, plan, seed, bran
                     d = bent
                     power = scale(mul(power, through), 1.0 / p_through)
                     specular = True
+                    medium = medium_beyond(mats, material, entering, medium)
                 elif u < total:
                     o = spawn_point(p, scale(n_geometric, -1.0), o)
                     power = scale(mul(power, straight), 1.0 / p_straight)
+                    medium = medium_beyond(mats, material, entering, medium)
                 else:
                     break
                 power = scale(power, max(total, 1.0))

@@ -14,7 +14,7 @@ from .surface_terms import (
 )
 
 # The columns of a folded row (fold_surfaces' out), in Surface's order
-FOLDED_COLUMNS = 36 + GLOSS_COLUMNS + CLEAR_COAT_COLUMNS + 6
+FOLDED_COLUMNS = 36 + GLOSS_COLUMNS + CLEAR_COAT_COLUMNS + 9
 
 
 @kernel
@@ -28,7 +28,7 @@ def fold_surfaces(mats, rows, out):
     to a row of `out` (FOLDED_COLUMNS: kd, ks, shininess, reflectivity, transparency, outer
     and inner IOR, mirror normal and edge, hides lights, coat, coat IOR, coat hides, glass
     reflect and transmit, refraction Fresnel, emission, transparent, holdout, roughness,
-    gloss, clear coat, coat tint, mirror dip)."""
+    gloss, clear coat, coat tint, mirror dip, translucent)."""
     stack = np.zeros(SHADER_STACK)
     lobes = np.zeros(LOBE_COUNT)
     zero = (0.0, 0.0, 0.0)
@@ -36,7 +36,7 @@ def fold_surfaces(mats, rows, out):
     rows3 = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
     for k in range(rows.shape[0]):
         # (A program that reads the ray is varying, never folded: the ray here is nobody's)
-        nobody = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+        nobody = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
         run_program(
             mats, rows[k], stack, lobes, (here, here, here), (zero, zero, zero), rows3, nobody
         )
@@ -61,3 +61,4 @@ def fold_surfaces(mats, rows, out):
         clear_coat_columns(s.clear_coat, o, 36 + GLOSS_COLUMNS)
         _three(o, 36 + GLOSS_COLUMNS + CLEAR_COAT_COLUMNS, s.coat_tint)
         _three(o, 39 + GLOSS_COLUMNS + CLEAR_COAT_COLUMNS, s.mirror_dip)
+        _three(o, 42 + GLOSS_COLUMNS + CLEAR_COAT_COLUMNS, s.translucent)

@@ -109,14 +109,23 @@ OP_CLEAR_COAT_AT_NORMAL = 40
 # out colour, out alpha, the stack slot its caller left the attribute's RGBA in
 # (core.kernels.attributes: the stack's top rows, attribute k's at attribute_slot(k))
 OP_ATTRIBUTE = 41
+OP_TRANSLUCENT = 42  # weight, colour, the Normal's slot (f)
 
 # Texture coordinates (OP_COORD)
 COORD_UV, COORD_GENERATED, COORD_OBJECT, COORD_NORMAL = 0, 1, 2, 3
-# What the ray that met the surface is (OP_COORD too; Light Path's outputs), from `ray`
+# What the ray that met the surface is (`ray`, see ray_at): 1 for a camera ray, for a
+# shadow ray, its bounces; its direction (3 numbers from RAY_DIRECTION) and 1 where it met
+# the surface's back (RAY_BACKFACING), for Fresnel and Layer Weight (OP_FACING); Light
+# Path's other outputs: 1 if it last reflected, if it last refracted, if either (a glossy
+# ray: every bounce Whitted traces is one), its length from where it left its last
+# surface, its reflections, the transparent surfaces it passed, its refractions; and 0
+# (a diffuse ray's outputs: Whitted traces none)
+RAY_IS_CAMERA, RAY_IS_SHADOW, RAY_DEPTH, RAY_DIRECTION, RAY_BACKFACING = 0, 1, 2, 3, 6
+RAY_IS_REFLECTION, RAY_IS_TRANSMISSION, RAY_IS_GLOSSY, RAY_LENGTH = 7, 8, 9, 10
+RAY_GLOSSY_DEPTH, RAY_TRANSPARENT_DEPTH, RAY_TRANSMISSION_DEPTH, RAY_NEVER = 11, 12, 13, 14
+RAY_SIZE = 15
+# OP_COORD's `which` for ray entry k is COORD_IS_CAMERA + k (Light Path's outputs)
 COORD_IS_CAMERA, COORD_IS_SHADOW, COORD_RAY_DEPTH = 4, 5, 6
-# The rest of `ray`: its direction (3 numbers from RAY_DIRECTION) and 1 where it met the
-# surface's back (RAY_BACKFACING), for Fresnel and Layer Weight (OP_FACING)
-RAY_DIRECTION, RAY_BACKFACING = 3, 6
 # Normal Map spaces (OP_NORMAL_MAP)
 NORMAL_MAP_TANGENT, NORMAL_MAP_OBJECT, NORMAL_MAP_WORLD = 0, 1, 2
 
@@ -171,7 +180,8 @@ L_GLOSS_COAT_TINT = 68
 # mirror lobes', and the rough ones'
 L_DIP = 71
 L_GLOSS_DIP = 74
-LOBE_COUNT = 77
+L_TRANSLUCENT = 77  # RGB: Lambertian transmission (core.kernels.translucent)
+LOBE_COUNT = 80
 
 # Slots of a program's stack: constants first, then every node output (a triple each); a
 # program that reads colour attributes finds them at the top (`attribute_slot`)
@@ -422,9 +432,27 @@ def _add_normal(lobes, stack, weight, slot):
 @kernel
 def ray_at(is_camera, is_shadow, depth, d, n_geometric):
     """`ray` for run_program: what the ray o + t d is, having met a surface of geometric
-    normal n_geometric."""
+    normal n_geometric (a shadow ray's or a photon's: Light Path's other outputs 0)."""
     back = 1.0 if dot(d, n_geometric) > 0.0 else 0.0
-    return (is_camera, is_shadow, float(depth), d[0], d[1], d[2], back)
+    return (is_camera, is_shadow, float(depth), d[0], d[1], d[2], back,
+            0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)  # fmt: skip
+
+
+@kernel
+def path_ray_at(depth, d, n_geometric, refracted, length, crossed, refractions):
+    """`ray` for run_program of a camera ray or its reflected and refracted rays: `depth`
+    bounces, the last a refraction if `refracted`, `length` from where it left its last
+    surface, `crossed` transparent surfaces passed, `refractions` of its bounces refracted.
+    A camera ray stays one through transparent surfaces (as in Cycles: they keep a ray's
+    flags), and after its first bounce is a reflection or transmission ray, glossy."""
+    back = 1.0 if dot(d, n_geometric) > 0.0 else 0.0
+    bounced = depth > 0
+    return (
+        0.0 if bounced else 1.0, 0.0, float(depth), d[0], d[1], d[2], back,
+        1.0 if bounced and not refracted else 0.0, 1.0 if bounced and refracted else 0.0,
+        1.0 if bounced else 0.0, length, float(depth - refractions), float(crossed),
+        float(refractions), 0.0,
+    )  # fmt: skip
 
 
 @kernel
@@ -580,6 +608,9 @@ def run_program(mats, material, stack, lobes, hit, frame, normal_rows, ray):
             s[out], s[a] = w * (1.0 - t), w * t
         elif op == OP_DIFFUSE:
             _add3(lobes, L_DIFFUSE, s[out], _nonnegative(_triple(s, a)))
+            _add_normal(lobes, s, s[out], f)
+        elif op == OP_TRANSLUCENT:
+            _add3(lobes, L_TRANSLUCENT, s[out], _nonnegative(_triple(s, a)))
             _add_normal(lobes, s, s[out], f)
         elif op == OP_GLOSSY:
             tint = _nonnegative(_triple(s, a))

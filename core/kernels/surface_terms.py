@@ -48,6 +48,7 @@ from .shader_program import (
     L_ROUGH,
     L_ROUGHNESS,
     L_ROUGHNESS_WEIGHT,
+    L_TRANSLUCENT,
     L_TRANSPARENT,
 )
 from .vec import row
@@ -103,6 +104,7 @@ class Surface(NamedTuple):
     clear_coat: ClearCoat  # weight 0: none
     coat_tint: tuple  # the coat's Specular Tint (RGB; microfacet.tinted_fresnel), white: none
     mirror_dip: tuple  # F82's dip below the mirror's Schlick curve (microfacet.f82_dip)
+    translucent: tuple  # RGB Lambertian transmission (core.kernels.translucent)
 
 
 # Materials.gloss's columns: Gloss's fields, its triples as three
@@ -195,6 +197,7 @@ def table_surface(mats, material, kd):
         _clear_coat_row(mats.clear_coat, material),
         (mats.coat[material, 3], mats.coat[material, 4], mats.coat[material, 5]),
         row(mats.mirror_dip, material),
+        row(mats.translucent, material),
     )
 
 
@@ -250,6 +253,7 @@ def terms_from_lobes(lobes):
         _clear_coat(lobes),
         _mean_tint(lobes, L_COAT_TINT, coat),
         _scaled(lobes, L_DIP, per_rest) if mirrors else (0.0, 0.0, 0.0),
+        _scaled(lobes, L_TRANSLUCENT, per_rest),
     )
 
 

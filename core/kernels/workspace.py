@@ -98,6 +98,10 @@ class RayStack(NamedTuple):
     # Visibility switches, Glossy or Transmission, lets it see the light, or none)
     refracted: np.ndarray
     crossed: np.ndarray  # int64 (n,): surfaces passed straight through so far
+    # int64 (n,): the material row of the medium it travels in, -1 air
+    # (core.kernels.absorption)
+    medium: np.ndarray
+    refractions: np.ndarray  # int64 (n,): of its bounces, those that refracted (Light Path)
 
 
 class Workspace(NamedTuple):
@@ -172,6 +176,8 @@ def new_workspace(
             np.empty(rays, np.int64),
             np.zeros(rays, np.int64),
             np.zeros(rays, np.int64),
+            np.zeros(rays, np.int64),
+            np.full(rays, -1, np.int64),
             np.zeros(rays, np.int64),
         ),
         np.zeros(1, np.int64) if cancel is None else cancel,

@@ -37,6 +37,9 @@ class Camera:
     shift           -- (x, y) offset of the image on the image plane, in half-widths and
                        half-heights of the image (a view-camera lens shift, as Blender's
                        projection matrix gives it): verticals stay vertical
+    clip_start      -- camera rays start this far along the view direction, >= 0 (Blender's
+                       Clip Start, as Cycles clips): nearer surfaces are not seen, and Light
+                       Path's Ray Length of a camera ray counts from there
     """
 
     eye: Vec3 = (0.0, 0.0, 0.0)
@@ -52,6 +55,7 @@ class Camera:
     shift: tuple[float, float] = (0.0, 0.0)
     projection: str = "perspective"
     ortho_height: float = 2.0
+    clip_start: float = 0.0
 
     def validate(self) -> None:
         owner = f"camera '{self.name}'"
@@ -75,6 +79,7 @@ class Camera:
         check_number(owner, "aperture_rotation", self.aperture_rotation)
         check_number(owner, "aperture_ratio", self.aperture_ratio, low=0.0, low_open=True)
         check_number(owner, "focal_distance", self.focal_distance, low=0.0, low_open=True)
+        check_number(owner, "clip_start", self.clip_start, low=0.0)
         if len(self.shift) != 2:
             raise SceneError(owner, "shift", f"got {self.shift!r}; use two numbers (x, y)")
         for value in self.shift:

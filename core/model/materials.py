@@ -87,6 +87,14 @@ class Material:
                       is only seen
     surface        -- a closure `ShaderNode` (core.model.shader): Blender's node graph, which
                       then makes every term above per hit (name and pass_index still count)
+    absorption     -- RGB absorption coefficient (per unit of world length, each >= 0) of the
+                      medium the surface encloses: a ray travelling t inside keeps
+                      exp(-absorption t) of its light (Beer-Lambert; Blender's Volume
+                      Absorption on the Material Output's Volume, (1 - Color) Density;
+                      core.kernels.absorption). The mesh should be closed, its normals out
+    translucent    -- RGB Lambertian transmission, each >= 0: the light falling on the
+                      surface's other side, seen through it diffusely (Blender's Translucent
+                      BSDF; core.kernels.translucent)
     """
 
     diffuse: Vec3 = (0.8, 0.8, 0.8)
@@ -114,6 +122,8 @@ class Material:
     roughness: float = 0.0
     emission_lights: bool = True
     surface: ShaderNode | None = None
+    absorption: Vec3 = (0.0, 0.0, 0.0)
+    translucent: Vec3 = (0.0, 0.0, 0.0)
 
     def validate(self, user: str) -> None:
         owner = f"material '{self.name}' (on {user})"
@@ -125,7 +135,14 @@ class Material:
         check_number(owner, "outer_ior", self.outer_ior, low=0.0, low_open=True)
         check_number(owner, "inner_ior", self.inner_ior, low=0.0, low_open=True)
         check_count(owner, "pass_index", self.pass_index, high=32767)
-        for name in ("mirror_colour", "glass_reflect", "glass_transmit", "emission"):
+        for name in (
+            "mirror_colour",
+            "glass_reflect",
+            "glass_transmit",
+            "emission",
+            "absorption",
+            "translucent",
+        ):
             check_vec3(owner, name, getattr(self, name), nonnegative=True)
         if self.mirror_edge is not None:
             check_vec3(owner, "mirror_edge", self.mirror_edge, nonnegative=True)

@@ -22,6 +22,22 @@ from ..errors import SceneError
 # The vector default `None` means the texture's own default coordinates: UV for images,
 # Generated for procedural textures, as in Blender.
 RGB = (0.8, 0.8, 0.8)
+# Blender's Light Path outputs Whitted evaluates (Is Singular Ray and Is Volume Scatter Ray:
+# not; core.compile.shader_program has what each is of a Whitted ray)
+LIGHT_PATH_OUTPUTS = (
+    "Is Camera Ray",
+    "Is Shadow Ray",
+    "Is Diffuse Ray",
+    "Is Glossy Ray",
+    "Is Reflection Ray",
+    "Is Transmission Ray",
+    "Ray Length",
+    "Ray Depth",
+    "Diffuse Depth",
+    "Glossy Depth",
+    "Transparent Depth",
+    "Transmission Depth",
+)
 SHADER_NODES = {
     # closures
     "principled": dict(
@@ -50,6 +66,8 @@ SHADER_NODES = {
         settings={"layered": True, "distribution": "GGX", "coat_albedo": "LOBE"},
     ),  # fmt: skip
     "diffuse": dict(inputs={"Color": RGB, "Normal": None}, closure=True),
+    # Lambertian transmission: the light falling on the other side (core.kernels.translucent)
+    "translucent": dict(inputs={"Color": RGB, "Normal": None}, closure=True),
     # A rough lobe's microfacet distribution (DISTRIBUTIONS; core.kernels.microfacet)
     "glossy": dict(
         inputs={"Color": RGB, "Roughness": 0.5, "Normal": None},
@@ -89,10 +107,8 @@ SHADER_NODES = {
         settings={"name": ""},
     ),  # fmt: skip
     # What the ray that met the surface is: 1 or 0, and its bounces (Blender's Light Path)
-    "light_path": dict(
-        inputs={},
-        outputs={"Is Camera Ray": "value", "Is Shadow Ray": "value", "Ray Depth": "value"},
-    ),  # fmt: skip
+    # What the ray that met the surface is (LIGHT_PATH_OUTPUTS), as Cycles' path flags
+    "light_path": dict(inputs={}, outputs=dict.fromkeys(LIGHT_PATH_OUTPUTS, "value")),
     # How squarely the ray meets the surface (Blender's Fresnel and Layer Weight nodes,
     # core.kernels.facing_values); Normal None: the surface's shading normal
     "fresnel": dict(inputs={"IOR": 1.5, "Normal": None}, outputs={"Fac": "value"}),
@@ -302,7 +318,9 @@ ROUGH_CLOSURES = ("principled", "glossy", "metallic", "glass", "refraction")
 MAX_GRAPH_DEPTH = 100
 INTERPOLATIONS = ("Linear", "Closest", "Cubic", "Smart")
 EXTENSIONS = ("REPEAT", "EXTEND", "CLIP", "MIRROR")
-RAMP_INTERPOLATIONS = ("LINEAR", "CONSTANT", "EASE", "CARDINAL", "B_SPLINE")
+# (B-Spline, Cardinal and the HSV and HSL modes come from Blender baked to Linear stops, as
+# Cycles bakes them: blender_addon.export.shader_nodes.ramp_table)
+RAMP_INTERPOLATIONS = ("LINEAR", "CONSTANT", "EASE")
 
 
 @dataclass(frozen=True, eq=False)
@@ -543,6 +561,11 @@ def coated(node) -> bool:
 def has_clear_coat(surface) -> bool:
     """Whether a graph has a coated closure (`coated`)."""
     return any(map(coated, _closures(surface)))
+
+
+def is_translucent(surface) -> bool:
+    """Whether a graph has a Translucent BSDF among its closures."""
+    return any(node.kind == "translucent" for node in _closures(surface))
 
 
 def is_rough(surface) -> bool:

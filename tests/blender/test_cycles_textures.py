@@ -285,7 +285,30 @@ def _voronoi_fractal_position(bpy, tree):
     return voronoi.outputs["Position"]
 
 
+def _ramp_across(tree, interpolation, mode="RGB"):
+    """A four-stop Color Ramp over the picture's width (Object x / 8 + 1/2, 0 to 1): Cycles
+    bakes it to 256 points of Blender's own curve (B-Spline, Cardinal; HSV, HSL)."""
+    coords = tree.nodes.new("ShaderNodeTexCoord")
+    separate = tree.nodes.new("ShaderNodeSeparateXYZ")
+    tree.links.new(coords.outputs["Object"], separate.inputs[0])
+    across = tree.nodes.new("ShaderNodeMath")
+    across.operation = "MULTIPLY_ADD"
+    across.inputs[1].default_value, across.inputs[2].default_value = 0.125, 0.5
+    tree.links.new(separate.outputs["X"], across.inputs[0])
+    ramp = tree.nodes.new("ShaderNodeValToRGB")
+    ramp.color_ramp.interpolation = interpolation
+    ramp.color_ramp.color_mode = mode
+    elements = ramp.color_ramp.elements
+    elements[0].color, elements[1].color = (0.9, 0.1, 0.1, 1.0), (0.1, 0.3, 1.0, 1.0)
+    for position, colour in ((0.3, (0.1, 0.9, 0.2, 1.0)), (0.65, (1.0, 0.9, 0.1, 1.0))):
+        elements.new(position).color = colour
+    tree.links.new(across.outputs["Value"], ramp.inputs["Fac"])
+    return ramp.outputs["Color"]
+
+
 GRAPHS = {
+    "ramp_b_spline": lambda bpy, tree: _ramp_across(tree, "B_SPLINE"),
+    "ramp_cardinal_hsv": lambda bpy, tree: _ramp_across(tree, "CARDINAL", "HSV"),
     "image_through_mapping": _image_through_mapping,
     "image_closest_extend": _image_closest,
     "checker_generated": _checker_generated,

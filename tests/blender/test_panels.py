@@ -109,13 +109,13 @@ def test_the_material_panel_offers_emission_lights_only_where_something_emits(bp
     plain = bpy.data.materials.new("Plain")
     if bpy.app.version < (5, 0, 0):
         plain.use_nodes = True
-    surface, _ = material.read_graph(plain, textures=False)
+    surface, _, _ = material.read_graph(plain, textures=False)
     assert not nodes.emits(surface)  # a new Principled: black emission, or strength 0
     principled = plain.node_tree.nodes["Principled BSDF"]
     colour = "Emission Color" if "Emission Color" in principled.inputs else "Emission"
     principled.inputs[colour].default_value = (1.0, 0.5, 0.2, 1.0)
     principled.inputs["Emission Strength"].default_value = 2.0
-    surface, _ = material.read_graph(plain, textures=False)
+    surface, _, _ = material.read_graph(plain, textures=False)
     assert nodes.emits(surface)
 
 

@@ -106,13 +106,17 @@ def plain_scene():
 
 def blender_scene():
     """Node materials (one varying by Layer Weight, whose veil lets shadows through by the
-    angle; one under a rough clear coat), Blender's lights seen in the mirror, a rough mirror
-    spread over its lobe."""
+    angle; one under a rough clear coat; a translucent sheet lit from behind), Blender's
+    lights seen in the mirror, a rough mirror spread over its lobe."""
     facing = ShaderNode("layer_weight", {"Blend": 0.5})
     clear, red = ShaderNode("transparent", {}), ShaderNode("diffuse", {"Color": (0.8, 0.1, 0.1)})
     veil = ShaderNode("mix_shader", {"Fac": Link(facing, "Facing"), "Shader A": Link(clear),
                                      "Shader B": Link(red)})  # fmt: skip
     rough = Material(diffuse=(0.0, 0.0, 0.0), reflectivity=0.9, roughness=0.3)
+    paper = ShaderNode("translucent", {"Color": (0.8, 0.7, 0.3)})
+    # upright, facing the camera: the lamps above light its back at a slant
+    sheet = TriangleMesh(np.array([(-1, 0, -1), (1, 0, -1), (1, 0, 1), (-1, 0, 1)], float),
+                         np.array([(0, 2, 1), (0, 3, 2)]))  # fmt: skip
     coated = ShaderNode("principled", {"Base Color": (0.5, 0.05, 0.1), "Metallic": 0.5,
                                        "Coat Weight": 1.0, "Coat Roughness": 0.2,
                                        "Coat Tint": (0.9, 0.8, 0.7)})  # fmt: skip
@@ -121,6 +125,7 @@ def blender_scene():
         Sphere("Veil", Material(surface=veil), _placed(0.5, -0.5, 1.2, 0.5)),
         Box("Rough mirror", rough, _placed(-2.5, 1.0, 0.0, 0.6)),
         Sphere("Car paint", Material(surface=coated), _placed(1.8, 1.5, 0.6, 0.6)),
+        Mesh("Paper", Material(surface=paper), _placed(-0.5, -1.5, 0.8, 0.7), mesh=sheet),
     ]
     lights = [
         *_report_lights(),
@@ -131,10 +136,12 @@ def blender_scene():
 
 
 def world_scene():
-    """The World's light, caustics of a glass ball under the sun, passes and adaptive
-    anti-aliasing."""
+    """The World's light, caustics of a glass ball under the sun (and of a tinted one that
+    absorbs inside), passes and adaptive anti-aliasing."""
     sun = SunLight(name="Sun", direction=(0.3, 0.2, -1.0), irradiance=(2.0, 2.0, 2.0))
-    scene = Scene(camera=_camera(), shapes=_basics(), lights=[*_report_lights(), sun],
+    tinted = Material(transparency=1.0, inner_ior=1.45, absorption=(0.2, 1.5, 3.0))
+    shapes = [*_basics(), Sphere("Tinted glass", tinted, _placed(1.0, 1.0, -0.4, 0.6))]
+    scene = Scene(camera=_camera(), shapes=shapes, lights=[*_report_lights(), sun],
                   environment=Environment(colour=(0.2, 0.3, 0.4)))  # fmt: skip
     settings = _settings(caustics=("reflective", "refractive"), caustic_photons=4000,
                          glass_shadows="blocked", passes=("depth", "normal", "diffuse"),
@@ -148,9 +155,9 @@ def test_each_scene_uses_the_features_it_was_made_for():
     used = {name: used_features(compile_scene(*make()).packed) for name, make in SCENES.items()}
     assert used["plain"] == frozenset()
     assert used["blender"] == {"nodes", "emitters", "emitters_seen", "varying_shadows", "glossy",
-                               "clear_coat"}  # fmt: skip
+                               "clear_coat", "translucent"}  # fmt: skip
     assert used["world"] == {"emitters", "emitters_seen", "environment", "caustics", "passes",
-                             "adaptive"}  # fmt: skip
+                             "adaptive", "absorption"}  # fmt: skip
     assert used["blender"] | used["world"] == set(FEATURES)
 
 
