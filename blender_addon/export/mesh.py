@@ -1,6 +1,7 @@
 """Blender meshes into `core.TriangleMesh`, through `foreach_get` into numpy (no Python loop
 over triangles), with per-face smooth flags, Blender's corner (split) normals, the active UV
-map and the colour attributes. Each distinct evaluated mesh is converted once per render
+map and the colour attributes, and its MikkTSpace tangents where a material has a
+tangent-space normal map. Each distinct evaluated mesh is converted once per render
 and shared by every object instance that uses it, and `MeshCache` keeps it from frame to
 frame while it does not change, so an animation re-exports only what moved."""
 
@@ -68,7 +69,7 @@ def _fingerprint(mesh) -> tuple:
         values = np.empty(len(attribute.data) * 4, np.float32)
         attribute.data.foreach_get("color", values)
         parts.append((attribute.name, attribute.domain, hash(values.tobytes())))
-    return (*parts, *auto_smooth(mesh))
+    return (*parts, *auto_smooth(mesh), wants_tangents(mesh))
 
 
 def triangle_mesh(mesh, name: str) -> core.TriangleMesh:
@@ -104,6 +105,9 @@ def convert(mesh, name: str):
     material_index = np.empty(count, np.int32)
     triangles_blender.foreach_get("material_index", material_index)
     corner_colors, default_color = _colour_attributes(mesh, triangles_blender, count)
+    corner_tangents = None
+    if corner_uvs is not None and wants_tangents(mesh):
+        corner_tangents = _tangents(mesh, uv_layer.name, loops, count)
     return core.TriangleMesh(
         vertices=vertices.reshape(-1, 3),
         triangles=triangles.reshape(-1, 3),
@@ -113,7 +117,44 @@ def convert(mesh, name: str):
         name=name,
         corner_colors=corner_colors,
         default_color=default_color,
+        corner_tangents=corner_tangents,
     ), material_index
+
+
+def wants_tangents(mesh) -> bool:
+    """Whether a material of the mesh has a tangent-space Normal Map (at the top of its
+    tree or in a node group): then its MikkTSpace tangents are exported (`_tangents`)."""
+    seen = set()
+
+    def has_map(tree) -> bool:
+        if tree is None or tree.as_pointer() in seen:
+            return False
+        seen.add(tree.as_pointer())
+        for node in tree.nodes:
+            if node.type == "NORMAL_MAP" and node.space == "TANGENT":
+                return True
+            if node.type == "GROUP" and has_map(node.node_tree):
+                return True
+        return False
+
+    return any(m is not None and m.use_nodes and has_map(m.node_tree) for m in mesh.materials)
+
+
+def _tangents(mesh, uv_map: str, loops, count: int):
+    """(t, 3, 4) per triangle corner: the UV map's MikkTSpace tangent (object space) and
+    bitangent sign, as Blender computes them for Cycles; None where Blender cannot (a face
+    of more than four corners: the kernels then use each triangle's UV gradient)."""
+    try:
+        mesh.calc_tangents(uvmap=uv_map)
+    except RuntimeError:
+        return None
+    tangent = np.empty(len(mesh.loops) * 3, np.float32)
+    mesh.loops.foreach_get("tangent", tangent)
+    sign = np.empty(len(mesh.loops), np.float32)
+    mesh.loops.foreach_get("bitangent_sign", sign)
+    mesh.free_tangents()
+    corner = np.concatenate([tangent.reshape(-1, 3), sign[:, None]], axis=1)
+    return corner[loops].reshape(count, 3, 4)
 
 
 def _colour_attributes(mesh, triangles, count: int):
@@ -163,5 +204,6 @@ def by_material(whole: core.TriangleMesh, material_index) -> dict[int, core.Tria
             corner_colors=None if whole.corner_colors is None
             else {key: table[rows] for key, table in whole.corner_colors.items()},
             default_color=whole.default_color,
+            corner_tangents=pick(whole.corner_tangents),
         )  # fmt: skip
     return parts

@@ -39,6 +39,11 @@ OUTPUTS = {
         {"UV": "UV", "Generated": "Generated", "Object": "Object", "Normal": "Normal"},
     ),  # fmt: skip
     "UVMAP": ("tex_coord", {"UV": "UV"}),
+    # (Tangent, Parametric, Pointiness and Random Per Island are not evaluated: noted)
+    "NEW_GEOMETRY": (
+        "geometry",
+        {name: name for name in ("Position", "Normal", "True Normal", "Incoming", "Backfacing")},
+    ),  # fmt: skip
     # a mesh's colour attribute (core.kernels.attributes)
     "VERTEX_COLOR": ("attribute", {"Color": "Color", "Alpha": "Alpha"}),
     "ATTRIBUTE": (

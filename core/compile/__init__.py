@@ -33,7 +33,7 @@ from ..kernels.layout import PackedScene
 from ..kernels.options import OPTION_GLASS_SHADOWS
 from ..memory_estimate import check_fits, estimate
 from ..model import Mesh, RenderSettings, Scene
-from ..model.shader import attribute_names
+from ..model.shader import TANGENT_ATTRIBUTE, attribute_names
 from .caustics import CausticReport, add_caustics
 from .csg import owner_rows, pack_csg
 from .frame import pack_frame
@@ -126,6 +126,8 @@ def _missing_attributes(shapes: list) -> list[str]:
             continue
         colors = shape.mesh.corner_colors or {}
         for name in attribute_names([surface]):
+            if name == TANGENT_ATTRIBUTE:  # none: each triangle's UV gradient is the tangent
+                continue
             if (name or shape.mesh.default_color) not in colors:
                 shown = f"colour attribute '{name}'" if name else "default colour attribute"
                 text = (f"mesh '{shape.mesh.name}' (on {shape.owner}) has no {shown} that "

@@ -29,6 +29,7 @@ from ..model.shader import (
     NORMAL_MAP_SPACES,
     RAMP_INTERPOLATIONS,
     SHADER_NODES,
+    TANGENT_ATTRIBUTE,
     VECTOR_MATH_OPERATIONS,
     VORONOI_FEATURES,
     VORONOI_HASHES,
@@ -60,6 +61,13 @@ RAY_COORDS = {
         ("Transparent Depth", sp.RAY_TRANSPARENT_DEPTH),
         ("Transmission Depth", sp.RAY_TRANSMISSION_DEPTH),
     )
+}
+GEOMETRY_COORDS = {
+    "Position": sp.COORD_POSITION,
+    "Normal": sp.COORD_GEOMETRY_NORMAL,
+    "True Normal": sp.COORD_TRUE_NORMAL,
+    "Incoming": sp.COORD_INCOMING,
+    "Backfacing": sp.COORD_IS_CAMERA + sp.RAY_BACKFACING,
 }
 FACING_OUTPUTS = {
     "fresnel": {"Fac": FACING_FRESNEL},
@@ -290,6 +298,10 @@ class ProgramBuilder:
             p.step(sp.OP_AVERAGE, slots["Fac"], slots["Color"])
             p.varying = True
             p.attributes = len(self.attribute_names)
+        elif kind == "geometry":
+            for name, which in GEOMETRY_COORDS.items():
+                p.step(sp.OP_COORD, slots[name], which, self.where)
+            p.varying = True
         elif kind == "light_path":
             for name, which in RAY_COORDS.items():
                 p.step(sp.OP_COORD, slots[name], which, self.where)
@@ -314,9 +326,13 @@ class ProgramBuilder:
             p.step(sp.OP_BUMP, slots["Normal"], *heights, strength, distance, invert)
             p.varying = p.needs_frame = True
         elif kind == "normal_map":
+            tangents = -1  # the mesh's MikkTSpace tangents, read as an attribute
+            if node.setting("space") == "TANGENT":
+                tangents = sp.attribute_slot(self.attribute_names.index(TANGENT_ATTRIBUTE))
+                p.attributes = len(self.attribute_names)
             p.step(sp.OP_NORMAL_MAP, slots["Normal"], v(node.input("Color"), "triple"),
                    v(node.input("Strength"), "value"),
-                   NORMAL_MAP_SPACES.index(node.setting("space")))  # fmt: skip
+                   NORMAL_MAP_SPACES.index(node.setting("space")), tangents)  # fmt: skip
             p.varying = p.needs_frame = True
         elif kind == "mapping":
             p.step(sp.OP_MAPPING, slots["Vector"], v(node.input("Vector"), "triple"),

@@ -58,3 +58,25 @@ def kept_above(n_geometric, d, n):
     tilted = normalize((x * x_axis[0] + z * ng[0], x * x_axis[1] + z * ng[1],
                         x * x_axis[2] + z * ng[2]))  # fmt: skip
     return scale(tilted, -1.0) if flip else tilted
+
+
+@kernel
+def terminator_term(smooth, bent, light_dir):
+    """The share of a diffuse surface's light kept where a bent normal (Bump, Normal Map)
+    turns it towards a light its own smooth normal faces away from: Chiang, Li and
+    Burley's shadow terminator term ("Taming the Shadow Terminator", 2019), as Cycles
+    weighs its diffuse closures by it. g = (S.L) / ((B.L)(S.B)), S the smooth normal and B
+    the bent one; all the light where g >= 1, none where g < 0, else -g^3 + g^2 + g, which
+    meets both ends smoothly. 1 where the normal is not bent."""
+    if bent[0] == smooth[0] and bent[1] == smooth[1] and bent[2] == smooth[2]:
+        return 1.0
+    cos_bent = dot(bent, light_dir)
+    across = cos_bent * dot(smooth, bent)
+    if across == 0.0:
+        return 1.0
+    g = dot(smooth, light_dir) / across
+    if g >= 1.0:
+        return 1.0
+    if g < 0.0:
+        return 0.0
+    return -g * g * g + g * g + g

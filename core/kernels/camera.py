@@ -25,7 +25,7 @@ from .options import (
     PROJECTION_ORTHOGRAPHIC,
 )
 from .rng import PURPOSE_LENS, PURPOSE_PIXEL, permuted, sample_key, uniform2
-from .vec import add, cross, dot, normalize, row, scale, sub
+from .vec import add, normalize, row, scale, sub
 
 
 @kernel
@@ -70,7 +70,7 @@ def ray_through(frame, image_width, image_height, x, y, u, v):
         d = add(row(frame.camera, 1), offset)
     aperture = frame.lens[0]
     if aperture == 0.0:
-        return _clipped(frame, eye, normalize(d))
+        return eye, normalize(d)
     # d has unit length along the view direction, so eye + f d lies on the focal plane
     focus = add(eye, scale(d, frame.lens[1]))
     blades = int(frame.lens[2])
@@ -82,16 +82,4 @@ def ray_through(frame, image_width, image_height, x, y, u, v):
     origin = add(
         eye, add(scale(normalize(right), aperture * lx), scale(normalize(up), aperture * ly))
     )
-    return _clipped(frame, origin, normalize(sub(focus, origin)))
-
-
-@kernel
-def _clipped(frame, origin, d):
-    """(origin, d) of a camera ray moved along unit d to the Clip Start plane, as Cycles
-    clips: clip start / (d . view axis) on (the view axis is up x right: a lens shift tilts
-    the forward row, not the image plane)."""
-    clip = frame.lens[5]
-    if clip == 0.0:
-        return origin, d
-    axis = normalize(cross(row(frame.camera, 3), row(frame.camera, 2)))
-    return add(origin, scale(d, clip / dot(d, axis))), d
+    return origin, normalize(sub(focus, origin))

@@ -17,6 +17,7 @@ without angle) gets one, whatever the render's shadow samples.
 import math
 
 from ..jit.decorators import kernel
+from .bent_normal import terminator_term
 from .layout import (
     EMITS_DIFFUSE,
     EMITS_FROM_SURFACE,
@@ -175,17 +176,20 @@ def emitted_colour(frame, lights, geo, stacks, point, phong, key, event, split):
                 continue
             light_dir = row(targets, j)
             n_dot_l = dot(n, light_dir)
-            if n_dot_l <= 0.0 or visibility[j] == 0.0:
+            if visibility[j] == 0.0:
                 continue
-            factor = diffuse * n_dot_l
             seen = seen_through(stacks, j)
+            # the glints about their own normals (a bent diffuse normal may face away)
             if specular > 0.0 and coat_glints:
                 glint = gloss_lit(phong.coat_gloss, phong.coat_normal, to_viewer, light_dir)
                 total = add(total, mul(glint, scale(seen, weight)))
             if specular > 0.0 and glints:
-                glint = mul(gloss_lit(gloss, n, to_viewer, light_dir), phong.under)
-                total = add(total, mul(glint, scale(seen, weight)))
-            elif specular > 0.0:
+                glint = gloss_lit(gloss, phong.gloss_normal, to_viewer, light_dir)
+                total = add(total, mul(mul(glint, phong.under), scale(seen, weight)))
+            if n_dot_l <= 0.0:
+                continue
+            factor = diffuse * n_dot_l * terminator_term(point.smooth_normal, n, light_dir)
+            if specular > 0.0 and not glints:  # the report's Phong highlight
                 reflected = sub(scale(n, 2.0 * n_dot_l), light_dir)
                 r_dot_v = min(dot(reflected, to_viewer), 1.0)
                 if r_dot_v > 0.0:

@@ -21,6 +21,7 @@ bright sun is found by most rays. Only diffuse light is gathered: highlights com
 import math
 
 from ..jit.decorators import kernel
+from .bent_normal import terminator_term
 from .layout import ENVIRONMENT_IMAGE, ENVIRONMENT_NONE, ENVIRONMENT_UNIFORM
 from .light_pyramid import TRAVERSE_ALL
 from .light_samples import in_frame, light_spread, square_point
@@ -178,7 +179,8 @@ def environment_light(frame, lights, geo, stacks, point, kd, key, event, split):
         d = row(targets, j)
         radiance = scale(environment_radiance(frame, lights, d), targets[j, 4] / samples)
         seen = seen_through(stacks, j)
-        total = add(total, mul(radiance, scale(seen, dot(n, d))))
+        cos = dot(n, d) * terminator_term(point.smooth_normal, n, d)
+        total = add(total, mul(radiance, scale(seen, cos)))
         if split:
             add_falling(terms, d, radiance, seen, n, 1.0)
     return mul(kd, total)

@@ -79,7 +79,7 @@ from .shading import Phong, ShadingPoint
 from .surface import surface_at
 from .trace import closest_hit, spawn_point
 from .translucent import translucent_light
-from .vec import add, dot, mul, normalize, row, scale, sub
+from .vec import add, cross, dot, mul, normalize, row, scale, sub
 from .workspace import MAX_CROSSINGS, RAYS_TRACED
 
 MIN_WEIGHT = 1e-6
@@ -284,6 +284,10 @@ def trace_ray(ps, o, d, key, ws):
     refraction_passes = frame.options[OPTION_GLASS_SHADOWS] == GLASS_SHADOWS_ATTENUATED
     if WITH_PASSES and recording:
         clear(record, 0.0)
+    # Camera › Clip Start, along the view axis (up x right: a lens shift tilts the forward
+    # row, not the image plane) from the eye's plane
+    clip, eye = frame.lens[5], row(frame.camera, 0)
+    axis = normalize(cross(row(frame.camera, 3), row(frame.camera, 2)))
     colour = (0.0, 0.0, 0.0)
     alpha = 1.0
     top = _push(rays, 0, o, d, (1.0, 1.0, 1.0), 0, REC_ENVIRONMENT, 0, NO_MEDIUM, 0, 0)
@@ -320,7 +324,18 @@ def trace_ray(ps, o, d, key, ws):
                 if WITH_PASSES and recording:
                     add_to(record, branch, seen)
             continue
-        if not _sees(surf.shape_visibility[shape], depth, came_through):
+        # Camera › Clip Start: what a camera ray meets nearer than its plane is not seen
+        # (passed as if absent); a segment starting before the plane counts its length from
+        # the plane, as Cycles' rays start there
+        length = t
+        if depth == 0 and clip > 0.0:
+            cos_axis = dot(d, axis)
+            hit_depth = dot(sub(add(o, scale(d, t)), eye), axis)
+            if dot(sub(o, eye), axis) < clip:
+                length = (hit_depth - clip) / cos_axis
+            if hit_depth < clip:
+                length = -1.0  # hidden
+        if length < 0.0 or not _sees(surf.shape_visibility[shape], depth, came_through):
             if crossed < MAX_CROSSINGS:
                 p, n_geometric, _, _, _ = surface_at(geo, surf, shape, part, b1, b2, o, d, t, False)
                 along = n_geometric if dot(d, n_geometric) > 0.0 else scale(n_geometric, -1.0)
@@ -338,9 +353,10 @@ def trace_ray(ps, o, d, key, ws):
             geo, surf, shape, part, b1, b2, o, d, t, textured or (first and with_uv)
         )
         n_smooth = n_shading  # before the graph bends it (a coat keeps it)
-        ray = path_ray_at(depth, d, n_geometric, came_through, t, crossed, refractions)
-        here, n_shading = material_at_hit(geo, surf, mats, ws, shape, material, part, p, d,
-                                          n_geometric, n_shading, u, v, ray, first)  # fmt: skip
+        ray = path_ray_at(depth, p, d, n_geometric, came_through, length, crossed, refractions)
+        here, n_shading, n_diffuse = material_at_hit(geo, surf, mats, ws, shape, material, part,
+                                                     p, d, n_geometric, n_shading, u, v, ray,
+                                                     first)  # fmt: skip
         tau = here.transparency
         rho = here.reflectivity
         # Face the side the ray came from
@@ -348,6 +364,7 @@ def trace_ray(ps, o, d, key, ws):
         if not entering:
             n_geometric = scale(n_geometric, -1.0)
             n_shading = scale(n_shading, -1.0)
+            n_diffuse = scale(n_diffuse, -1.0)
             n_smooth = scale(n_smooth, -1.0)
         outside = spawn_point(p, n_geometric, o)
         cos_i = min(1.0, max(0.0, -dot(d, n_shading)))
@@ -395,16 +412,16 @@ def trace_ray(ps, o, d, key, ws):
             elif WITH_PASSES and recording:
                 add_to(record, branch, seen)
         if tau < 1.0 or (coated and coat.roughness > SHARP_ROUGHNESS):  # a coat's glint
-            point = ShadingPoint(outside, n_shading, scale(d, -1.0))
+            point = ShadingPoint(outside, n_diffuse, scale(d, -1.0), n_smooth)
             opacity = 1.0 - tau
             if coated:  # the coat's glint is not under the glass's share: the rest is
                 kd = scale(kd, opacity)
-                phong = Phong(kd, here.ks, here.shininess, here.gloss, scale(under, opacity),
-                              coat_glint(coat), n_coat)  # fmt: skip
+                phong = Phong(kd, here.ks, here.shininess, here.gloss, n_shading,
+                              scale(under, opacity), coat_glint(coat), n_coat)  # fmt: skip
                 opacity = 1.0
             else:
-                phong = Phong(kd, here.ks, here.shininess, here.gloss, (1.0, 1.0, 1.0),
-                              NO_GLINT, n_coat)  # fmt: skip
+                phong = Phong(kd, here.ks, here.shininess, here.gloss, n_shading,
+                              (1.0, 1.0, 1.0), NO_GLINT, n_coat)  # fmt: skip
             local = light_at_point(frame, lights, geo, surf, mats, ws, point, phong, p,
                                    n_geometric, key, event, first and split,
                                    refraction_passes)  # fmt: skip

@@ -15,9 +15,12 @@ from .surface_terms import table_surface, terms_from_lobes
 @inlined_kernel
 def material_at_hit(geo, surf, mats, ws, shape, material, part, p, d, n_geometric, n_shading,
                     u, v, ray, first):  # fmt: skip
-    """(the `Surface` at the hit, its shading normal). `ray`: what the ray is, for Light
-    Path (shader_program.path_ray_at). `first`: the camera ray's hit whose passes are
-    recorded (its diffuse colour is needed even under glass)."""
+    """(the `Surface` at the hit, its shading normal for reflection and refraction, its
+    shading normal for the diffuse). They differ where the graph bends the normal (Bump,
+    Normal Map): the first is kept from reflecting into the surface (bent_normal), the
+    diffuse keeps the bent one, as Cycles corrects only its specular closures. `ray`: what
+    the ray is, for Light Path (shader_program.path_ray_at). `first`: the camera ray's hit
+    whose passes are recorded (its diffuse colour is needed even under glass)."""
     if WITH_NODES and mats.shader_range[material, 0] >= 0:
         reads = mats.shader_frame[material]
         hit, across = hit_frame(geo, surf, shape, part, p, n_shading, u, v,
@@ -29,9 +32,9 @@ def material_at_hit(geo, surf, mats, ws, shape, material, part, p, d, n_geometri
         here = terms_from_lobes(ws.lobes)
         if here.normal[0] != 0.0 or here.normal[1] != 0.0 or here.normal[2] != 0.0:
             # Bump, Normal Map: the graph's shading normal, kept from reflecting below
-            n_shading = kept_above(n_geometric, d, here.normal)
-        return here, n_shading
+            return here, kept_above(n_geometric, d, here.normal), here.normal
+        return here, n_shading, n_shading
     kd = (0.0, 0.0, 0.0)
     if mats.transparency[material] < 1.0 or first:
         kd = diffuse_colour(mats, material, u, v)
-    return table_surface(mats, material, kd), n_shading
+    return table_surface(mats, material, kd), n_shading, n_shading

@@ -299,7 +299,7 @@ def trace_photons(geo, surf, mats, lights, casters, containing, plan, seed, bran
                     if reads & READS_ATTRIBUTES:
                         put_attributes(geo, surf, shape, part, p, shader_stack)
                     rows = normal_rows(geo.shape_object_from_world, shape)
-                    ray = ray_at(0.0, 0.0, bounce, d, n_geometric)
+                    ray = ray_at(0.0, 0.0, bounce, p, d, n_geometric)
                     run_program(mats, material, shader_stack, lobes, hit, across, rows, ray)
                     here = terms_from_lobes(lobes)
                     if here.normal[0] != 0.0 or here.normal[1] != 0.0 or here.normal[2] != 0.0:

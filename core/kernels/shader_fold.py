@@ -36,7 +36,8 @@ def fold_surfaces(mats, rows, out):
     rows3 = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
     for k in range(rows.shape[0]):
         # (A program that reads the ray is varying, never folded: the ray here is nobody's)
-        nobody = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+        nobody = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+                  0.0, 0.0, 0.0, 0.0, 0.0, 0.0)  # fmt: skip
         run_program(
             mats, rows[k], stack, lobes, (here, here, here), (zero, zero, zero), rows3, nobody
         )

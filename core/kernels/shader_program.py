@@ -70,7 +70,9 @@ OP_SPLIT = 16  # out weight a, out weight b, weight, fac: w (1 - fac), w fac (fa
 OP_COPY = 17  # out, a: a triple
 OP_AVERAGE = 18  # out, vector: (x + y + z) / 3 (a vector used as a value)
 OP_BUMP = 19  # out, height here, height a step along u, along v, strength, distance; f invert
-OP_NORMAL_MAP = 29  # out, colour, strength, space (NORMAL_MAP_*)
+# out, colour, strength, space (NORMAL_MAP_*), the slot of the mesh's tangents (an
+# attribute's, core.kernels.attributes) or -1
+OP_NORMAL_MAP = 29
 # out colour, out fac, vector, colour 1, colour 2, mortar colour, scale; its next row
 # (OP_MORE): mortar size, mortar smooth, bias, brick width, row height, (offset, squash, 0),
 # offset frequency * 256 + squash frequency
@@ -119,13 +121,20 @@ COORD_UV, COORD_GENERATED, COORD_OBJECT, COORD_NORMAL = 0, 1, 2, 3
 # Path's other outputs: 1 if it last reflected, if it last refracted, if either (a glossy
 # ray: every bounce Whitted traces is one), its length from where it left its last
 # surface, its reflections, the transparent surfaces it passed, its refractions; and 0
-# (a diffuse ray's outputs: Whitted traces none)
+# (a diffuse ray's outputs: Whitted traces none); then where it met the surface (world) and
+# the surface's geometric normal there (world, unit, as the surface gives it)
 RAY_IS_CAMERA, RAY_IS_SHADOW, RAY_DEPTH, RAY_DIRECTION, RAY_BACKFACING = 0, 1, 2, 3, 6
 RAY_IS_REFLECTION, RAY_IS_TRANSMISSION, RAY_IS_GLOSSY, RAY_LENGTH = 7, 8, 9, 10
 RAY_GLOSSY_DEPTH, RAY_TRANSPARENT_DEPTH, RAY_TRANSMISSION_DEPTH, RAY_NEVER = 11, 12, 13, 14
-RAY_SIZE = 15
-# OP_COORD's `which` for ray entry k is COORD_IS_CAMERA + k (Light Path's outputs)
+RAY_POSITION, RAY_TRUE_NORMAL = 15, 18
+RAY_SIZE = 21
+# OP_COORD's `which` for ray entry k is COORD_IS_CAMERA + k (Light Path's outputs, Geometry's
+# Backfacing)
 COORD_IS_CAMERA, COORD_IS_SHADOW, COORD_RAY_DEPTH = 4, 5, 6
+# The Geometry node's vectors (OP_COORD, `geometry_vector`): the hit's world position (a
+# step across it, for Bump), its shading and geometric normals and the way back along the
+# ray, the normals facing the ray as Cycles turns them
+COORD_POSITION, COORD_GEOMETRY_NORMAL, COORD_TRUE_NORMAL, COORD_INCOMING = 40, 41, 42, 43
 # Normal Map spaces (OP_NORMAL_MAP)
 NORMAL_MAP_TANGENT, NORMAL_MAP_OBJECT, NORMAL_MAP_WORLD = 0, 1, 2
 
@@ -403,13 +412,24 @@ def _bump(stack, out, h0, hx, hy, strength, distance, invert, frame):
 
 
 @kernel
-def _normal_map(stack, out, colour, strength, space, frame, normal_rows):
+def _normal_map(stack, out, colour, strength, space, frame, normal_rows, tangents, n_object):
     """Cycles' Normal Map: a tangent-space colour (2c - 1 in the frame of the tangent, the
     bitangent and the normal), or an object- or world-space one, mixed with the normal by
-    strength."""
+    strength. The tangent frame: the mesh's MikkTSpace tangent and bitangent sign at the
+    hit (stack slot `tangents`, interpolated over the triangle), with the bitangent
+    sign x N x T and the frame turned into world space from object space, as Cycles; where
+    the mesh has none (read as 0), the triangle's own UV gradient (`frame`'s steps)."""
     dp_x, dp_y, n = frame
     m = (2.0 * colour[0] - 1.0, 2.0 * colour[1] - 1.0, 2.0 * colour[2] - 1.0)
-    if space == NORMAL_MAP_TANGENT:
+    tangent = (0.0, 0.0, 0.0)
+    if tangents >= 0:
+        tangent = _triple(stack, tangents)
+    if space == NORMAL_MAP_TANGENT and dot(tangent, tangent) > 0.0:
+        bitangent = scale(cross(n_object, tangent), stack[tangents + 3])
+        inside = add(add(scale(tangent, m[0]), scale(bitangent, m[1])), scale(n_object, m[2]))
+        mapped = (dot(normal_rows[0], inside), dot(normal_rows[1], inside),
+                  dot(normal_rows[2], inside))  # fmt: skip
+    elif space == NORMAL_MAP_TANGENT:
         mapped = add(add(scale(normalize(dp_x), m[0]), scale(normalize(dp_y), m[1])),
                      scale(n, m[2]))  # fmt: skip
     elif space == NORMAL_MAP_OBJECT:  # normal_rows: the object-to-world normal transform
@@ -430,16 +450,34 @@ def _add_normal(lobes, stack, weight, slot):
 
 
 @kernel
-def ray_at(is_camera, is_shadow, depth, d, n_geometric):
+def ray_at(is_camera, is_shadow, depth, p, d, n_geometric):
     """`ray` for run_program: what the ray o + t d is, having met a surface of geometric
-    normal n_geometric (a shadow ray's or a photon's: Light Path's other outputs 0)."""
+    normal n_geometric at p (a shadow ray's or a photon's: Light Path's other outputs 0)."""
     back = 1.0 if dot(d, n_geometric) > 0.0 else 0.0
     return (is_camera, is_shadow, float(depth), d[0], d[1], d[2], back,
-            0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)  # fmt: skip
+            0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, p[0], p[1], p[2],
+            n_geometric[0], n_geometric[1], n_geometric[2])  # fmt: skip
 
 
 @kernel
-def path_ray_at(depth, d, n_geometric, refracted, length, crossed, refractions):
+def geometry_vector(which, where, frame, ray):
+    """The Geometry node's vector `which` (COORD_POSITION...) at the hit (`where` 0) or a
+    step across it (1, 2: `frame`'s world steps), from `ray` and `frame`'s normal."""
+    back = ray[RAY_BACKFACING] != 0.0
+    if which == COORD_POSITION:
+        p = (ray[RAY_POSITION], ray[RAY_POSITION + 1], ray[RAY_POSITION + 2])
+        return p if where == 0 else add(p, frame[where - 1])
+    if which == COORD_INCOMING:
+        return -ray[RAY_DIRECTION], -ray[RAY_DIRECTION + 1], -ray[RAY_DIRECTION + 2]
+    if which == COORD_TRUE_NORMAL:
+        n = (ray[RAY_TRUE_NORMAL], ray[RAY_TRUE_NORMAL + 1], ray[RAY_TRUE_NORMAL + 2])
+    else:
+        n = frame[2]
+    return scale(n, -1.0) if back else n
+
+
+@kernel
+def path_ray_at(depth, p, d, n_geometric, refracted, length, crossed, refractions):
     """`ray` for run_program of a camera ray or its reflected and refracted rays: `depth`
     bounces, the last a refraction if `refracted`, `length` from where it left its last
     surface, `crossed` transparent surfaces passed, `refractions` of its bounces refracted.
@@ -451,7 +489,8 @@ def path_ray_at(depth, d, n_geometric, refracted, length, crossed, refractions):
         0.0 if bounced else 1.0, 0.0, float(depth), d[0], d[1], d[2], back,
         1.0 if bounced and not refracted else 0.0, 1.0 if bounced and refracted else 0.0,
         1.0 if bounced else 0.0, length, float(depth - refractions), float(crossed),
-        float(refractions), 0.0,
+        float(refractions), 0.0, p[0], p[1], p[2], n_geometric[0], n_geometric[1],
+        n_geometric[2],
     )  # fmt: skip
 
 
@@ -478,7 +517,9 @@ def run_program(mats, material, stack, lobes, hit, frame, normal_rows, ray):
         c, d, e, f = ops[row, 4], ops[row, 5], ops[row, 6], ops[row, 7]
         row += 1
         if op == OP_COORD:
-            if a >= COORD_IS_CAMERA:  # a number about the ray, as a triple
+            if a >= COORD_POSITION:
+                _put(s, out, geometry_vector(a, b, frame, ray))
+            elif a >= COORD_IS_CAMERA:  # a number about the ray, as a triple
                 value = ray[a - COORD_IS_CAMERA]
                 _put(s, out, (value, value, value))
             else:
@@ -489,7 +530,7 @@ def run_program(mats, material, stack, lobes, hit, frame, normal_rows, ray):
         elif op == OP_BUMP:
             _bump(s, out, s[a], s[b], s[c], s[d], s[e], f != 0, frame)
         elif op == OP_NORMAL_MAP:
-            _normal_map(s, out, _triple(s, a), s[b], c, frame, normal_rows)
+            _normal_map(s, out, _triple(s, a), s[b], c, frame, normal_rows, d, hit[0][3])
         elif op == OP_FACING:
             normal = frame[2] if b < 0 else _triple(s, b)
             towards = (-ray[RAY_DIRECTION], -ray[RAY_DIRECTION + 1], -ray[RAY_DIRECTION + 2])

@@ -21,6 +21,7 @@ import math
 from typing import NamedTuple
 
 from ..jit.decorators import inlined_kernel, kernel
+from .bent_normal import terminator_term
 from .light_pyramid import TRAVERSE_ALL, build_pyramid, pyramid_candidates
 from .light_samples import light_spread, square_point
 from .options import (
@@ -45,24 +46,30 @@ MAX_FALLOFF = 1e20
 # cost nothing (the final scene renders in the same time, the same bits)
 class ShadingPoint(NamedTuple):
     """Where a surface is lit: shadow rays start at `origin` (the hit point lifted off the
-    surface); `normal` is the unit shading normal, facing `to_viewer`."""
+    surface); `normal` is the unit shading normal of its diffuse (and of the report's Phong
+    highlight), facing `to_viewer`; `smooth_normal` the surface's own before a Bump or
+    Normal Map bent it (the diffuse's shadow terminator term, bent_normal.terminator_term)."""
 
     origin: tuple
     normal: tuple
     to_viewer: tuple
+    smooth_normal: tuple
 
 
 class Phong(NamedTuple):
     """The report's material terms: diffuse kd, specular ks (RGB) and the Phong exponent;
     and a node material's rough lobes, which glint in Blender's lights instead
-    (core.kernels.microfacet.Gloss; alpha 0 for the report's materials). Under a clear
-    coat (core.kernels.clear_coat) the glints are times `under` (kd already is), and the
-    coat's own rough lobe glints about its normal (alpha 0: none)."""
+    (core.kernels.microfacet.Gloss; alpha 0 for the report's materials), about
+    `gloss_normal` (the shading normal kept from reflecting into the surface, which a bent
+    one may be: core.kernels.bent_normal; the diffuse keeps the bent one, as in Cycles).
+    Under a clear coat (core.kernels.clear_coat) the glints are times `under` (kd already
+    is), and the coat's own rough lobe glints about its normal (alpha 0: none)."""
 
     kd: tuple
     ks: tuple
     shininess: float
     gloss: tuple
+    gloss_normal: tuple
     under: tuple
     coat_gloss: tuple
     coat_normal: tuple
@@ -139,7 +146,7 @@ def _phong_lit(light_dir, radiance, visible, point, phong):
     n_dot_l = dot(n, light_dir)
     if n_dot_l <= 0.0 or visible[0] == visible[1] == visible[2] == 0.0:
         return 0.0, 0.0, 0.0
-    reflectance = scale(kd, n_dot_l)
+    reflectance = scale(kd, n_dot_l * terminator_term(point.smooth_normal, n, light_dir))
     if ks[0] > 0.0 or ks[1] > 0.0 or ks[2] > 0.0:
         # Unit length already: n and light_dir are unit vectors
         reflected = sub(scale(n, 2.0 * n_dot_l), light_dir)

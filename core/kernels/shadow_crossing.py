@@ -29,7 +29,7 @@ def crossing_share(geo, surf, mats, ws, shape, part, b1, b2, o, d, t, refraction
         put_attributes(geo, surf, shape, part, p, ws.shader_stack)
     rows = normal_rows(geo.shape_object_from_world, shape)
     # Light Path: a shadow ray (its depth is not known here: read as 0)
-    ray = ray_at(0.0, 1.0, 0, d, n_geometric)
+    ray = ray_at(0.0, 1.0, 0, p, d, n_geometric)
     run_program(mats, material, ws.shader_stack, ws.lobes, hit, across, rows, ray)
     here = terms_from_lobes(ws.lobes)
     clear = here.transparent

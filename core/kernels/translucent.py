@@ -29,7 +29,8 @@ def translucent_light(frame, lights, geo, surf, mats, ws, colour, p, n_shading, 
         return 0.0, 0.0, 0.0
     back = scale(n_geometric, -1.0)
     turned = scale(n_shading, -1.0)
-    point = ShadingPoint(spawn_point(p, back, o), turned, d)
-    phong = Phong(colour, (0.0, 0.0, 0.0), 1.0, NO_GLINT, (1.0, 1.0, 1.0), NO_GLINT, turned)
+    point = ShadingPoint(spawn_point(p, back, o), turned, d, turned)
+    phong = Phong(colour, (0.0, 0.0, 0.0), 1.0, NO_GLINT, turned, (1.0, 1.0, 1.0), NO_GLINT,
+                  turned)  # fmt: skip
     return light_at_point(frame, lights, geo, surf, mats, ws, point, phong, p, back, key,
                           event, False, refraction_passes)  # fmt: skip

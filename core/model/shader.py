@@ -99,6 +99,18 @@ SHADER_NODES = {
         inputs={},
         outputs={"UV": "triple", "Generated": "triple", "Object": "triple", "Normal": "triple"},
     ),  # fmt: skip
+    # Blender's Geometry node: world position, the normals facing the ray, the way back
+    # along it, 1 on a surface's back (core.kernels.shader_program.geometry_vector)
+    "geometry": dict(
+        inputs={},
+        outputs={
+            "Position": "triple",
+            "Normal": "triple",
+            "True Normal": "triple",
+            "Incoming": "triple",
+            "Backfacing": "value",
+        },
+    ),  # fmt: skip
     # A mesh's colour attribute by name, "" its default one (Blender's Color Attribute and
     # Attribute nodes; core.kernels.attributes): RGB, its mean, alpha; zero where absent
     "attribute": dict(
@@ -276,6 +288,10 @@ SHADER_NODES = {
     ),  # fmt: skip
 }
 NORMAL_MAP_SPACES = ("TANGENT", "OBJECT", "WORLD")
+# The attribute name a tangent-space Normal Map reads a mesh's corner_tangents by
+# (core.kernels.attributes carries them as it does colours; no Blender attribute starts with
+# a NUL)
+TANGENT_ATTRIBUTE = "\0tangent"
 # Microfacet distributions, in the order of core.kernels.microfacet's DIST_* numbers
 DISTRIBUTIONS = ("GGX", "MULTI_GGX", "BECKMANN")
 # What dims the layers under a rough coat (core.kernels.clear_coat): the mean Fresnel over
@@ -544,6 +560,8 @@ def attribute_names(surfaces) -> list[str]:
             seen.add(id(node))
             if node.kind == "attribute":
                 names.add(node.setting("name"))
+            if node.kind == "normal_map" and node.setting("space") == "TANGENT":
+                names.add(TANGENT_ATTRIBUTE)
             stack.extend(g.node for g in node.inputs.values() if isinstance(g, Link))
     return sorted(names)
 

@@ -171,6 +171,10 @@ class TriangleMesh:
                        name (Blender's vertex and face-corner colours), or None
     default_color   -- the name of the one read where the node names none (Blender's
                        render colour), "" for none
+    corner_tangents -- (t, 3, 4) per triangle corner: the object-space tangent of the UV map
+                       (xyz) and the bitangent's sign (w), as Blender's MikkTSpace gives
+                       them, for tangent-space normal maps (interpolated over the triangle,
+                       as Cycles does); None: each triangle's own UV gradient is used
     """
 
     vertices: np.ndarray
@@ -183,6 +187,7 @@ class TriangleMesh:
     name: str = "Mesh"
     corner_colors: dict | None = None
     default_color: str = ""
+    corner_tangents: np.ndarray | None = None
 
     def open_edge_count(self) -> int:
         """How many directed edges have no opposite edge (b, a) used exactly once: 0 for
@@ -220,6 +225,7 @@ class TriangleMesh:
             ("corner_normals", self.corner_normals, (t, 3, 3)),
             ("vertex_uvs", self.vertex_uvs, (v, 2)),
             ("corner_uvs", self.corner_uvs, (t, 3, 2)),
+            ("corner_tangents", self.corner_tangents, (t, 3, 4)),
         ):
             if value is None:
                 continue
