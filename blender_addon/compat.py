@@ -22,6 +22,11 @@ PRINCIPLED_LAYERED = bpy.app.version >= (4, 0, 0)
 # in 4.2 ("NORMAL"), the mean Fresnel over its GGX lobe in 4.5 on ("LOBE"; measured by
 # tests/blender/test_cycles_clear_coat.py; 4.3 and 4.4 not tested, taken as 4.2)
 COAT_ALBEDO = "LOBE" if bpy.app.version >= (4, 5, 0) else "NORMAL"
+# Cycles before 4.5 weighs a diffuse lit through a bent normal by Chiang, Li and Burley's
+# shadow terminator term; 4.5 changed its rule (Conty Estevez et al.'s microfacet shadowing,
+# not modelled): there Whitted leaves the term out, which plane reliefs match and a
+# normal-mapped ball's rim does not (measured by tests/blender/test_cycles_tangents.py)
+BUMP_TERMINATOR = bpy.app.version < (4, 5, 0)
 
 
 # Blender 5.0 renamed the passes Cycles and EEVEE write (and multilayer EXR files carry, and

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import core
+from ..compat import BUMP_TERMINATOR
 
 
 def convert(scene) -> core.RenderSettings:
@@ -37,6 +38,7 @@ def convert(scene) -> core.RenderSettings:
         adaptive_threshold=settings.adaptive_threshold if settings.use_adaptive_pixels else 0.0,
         environment_samples=settings.environment_samples,
         glossy_samples=settings.glossy_samples,
+        bump_terminator=BUMP_TERMINATOR,
         seed=settings.seed,
         glass_shadows=settings.glass_shadows.lower(),
         caustics=_caustics(settings),

@@ -12,6 +12,7 @@ from ..kernels.options import (
     HIDDEN_FROM_DIFFUSE,
     HIDDEN_FROM_GLOSSY,
     HIDDEN_FROM_TRANSMISSION,
+    OPTION_BUMP_TERMINATOR,
     OPTION_COUNT,
     OPTION_CRYPTO_LEVELS,
     OPTION_ENVIRONMENT,
@@ -96,6 +97,7 @@ def _options(scene: Scene, settings: RenderSettings) -> np.ndarray:
     options[OPTION_ENVIRONMENT] = environment_kind(environment)
     options[OPTION_ENVIRONMENT_SAMPLES] = settings.environment_samples
     options[OPTION_GLOSSY_SAMPLES] = settings.glossy_samples
+    options[OPTION_BUMP_TERMINATOR] = settings.bump_terminator
     options[OPTION_GLASS_SHADOWS] = GLASS_SHADOWS[settings.glass_shadows]
     options[OPTION_ENVIRONMENT_CLOSEST] = (
         environment is not None and environment.interpolation == "closest"

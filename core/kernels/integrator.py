@@ -54,6 +54,7 @@ from .microfacet import (
     tinted_fresnel,
 )
 from .options import (
+    OPTION_BUMP_TERMINATOR,
     OPTION_GLASS_SHADOWS,
     OPTION_GLOSSY_SAMPLES,
     OPTION_MAX_DEPTH,
@@ -412,7 +413,9 @@ def trace_ray(ps, o, d, key, ws):
             elif WITH_PASSES and recording:
                 add_to(record, branch, seen)
         if tau < 1.0 or (coated and coat.roughness > SHARP_ROUGHNESS):  # a coat's glint
-            point = ShadingPoint(outside, n_diffuse, scale(d, -1.0), n_smooth)
+            # (the smooth normal given as the bent one: no shadow terminator term)
+            smooth = n_smooth if frame.options[OPTION_BUMP_TERMINATOR] else n_diffuse
+            point = ShadingPoint(outside, n_diffuse, scale(d, -1.0), smooth)
             opacity = 1.0 - tau
             if coated:  # the coat's glint is not under the glass's share: the rest is
                 kd = scale(kd, opacity)

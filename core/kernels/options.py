@@ -27,7 +27,10 @@ OPTION_GLOSSY_SAMPLES = 15
 OPTION_SHADOW_ADAPTIVE = 16
 # one of GLASS_SHADOWS_* (core.vocabulary): whether a shadow ray passes a refracting surface
 OPTION_GLASS_SHADOWS = 17
-OPTION_COUNT = 18
+# 1: a diffuse lit through a bent normal (Bump, Normal Map) is weighed by the shadow
+# terminator term (core.kernels.bent_normal.terminator_term); 0: not
+OPTION_BUMP_TERMINATOR = 18
+OPTION_COUNT = 19
 
 # OPTION_ENVIRONMENT_HIDDEN's bits (Blender's World > Settings > Ray Visibility, off)
 HIDDEN_FROM_CAMERA = 1

@@ -87,6 +87,10 @@ class RenderSettings:
                         spreads up to n rays over its GGX lobe (n times the share of the
                         light its lobes send on; later hits one each), blurring them as
                         Cycles does; 0 to 4096 (Blender's default: DEFAULT_GLOSSY_SAMPLES)
+    bump_terminator  -- True: a diffuse lit through a bent normal (Bump, Normal Map) is
+                        weighed by the shadow terminator term where the normal faces a light
+                        the smooth surface faces away from (Chiang, Li and Burley; Cycles
+                        before 4.5: core.kernels.bent_normal); False: not
     seed             -- selects the random numbers; the same seed gives the same picture
     transparent      -- camera rays that meet nothing are transparent: alpha 0 there and
                         fractional at edges, colour premultiplied (Blender's Film ›
@@ -137,6 +141,7 @@ class RenderSettings:
     adaptive_threshold: float = 0.0
     environment_samples: int = DEFAULT_ENVIRONMENT_SAMPLES
     glossy_samples: int = 0
+    bump_terminator: bool = True
     seed: int = 0
     shadow_culling: bool = True
     glass_shadows: str = "attenuated"
@@ -161,6 +166,7 @@ class RenderSettings:
         check_count(owner, "environment_samples", self.environment_samples, high=MAX_SHADOW_SAMPLES)
         # each waits on the ray stack (core.kernels.workspace): 4096 is a 64 x 64 lobe
         check_count(owner, "glossy_samples", self.glossy_samples, high=MAX_GLOSSY_SAMPLES)
+        check_flag(owner, "bump_terminator", self.bump_terminator)
         # Each bounce's ray waits on a stack of max_depth + 2 (core.kernels.workspace): past
         # this many, any light left is below what a pixel shows, and 1e12 asked for 21.8 TiB
         check_count(owner, "max_depth", self.max_depth, low=0, high=MAX_BOUNCES)

@@ -49,7 +49,9 @@ def test_a_balls_geometry_glows_as_in_cycles(bpy_with_whitted, tmp_path, output)
     along = (np.arange(size) + 0.5) / size * VIEW - VIEW / 2.0
     x, y = np.meshgrid(along, -along)
     inside = (x - 0.5) ** 2 + y**2 < (0.9 * 3.0) ** 2  # clear of the rim
-    close = 0.02 if output == "True Normal" else CLOSE  # the mesh's faces, the exact sphere
+    # the mesh's faces against the exact sphere: its True Normal is the faces' own, and a few
+    # of its smooth Normals differ by up to 0.004 in 5.0 (4 of 1,128 pixels)
+    close = {"True Normal": 0.02, "Normal": 0.005}.get(output, CLOSE)
     assert np.ptp(cycles[inside][:, 0]) > 0.1 or output == "Incoming"  # the premise: it varies
     np.testing.assert_allclose(whitted[inside], cycles[inside], atol=close)
 
