@@ -52,7 +52,10 @@ PROGRESS_PREFIX = "Whitted: compiling kernels: "
 READY_PREFIX = "Whitted: kernels ready"
 # One for each CPU target: a cache folder can hold the kernels of several (core.jit.relocatable)
 MARKER = f"warm-{CPU_TARGET}.ok"
-LOCK = "warm.lock"
+# One for each Python: a cache folder holds each Python's kernels apart (numba keys them by
+# its version), and a process compiling one Python's need not wait for another's (the
+# suite's lanes compile Blender 4.5's and 5.2's kernels while a window test waits on 3.4's)
+LOCK = f"warm-py{sys.version_info[0]}{sys.version_info[1]}-{CPU_TARGET}.lock"
 # The packing's and photon pass's kernels compiled beside the rest (in a process of their
 # own), unless this is set
 SERIAL_SWITCH = "WHITTED_SERIAL_WARMUP"
