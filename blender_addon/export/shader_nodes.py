@@ -80,6 +80,7 @@ OUTPUTS = {
     "COMBRGB": ("combine", {"Image": "Vector"}),
     "COMBINE_COLOR": ("combine", {"Color": "Vector"}),
     "RGBTOBW": ("to_bw", {"Val": "Val"}),
+    "BLACKBODY": ("blackbody", {"Color": "Color"}),
     "TEX_CHECKER": ("checker", {"Color": "Color", "Fac": "Fac"}),
     "TEX_GRADIENT": ("gradient", {"Color": "Color", "Fac": "Fac"}),
     "TEX_MAGIC": ("magic", {"Color": "Color", "Fac": "Fac"}),
@@ -489,6 +490,8 @@ class GraphReader:
                 made.inputs[name] = v(node, groups, name)
         elif t == "RGBTOBW":
             made.inputs["Color"] = v(node, groups, "Color")
+        elif t == "BLACKBODY":
+            made.inputs["Temperature"] = v(node, groups, "Temperature")
         elif t == "BUMP":
             for name in ("Strength", "Distance", "Height"):
                 made.inputs[name] = v(node, groups, name)
@@ -522,11 +525,13 @@ class GraphReader:
             self.note(f"{node_label(node)}'s {kind.replace('_', ' ').title()} type (used: fBM)")
 
     def _voronoi(self, node, groups, made) -> None:
-        """The Voronoi texture: 3D, features F1 and F2, every distance metric, fractal
+        """The Voronoi texture: 3D, features F1, F2 and Smooth F1, every distance metric, fractal
         octaves (Detail, Roughness, Lacunarity and Normalize came with 4.0), with the cell
         hash of this Blender's Cycles; other dimensions and features are noted."""
         made.inputs["Vector"] = self._vector(node, groups, "Vector")
-        for name in ("Scale", "Detail", "Roughness", "Lacunarity", "Exponent", "Randomness"):
+        names = ("Scale", "Detail", "Roughness", "Lacunarity", "Exponent", "Randomness",
+                 "Smoothness")  # fmt: skip
+        for name in names:
             if node.inputs.get(name) is not None:
                 made.inputs[name] = self.value(node, groups, name)
         made.settings["normalize"] = bool(getattr(node, "normalize", False))

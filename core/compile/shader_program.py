@@ -373,15 +373,16 @@ class ProgramBuilder:
                     int((id(node), "Color") in self.used))  # fmt: skip
             p.step_with_more(row, more)
         elif kind == "voronoi":
-            names = ("Scale", "Detail", "Roughness", "Lacunarity", "Randomness", "Exponent")
+            names = ("Scale", "Detail", "Roughness", "Lacunarity", "Randomness", "Exponent",
+                     "Smoothness")  # fmt: skip
             values = [v(node.input(name), "value") for name in names]
             row = (sp.OP_VORONOI, slots["Color"], slots["Distance"], slots["Position"],
                    v(node.input("Vector"), "triple", sp.COORD_GENERATED), *values[:3])  # fmt: skip
             modes = (VORONOI_FEATURES.index(node.setting("feature"))
-                     + 2 * VORONOI_METRICS.index(node.setting("distance"))
-                     + 8 * int(bool(node.setting("normalize")))
-                     + 16 * VORONOI_HASHES.index(node.setting("cell_hash")))  # fmt: skip
-            p.step_with_more(row, (*values[3:], modes))
+                     + 4 * VORONOI_METRICS.index(node.setting("distance"))
+                     + 16 * int(bool(node.setting("normalize")))
+                     + 32 * VORONOI_HASHES.index(node.setting("cell_hash")))  # fmt: skip
+            p.step_with_more(row, (*values[3:6], modes, values[6]))
         elif kind == "wave":
             row = (sp.OP_WAVE, slots["Color"], slots["Fac"],
                    v(node.input("Vector"), "triple", sp.COORD_GENERATED),
@@ -462,3 +463,5 @@ class ProgramBuilder:
                    v(node.input("Y"), "value"), v(node.input("Z"), "value"))  # fmt: skip
         elif kind == "to_bw":
             p.step(sp.OP_TO_VALUE, slots["Val"], v(node.input("Color"), "triple"))
+        elif kind == "blackbody":
+            p.step(sp.OP_BLACKBODY, slots["Color"], v(node.input("Temperature"), "value"))

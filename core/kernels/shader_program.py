@@ -15,6 +15,7 @@ Blender's lights (core.kernels.microfacet).
 import math
 
 from ..jit.decorators import kernel
+from .blackbody import blackbody_colour
 from .facing_values import facing_value
 from .microfacet import (
     DIST_BECKMANN,
@@ -112,6 +113,7 @@ OP_CLEAR_COAT_AT_NORMAL = 40
 # (core.kernels.attributes: the stack's top rows, attribute k's at attribute_slot(k))
 OP_ATTRIBUTE = 41
 OP_TRANSLUCENT = 42  # weight, colour, the Normal's slot (f)
+OP_BLACKBODY = 43  # out, temperature (kelvin)
 
 # Texture coordinates (OP_COORD)
 COORD_UV, COORD_GENERATED, COORD_OBJECT, COORD_NORMAL = 0, 1, 2, 3
@@ -574,7 +576,7 @@ def run_program(mats, material, stack, lobes, hit, frame, normal_rows, ray):
             modes = m[4]
             distance, colour, position = voronoi_texture(
                 _triple(s, c), s[d], s[e], s[f], s[m[1]], s[m[2]], s[m[3]],
-                modes % 2, (modes // 2) % 4, (modes // 8) % 2 != 0, modes // 16,
+                modes % 4, (modes // 4) % 4, (modes // 16) % 2 != 0, modes // 32, s[m[5]],
             )  # fmt: skip
             _put(s, out, colour)
             s[a] = distance
@@ -638,6 +640,8 @@ def run_program(mats, material, stack, lobes, hit, frame, normal_rows, ray):
             _put(s, out, (s[a], s[b], s[c]))
         elif op == OP_TO_VALUE:
             s[out] = luminance(_triple(s, a))
+        elif op == OP_BLACKBODY:
+            _put(s, out, blackbody_colour(s[a]))
         elif op == OP_AVERAGE:
             v = _triple(s, a)
             s[out] = (v[0] + v[1] + v[2]) / 3.0

@@ -1,7 +1,11 @@
-"""Blender's Voronoi texture (3D; features F1 and F2; the four distance metrics; fractal
-octaves), as Cycles computes it: one feature point per unit cell, placed at the cell's
-corner plus randomness times a hash of the cell, the nearest (F1) or second nearest (F2)
-of the 27 cells around the point found; Distance, Color (a hash of that cell) and Position.
+"""Blender's Voronoi texture (3D; features F1, F2 and Smooth F1; the four distance metrics;
+fractal octaves), as Cycles computes it: one feature point per unit cell, placed at the
+cell's corner plus randomness times a hash of the cell, the nearest (F1) or second nearest
+(F2) of the 27 cells around the point found; Distance, Color (a hash of that cell) and
+Position. Smooth F1 blends the 125 cells of the 5 x 5 x 5 block around the point's in a
+fixed order, each pulled in by a smoothstep of how much nearer it is than the blend so far
+(Inigo Quilez's smooth minimum), which rounds F1's creases into valleys as wide as
+Smoothness.
 
 The cell hash changed with Blender 5.0, so a graph says which it was made in:
 HASH_LOOKUP3 (before 5.0) hashes the bits of the cell's corner as float32 numbers with
@@ -20,7 +24,7 @@ from .noise import hash_uint3, hash_uint4
 
 # The numbers of core.model.shader's VORONOI_HASHES, VORONOI_FEATURES and VORONOI_METRICS
 HASH_LOOKUP3, HASH_PCG = 0, 1
-_F2 = 1
+_F2, _SMOOTH_F1 = 1, 2
 _MANHATTAN, _CHEBYCHEV, _MINKOWSKI = 1, 2, 3
 
 _LOW32 = 0xFFFFFFFF
@@ -142,14 +146,61 @@ def _lerp3(a, b, t):
 
 
 @kernel
+def _smoothstep01(x):
+    t = min(max(x, 0.0), 1.0)
+    return t * t * (3.0 - 2.0 * t)
+
+
+@kernel
+def voronoi_smooth_octave(p, metric, exponent, randomness, smoothness, flavour):
+    """One Smooth F1 octave at p (scaled), smoothness > 0 (Cycles' half of the node's
+    Smoothness, at most 0.5): (distance, colour, position). The first cell is taken whole;
+    each next one moves the blend towards itself by a smoothstep weight h, and the blend
+    is lowered by smoothness h (1 - h), the smooth minimum's rounding, which colour and
+    position share divided by 1 + 3 smoothness."""
+    fx, fy, fz = math.floor(p[0]), math.floor(p[1]), math.floor(p[2])
+    cx, cy, cz = int(fx), int(fy), int(fz)
+    lx, ly, lz = p[0] - fx, p[1] - fy, p[2] - fz
+    distance = 0.0
+    colour = (0.0, 0.0, 0.0)
+    position = (0.0, 0.0, 0.0)
+    first = True
+    for k in range(-2, 3):
+        for j in range(-2, 3):
+            for i in range(-2, 3):
+                hx, hy, hz = cell_hash(flavour, cx + i, cy + j, cz + k)
+                point = (i + hx * randomness, j + hy * randomness, k + hz * randomness)
+                d = voronoi_distance(metric, exponent, point[0] - lx, point[1] - ly, point[2] - lz)
+                if first:
+                    h = 1.0
+                    first = False
+                else:
+                    h = _smoothstep01(0.5 + 0.5 * (distance - d) / smoothness)
+                correction = smoothness * h * (1.0 - h)
+                distance = _lerp(distance, d, h) - correction
+                correction /= 1.0 + 3.0 * smoothness
+                colour = (_lerp(colour[0], hx, h) - correction,
+                          _lerp(colour[1], hy, h) - correction,
+                          _lerp(colour[2], hz, h) - correction)  # fmt: skip
+                position = (_lerp(position[0], point[0], h) - correction,
+                            _lerp(position[1], point[1], h) - correction,
+                            _lerp(position[2], point[2], h) - correction)  # fmt: skip
+    return distance, colour, (position[0] + fx, position[1] + fy, position[2] + fz)
+
+
+@kernel
 def voronoi_texture(p, scale, detail, roughness, lacunarity, randomness, exponent, feature,
-                    metric, normalize, flavour):  # fmt: skip
+                    metric, normalize, flavour, smoothness):  # fmt: skip
     """Blender's Voronoi texture at coordinate p (unscaled): (Distance, Color, Position),
     Cycles' fractal_voronoi_x_fx: octaves 0..ceil(detail), the last by detail's fraction,
-    each at lacunarity times the last's frequency and roughness times its amplitude."""
+    each at lacunarity times the last's frequency and roughness times its amplitude.
+    Smooth F1 at Smoothness 0 is F1."""
     detail = min(max(detail, 0.0), 15.0)
     roughness = min(max(roughness, 0.0), 1.0)
     randomness = min(max(randomness, 0.0), 1.0)
+    smoothness = min(max(smoothness / 2.0, 0.0), 0.5)
+    if feature == _SMOOTH_F1 and smoothness == 0.0:
+        feature = 0
     q = (p[0] * scale, p[1] * scale, p[2] * scale)
     reach = 0.5 + 0.5 * randomness
     max_distance = voronoi_distance(metric, exponent, reach, reach, reach)
@@ -160,7 +211,11 @@ def voronoi_texture(p, scale, detail, roughness, lacunarity, randomness, exponen
     single = detail == 0.0 or roughness == 0.0
     for i in range(int(math.ceil(detail)) + 1):
         scaled = (q[0] * frequency, q[1] * frequency, q[2] * frequency)
-        d, c, at = voronoi_octave(scaled, feature, metric, exponent, randomness, flavour)
+        if feature == _SMOOTH_F1:
+            d, c, at = voronoi_smooth_octave(scaled, metric, exponent, randomness, smoothness,
+                                             flavour)  # fmt: skip
+        else:
+            d, c, at = voronoi_octave(scaled, feature, metric, exponent, randomness, flavour)
         if single:
             max_amplitude, distance, colour, position = 1.0, d, c, at
             break

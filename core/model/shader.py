@@ -186,6 +186,7 @@ SHADER_NODES = {
             "Lacunarity": 2.0,
             "Exponent": 0.5,
             "Randomness": 1.0,
+            "Smoothness": 1.0,
         },
         outputs={"Distance": "value", "Color": "triple", "Position": "triple"},
         # 3D; Blender's Feature and Distance; the cell hash of the Blender that made it
@@ -275,6 +276,8 @@ SHADER_NODES = {
     ),  # fmt: skip
     "combine": dict(inputs={"X": 0.0, "Y": 0.0, "Z": 0.0}, outputs={"Vector": "triple"}),
     "to_bw": dict(inputs={"Color": (0.5, 0.5, 0.5)}, outputs={"Val": "value"}),
+    # a black body's colour at Temperature kelvin, of luminance 1 (core.blackbody)
+    "blackbody": dict(inputs={"Temperature": 1500.0}, outputs={"Color": "triple"}),
     # shading normals (a closure's Normal input)
     "bump": dict(
         inputs={"Strength": 1.0, "Distance": 1.0, "Height": 1.0},
@@ -299,7 +302,7 @@ DISTRIBUTIONS = ("GGX", "MULTI_GGX", "BECKMANN")
 COAT_ALBEDOS = ("LOBE", "NORMAL")
 # The Voronoi texture's Feature and Distance Whitted evaluates, and its two cell hashes
 # (core.kernels.voronoi), in the order of the kernel's numbers
-VORONOI_FEATURES = ("F1", "F2")
+VORONOI_FEATURES = ("F1", "F2", "SMOOTH_F1")
 VORONOI_METRICS = ("EUCLIDEAN", "MANHATTAN", "CHEBYCHEV", "MINKOWSKI")
 VORONOI_HASHES = ("LOOKUP3", "PCG")
 

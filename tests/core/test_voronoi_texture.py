@@ -158,7 +158,7 @@ def test_the_texture_is_the_nearest_and_second_nearest_feature_point(metric, fla
     for p in rng.uniform(-4.0, 4.0, size=(30, 3)):
         for feature in (0, 1):
             got = voronoi_texture(tuple(p), scale, 0.0, 0.5, 2.0, 0.8, exponent, feature,
-                                  METRICS.index(metric), False, flavour)  # fmt: skip
+                                  METRICS.index(metric), False, flavour, 1.0)  # fmt: skip
             d, colour, point = _brute_force(p * scale, flavour, 0.8, metric, exponent, feature)
             assert math.isclose(got[0], d, rel_tol=1e-12, abs_tol=1e-12)
             np.testing.assert_allclose(got[1], colour, rtol=1e-12)
@@ -174,9 +174,54 @@ def test_with_no_randomness_the_points_are_the_lattice_and_octaves_add_as_fbm():
         q = p * 3.0
         f1 = float(np.linalg.norm(q - np.round(q)))
         f1_twice = float(np.linalg.norm(2 * q - np.round(2 * q)))
-        single = voronoi_texture(tuple(p), 3.0, 0.0, 0.5, 2.0, 0.0, 1.0, 0, 0, False, HASH_PCG)
+        single = voronoi_texture(tuple(p), 3.0, 0.0, 0.5, 2.0, 0.0, 1.0, 0, 0, False, HASH_PCG, 1.0)
         assert math.isclose(single[0], f1, rel_tol=1e-12)
         np.testing.assert_allclose(single[2], np.round(q) / 3.0, rtol=1e-12, atol=1e-15)
-        fractal = voronoi_texture(tuple(p), 3.0, 1.0, 0.6, 2.0, 0.0, 1.0, 0, 0, True, HASH_PCG)
+        fractal = voronoi_texture(tuple(p), 3.0, 1.0, 0.6, 2.0, 0.0, 1.0, 0, 0, True, HASH_PCG, 1.0)
         expected = (f1 + 0.6 * f1_twice) / (1.6 * math.sqrt(3.0) * 0.5)
         assert math.isclose(fractal[0], expected, rel_tol=1e-12)
+
+
+def _smooth_reference(q, flavour, randomness, metric, exponent, smoothness):
+    """Smooth F1 at the scaled point q: the polynomial smooth minimum (k = smoothness) of
+    the 125 cells' distances folded in z, y, x order, colour and position carried along."""
+    base = np.floor(q).astype(int)
+    blend = None
+    for k in range(-2, 3):
+        for j in range(-2, 3):
+            for i in range(-2, 3):
+                cell = tuple(base + (i, j, k))
+                hashed = _reference_hash(flavour, cell)
+                point = np.array((i, j, k)) + hashed * randomness
+                d = float(_distance(metric, (point - (q - base))[None], exponent)[0])
+                if blend is None:
+                    blend = [d, hashed.copy(), point.copy()]
+                    continue
+                t = np.clip(0.5 + 0.5 * (blend[0] - d) / smoothness, 0.0, 1.0)
+                h = t * t * (3 - 2 * t)
+                rounding = smoothness * h * (1 - h)
+                blend[0] = blend[0] + (d - blend[0]) * h - rounding
+                rounding /= 1 + 3 * smoothness
+                blend[1] = blend[1] + (hashed - blend[1]) * h - rounding
+                blend[2] = blend[2] + (point - blend[2]) * h - rounding
+    return blend[0], blend[1], blend[2] + base
+
+
+@pytest.mark.parametrize("metric", ("EUCLIDEAN", "CHEBYCHEV"))
+def test_smooth_f1_is_the_smooth_minimum_below_f1_and_f1_at_smoothness_zero(metric):
+    """Smooth F1 against the smooth minimum folded here; it never exceeds F1 (a smooth
+    minimum lies below the minimum), comes within its rounding of it, and at Smoothness 0
+    is F1 itself."""
+    rng = np.random.default_rng(13)
+    m, scale = METRICS.index(metric), 2.0
+    for p in rng.uniform(-3.0, 3.0, size=(25, 3)):
+        for flavour in (HASH_LOOKUP3, HASH_PCG):
+            args = (tuple(p), scale, 0.0, 0.5, 2.0, 0.9, 1.0)
+            smooth = voronoi_texture(*args, 2, m, False, flavour, 0.6)
+            d, colour, point = _smooth_reference(p * scale, flavour, 0.9, metric, 1.0, 0.3)
+            assert math.isclose(smooth[0], d, rel_tol=1e-9, abs_tol=1e-12)
+            np.testing.assert_allclose(smooth[1], colour, rtol=1e-9, atol=1e-12)
+            np.testing.assert_allclose(smooth[2], point / scale, rtol=1e-9, atol=1e-12)
+            f1 = voronoi_texture(*args, 0, m, False, flavour, 0.6)
+            assert f1[0] - 0.3 <= smooth[0] <= f1[0] + 1e-12
+            assert voronoi_texture(*args, 2, m, False, flavour, 0.0) == f1
