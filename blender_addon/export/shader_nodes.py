@@ -81,6 +81,7 @@ OUTPUTS = {
     "COMBINE_COLOR": ("combine", {"Color": "Vector"}),
     "RGBTOBW": ("to_bw", {"Val": "Val"}),
     "BLACKBODY": ("blackbody", {"Color": "Color"}),
+    "WIREFRAME": ("wireframe", {"Fac": "Fac"}),
     "TEX_CHECKER": ("checker", {"Color": "Color", "Fac": "Fac"}),
     "TEX_GRADIENT": ("gradient", {"Color": "Color", "Fac": "Fac"}),
     "TEX_MAGIC": ("magic", {"Color": "Color", "Fac": "Fac"}),
@@ -492,6 +493,10 @@ class GraphReader:
             made.inputs["Color"] = v(node, groups, "Color")
         elif t == "BLACKBODY":
             made.inputs["Temperature"] = v(node, groups, "Temperature")
+        elif t == "WIREFRAME":
+            made.inputs["Size"] = v(node, groups, "Size")
+            if node.use_pixel_size:
+                self.note(f"{node_label(node)}'s Pixel Size (used: Size in scene units)")
         elif t == "BUMP":
             for name in ("Strength", "Distance", "Height"):
                 made.inputs[name] = v(node, groups, name)

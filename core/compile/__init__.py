@@ -33,7 +33,7 @@ from ..kernels.layout import PackedScene
 from ..kernels.options import OPTION_GLASS_SHADOWS
 from ..memory_estimate import check_fits, estimate
 from ..model import Mesh, RenderSettings, Scene
-from ..model.shader import TANGENT_ATTRIBUTE, attribute_names
+from ..model.shader import EDGE_ATTRIBUTE, TANGENT_ATTRIBUTE, attribute_names
 from .caustics import CausticReport, add_caustics
 from .csg import owner_rows, pack_csg
 from .frame import pack_frame
@@ -122,11 +122,18 @@ def _missing_attributes(shapes: list) -> list[str]:
     warnings = []
     for shape in shapes:
         surface = shape.material.surface
-        if not isinstance(shape, Mesh) or surface is None:
+        if surface is None:
+            continue
+        if not isinstance(shape, Mesh):
+            if EDGE_ATTRIBUTE in attribute_names([surface]):
+                text = (f"{shape.owner} is an exact shape: material '{shape.material.name}''s "
+                        "Wireframe has no triangle edges to draw on it (used: Fac 0)")  # fmt: skip
+                if text not in warnings:
+                    warnings.append(text)
             continue
         colors = shape.mesh.corner_colors or {}
         for name in attribute_names([surface]):
-            if name == TANGENT_ATTRIBUTE:  # none: each triangle's UV gradient is the tangent
+            if name in (TANGENT_ATTRIBUTE, EDGE_ATTRIBUTE):  # no tangents: UV gradients
                 continue
             if (name or shape.mesh.default_color) not in colors:
                 shown = f"colour attribute '{name}'" if name else "default colour attribute"

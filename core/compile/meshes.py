@@ -13,12 +13,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..kernels.attributes import EDGE_DISTANCES
 from ..kernels.bvh_build import build_bvh
 from ..kernels.bvh_collapse import collapse_to_wide
 from ..kernels.bvh_wide import LEAF_COUNT_BITS, number_leaf_blocks, offset_links
 from ..kernels.triangles import LEAF_WIDTH
 from ..model import Mesh, TriangleMesh
-from ..model.shader import TANGENT_ATTRIBUTE
+from ..model.shader import EDGE_ATTRIBUTE, TANGENT_ATTRIBUTE
 
 # Leaves of up to MESH_MAX_LEAF triangles; a node visit costs about as much as this many
 # triangle tests. Chosen on the million-triangle benchmark mesh with the four-wide BVH, all
@@ -176,6 +177,8 @@ def _add_uvs(tables, mesh, triangles, source) -> int:
 def _add_colors(tables, mesh, source, name: str) -> int:
     """The mesh's colour attribute `name` ("": its default one) for its triangle slots;
     its first row, or -1 if it has none of that name."""
+    if name == EDGE_ATTRIBUTE:  # computed at the hit from the triangle's corners
+        return EDGE_DISTANCES
     colors = mesh.corner_colors or {}
     if name == TANGENT_ATTRIBUTE:  # (a tangent-space Normal Map's)
         colors = {} if mesh.corner_tangents is None else {name: mesh.corner_tangents}

@@ -21,6 +21,7 @@ from ..kernels import shader_program as sp
 from ..kernels.facing_values import FACING_FRESNEL, FACING_LAYER_FACING, FACING_LAYER_FRESNEL
 from ..model.shader import (
     DISTRIBUTIONS,
+    EDGE_ATTRIBUTE,
     EXTENSIONS,
     GRADIENT_TYPES,
     MAPPING_TYPES,
@@ -463,5 +464,10 @@ class ProgramBuilder:
                    v(node.input("Y"), "value"), v(node.input("Z"), "value"))  # fmt: skip
         elif kind == "to_bw":
             p.step(sp.OP_TO_VALUE, slots["Val"], v(node.input("Color"), "triple"))
+        elif kind == "wireframe":
+            edges = sp.attribute_slot(self.attribute_names.index(EDGE_ATTRIBUTE))
+            p.step(sp.OP_WIREFRAME, slots["Fac"], v(node.input("Size"), "value"), edges)
+            p.varying = True
+            p.attributes = len(self.attribute_names)
         elif kind == "blackbody":
             p.step(sp.OP_BLACKBODY, slots["Color"], v(node.input("Temperature"), "value"))

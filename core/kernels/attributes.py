@@ -5,15 +5,25 @@ weights of the hit point, and left on the program's stack at attribute_slot(k), 
 OP_ATTRIBUTE reads it. A shape without the attribute (an analytic shape, a mesh that lacks
 it) reads zero, as Cycles reads a missing attribute.
 
+One attribute is computed, not stored (core.model.shader.EDGE_ATTRIBUTE, the Wireframe
+node's): the distances, in world units, from the hit point to the lines of its triangle's
+three edges, as Cycles measures them for the Wireframe node, and 1 (zeros off a mesh,
+which has no edges to draw).
+
 Called before the program runs, only for a material whose program reads attributes
 (Materials.shader_frame's READS_ATTRIBUTES bit).
 """
+
+import math
 
 from ..jit.decorators import kernel
 from .shader_program import SHADER_STACK
 from .shapes import SHAPE_MESH
 from .surface import _corner  # a leaf block's triangle corner
-from .vec import affine_point, dot, sub
+from .vec import affine_point, cross, dot, sub
+
+# Meshes.color_offset's mark for the computed edge distances (core.compile.meshes)
+EDGE_DISTANCES = -2
 
 # Materials.shader_frame's bits: what a program reads beyond the hit's own coordinates
 READS_FRAME = 1  # the surface's tangents and steps across it (Bump, Normal Map)
@@ -40,18 +50,66 @@ def _barycentric(geo, tri, p_object):
 
 
 @kernel
+def _to_world(geo, shape, v):
+    """Object-space direction v in world space: the inverse of the linear part of the
+    shape's object-from-world rows, by cofactors."""
+    m = geo.shape_object_from_world
+    a, b, c = m[shape, 0, 0], m[shape, 0, 1], m[shape, 0, 2]
+    d, e, f = m[shape, 1, 0], m[shape, 1, 1], m[shape, 1, 2]
+    g, h, i = m[shape, 2, 0], m[shape, 2, 1], m[shape, 2, 2]
+    ca, cb, cc = e * i - f * h, f * g - d * i, d * h - e * g
+    det = a * ca + b * cb + c * cc
+    if det == 0.0:
+        return v
+    return (
+        (ca * v[0] + (c * h - b * i) * v[1] + (b * f - c * e) * v[2]) / det,
+        (cb * v[0] + (a * i - c * g) * v[1] + (c * d - a * f) * v[2]) / det,
+        (cc * v[0] + (b * g - a * h) * v[1] + (a * e - b * d) * v[2]) / det,
+    )
+
+
+@kernel
+def _line_distance(geo, shape, a, b, p_object):
+    """World distance from the object-space point to the line through corners a and b:
+    |(p - a) x (b - a)| / |b - a|, as Cycles' Wireframe measures it."""
+    edge = _to_world(geo, shape, sub(b, a))
+    to_p = _to_world(geo, shape, sub(p_object, a))
+    along = dot(edge, edge)
+    if along == 0.0:
+        return math.sqrt(dot(to_p, to_p))
+    c = cross(to_p, edge)
+    return math.sqrt(dot(c, c) / along)
+
+
+@kernel
+def edge_distances(geo, shape, tri, p_object):
+    """World distances from the object-space point to the lines of mesh triangle slot
+    `tri`'s edges 0-1, 1-2 and 2-0."""
+    corners = geo.tri_corners
+    a, b, c = _corner(corners, tri, 0), _corner(corners, tri, 3), _corner(corners, tri, 6)
+    return (_line_distance(geo, shape, a, b, p_object),
+            _line_distance(geo, shape, b, c, p_object),
+            _line_distance(geo, shape, c, a, p_object))  # fmt: skip
+
+
+@kernel
 def put_attributes(geo, surf, shape, part, p, stack):
     """Write every colour attribute at world point p of shape row `shape` (mesh triangle
     slot `part`) to the stack's top (the module's layout)."""
     count = surf.mesh_color_offset.shape[1]
     mesh = geo.shape_index[shape] if geo.shape_kind[shape] == SHAPE_MESH else -1
     weights = (0.0, 0.0, 0.0)
+    p_object = p
     if mesh >= 0:
         p_object = affine_point(geo.shape_object_from_world, shape, p)
         weights = _barycentric(geo, part, p_object)
     for k in range(count):
         slot = SHADER_STACK - 4 * (k + 1)
         first = surf.mesh_color_offset[mesh, k] if mesh >= 0 else -1
+        if first == EDGE_DISTANCES:
+            d0, d1, d2 = edge_distances(geo, shape, part, p_object)
+            stack[slot], stack[slot + 1], stack[slot + 2], stack[slot + 3] = d0, d1, d2, 1.0
+            continue
         if first < 0:
             for c in range(4):
                 stack[slot + c] = 0.0

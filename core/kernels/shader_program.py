@@ -114,6 +114,9 @@ OP_CLEAR_COAT_AT_NORMAL = 40
 OP_ATTRIBUTE = 41
 OP_TRANSLUCENT = 42  # weight, colour, the Normal's slot (f)
 OP_BLACKBODY = 43  # out, temperature (kelvin)
+# out, size, the slot of the hit's distances to its triangle's edges (an attribute's,
+# core.kernels.attributes: three distances and 1, or zeros off a mesh)
+OP_WIREFRAME = 44
 
 # Texture coordinates (OP_COORD)
 COORD_UV, COORD_GENERATED, COORD_OBJECT, COORD_NORMAL = 0, 1, 2, 3
@@ -640,6 +643,12 @@ def run_program(mats, material, stack, lobes, hit, frame, normal_rows, ray):
             _put(s, out, (s[a], s[b], s[c]))
         elif op == OP_TO_VALUE:
             s[out] = luminance(_triple(s, a))
+        elif op == OP_WIREFRAME:
+            # Cycles keeps the half width's square, so a negative Size draws as its size
+            half = 0.5 * abs(s[a])
+            s[out] = 0.0
+            if s[b + 3] != 0.0 and min(s[b], s[b + 1], s[b + 2]) < half:
+                s[out] = 1.0
         elif op == OP_BLACKBODY:
             _put(s, out, blackbody_colour(s[a]))
         elif op == OP_AVERAGE:

@@ -276,6 +276,8 @@ SHADER_NODES = {
     ),  # fmt: skip
     "combine": dict(inputs={"X": 0.0, "Y": 0.0, "Z": 0.0}, outputs={"Vector": "triple"}),
     "to_bw": dict(inputs={"Color": (0.5, 0.5, 0.5)}, outputs={"Val": "value"}),
+    # 1 within Size / 2 (world units) of an edge of the mesh's triangles, else 0
+    "wireframe": dict(inputs={"Size": 0.01}, outputs={"Fac": "value"}),
     # a black body's colour at Temperature kelvin, of luminance 1 (core.blackbody)
     "blackbody": dict(inputs={"Temperature": 1500.0}, outputs={"Color": "triple"}),
     # shading normals (a closure's Normal input)
@@ -295,6 +297,9 @@ NORMAL_MAP_SPACES = ("TANGENT", "OBJECT", "WORLD")
 # (core.kernels.attributes carries them as it does colours; no Blender attribute starts with
 # a NUL)
 TANGENT_ATTRIBUTE = "\0tangent"
+# ... and the Wireframe node reads the distances to the hit triangle's edges by this one
+# (computed at the hit, not stored: core.kernels.attributes)
+EDGE_ATTRIBUTE = "\0edges"
 # Microfacet distributions, in the order of core.kernels.microfacet's DIST_* numbers
 DISTRIBUTIONS = ("GGX", "MULTI_GGX", "BECKMANN")
 # What dims the layers under a rough coat (core.kernels.clear_coat): the mean Fresnel over
@@ -565,6 +570,8 @@ def attribute_names(surfaces) -> list[str]:
                 names.add(node.setting("name"))
             if node.kind == "normal_map" and node.setting("space") == "TANGENT":
                 names.add(TANGENT_ATTRIBUTE)
+            if node.kind == "wireframe":
+                names.add(EDGE_ATTRIBUTE)
             stack.extend(g.node for g in node.inputs.values() if isinstance(g, Link))
     return sorted(names)
 

@@ -301,6 +301,14 @@ def _voronoi_smooth_f1(bpy, tree):
     return multiply.outputs["Vector"]
 
 
+def _wireframe(bpy, tree):
+    """The Wireframe's Fac (Size 0.5) as Emission Strength: the plane's quad, triangulated
+    by both renderers alike, shows its diagonal as a band 0.5 wide."""
+    wire = tree.nodes.new("ShaderNodeWireframe")
+    wire.inputs["Size"].default_value = 0.5
+    return ("strength", wire.outputs["Fac"])
+
+
 def _blackbody_across(bpy, tree):
     """A Blackbody whose Temperature runs across the picture, 700 K to 13100 K (Object x):
     both of Cycles' held ends and the red-to-blue locus between them."""
@@ -356,6 +364,7 @@ GRAPHS = {
     "voronoi_f2_distance_generated": _voronoi_f2_distance,
     "voronoi_fractal_position": _voronoi_fractal_position,
     "voronoi_smooth_f1": _voronoi_smooth_f1,
+    "wireframe": _wireframe,
 }
 
 
