@@ -27,6 +27,9 @@ COAT_ALBEDO = "LOBE" if bpy.app.version >= (4, 5, 0) else "NORMAL"
 # not modelled): there Whitted leaves the term out, which plane reliefs match and a
 # normal-mapped ball's rim does not (measured by tests/blender/test_cycles_tangents.py)
 BUMP_TERMINATOR = bpy.app.version < (4, 5, 0)
+# A rough diffuse's Oren-Nayar: energy-preserving from 4.3, Fujii's before
+# (core.kernels.rough_diffuse; measured against 4.2 and 4.5 by test_cycles_rough_diffuse.py)
+ROUGH_DIFFUSE = "EON" if bpy.app.version >= (4, 3, 0) else "FON"
 
 
 # Blender 5.0 renamed the passes Cycles and EEVEE write (and multilayer EXR files carry, and

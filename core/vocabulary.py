@@ -39,6 +39,10 @@ SHADOW_PATTERNS = {"uniform": SHADOW_UNIFORM, "stratified": SHADOW_STRATIFIED,
 GLASS_SHADOWS_ATTENUATED, GLASS_SHADOWS_BLOCKED = 0, 1
 GLASS_SHADOWS = {"attenuated": GLASS_SHADOWS_ATTENUATED, "blocked": GLASS_SHADOWS_BLOCKED}
 
+# Which Oren-Nayar model a rough diffuse follows (core.kernels.rough_diffuse's ROUGH_*):
+# the energy-preserving one (Cycles from 4.3) or Fujii's (before)
+ROUGH_DIFFUSE_MODELS = {"EON": 0, "FON": 1}
+
 # How camera rays leave the camera: from the eye through the image plane, or parallel to the
 # view from every point of the image plane
 PROJECTION_PERSPECTIVE, PROJECTION_ORTHOGRAPHIC = 0, 1

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import core
-from ..compat import BUMP_TERMINATOR
+from ..compat import BUMP_TERMINATOR, ROUGH_DIFFUSE
 
 
 def convert(scene) -> core.RenderSettings:
@@ -39,6 +39,7 @@ def convert(scene) -> core.RenderSettings:
         environment_samples=settings.environment_samples,
         glossy_samples=settings.glossy_samples,
         bump_terminator=BUMP_TERMINATOR,
+        rough_diffuse=ROUGH_DIFFUSE,
         seed=settings.seed,
         glass_shadows=settings.glass_shadows.lower(),
         caustics=_caustics(settings),

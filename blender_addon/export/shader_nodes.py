@@ -23,9 +23,20 @@ _UNMODELLED = (
     ("Subsurface", 0.0, "the base colour as diffuse"),
     ("Anisotropic", 0.0, "isotropic"),
     ("Thin Film Thickness", 0.0, "no thin film"),
-    ("Diffuse Roughness", 0.0, "Lambert"),
 )
 NO_ABSORPTION = (0.0, 0.0, 0.0)
+# Shaders Whitted does not model, drawn as the nearest it does (with a warning), not black:
+# Blender node.type -> (core kind, what the warning says is used)
+_STAND_INS = {
+    # light leaving near where it entered: at Whitted's scale, a diffuse of the colour
+    "SUBSURFACE_SCATTERING": ("diffuse", "a Diffuse BSDF of its Color"),
+    "BSDF_TOON": ("diffuse", "a Diffuse BSDF of its Color"),
+    "BSDF_HAIR": ("diffuse", "a Diffuse BSDF of its Color"),
+    "BSDF_HAIR_PRINCIPLED": ("diffuse", "a Diffuse BSDF of its Color"),
+    # unlinked Position and Direction: the ray goes on through the surface, as through glass
+    # of index 1
+    "BSDF_RAY_PORTAL": ("transparent", "a Transparent BSDF of its Color"),
+}
 # Blender's Math operations Whitted computes (the others: noted, their A used)
 MATH = set(core.model.shader.MATH_OPERATIONS)
 BLENDS = set(core.model.shader.MIX_BLENDS)
@@ -216,7 +227,7 @@ class GraphReader:
         if kind == "BSDF_PRINCIPLED":
             return self._principled(node, groups)
         simple = {
-            "BSDF_DIFFUSE": ("diffuse", ("Color",)),
+            "BSDF_DIFFUSE": ("diffuse", ("Color", "Roughness")),
             "BSDF_TRANSLUCENT": ("translucent", ("Color",)),
             "BSDF_GLOSSY": ("glossy", ("Color", "Roughness")),
             "BSDF_ANISOTROPIC": ("glossy", ("Color", "Roughness")),
@@ -227,6 +238,8 @@ class GraphReader:
             "EMISSION": ("emission", ("Color", "Strength")),
             "HOLDOUT": ("holdout", ()),
         }
+        if kind in _STAND_INS:
+            return self._stand_in(node, groups)
         if kind not in simple:
             self.note(f"node {node_label(node)} is not a shader Whitted renders (used: black)")
             return None
@@ -235,10 +248,25 @@ class GraphReader:
         for name in names:
             made.inputs[name] = v(node, groups, name)
         self._distribution(node, made)
-        if kind == "BSDF_DIFFUSE" and _number(node.inputs["Roughness"]) > 0.0:
-            self.note(f"{node_label(node)}'s Roughness is not modelled (used: Lambert, 0)")
         if kind == "BSDF_METALLIC" and getattr(node, "fresnel_type", "F82") != "F82":
             self.note(f"{node_label(node)}'s Physical Conductor Fresnel (used: F82 Tint)")
+        self._normal(made, node, groups)
+        return made
+
+    def _stand_in(self, node, groups):
+        """A shader Whitted does not model drawn as the nearest one it does (_STAND_INS),
+        named in a warning: never black, as a missing shader would be."""
+        core_kind, used = _STAND_INS[node.type]
+        made = core.ShaderNode(core_kind, name=node.name)
+        made.inputs["Color"] = self.value(node, groups, "Color")
+        if node.type == "BSDF_RAY_PORTAL":
+            for name in ("Position", "Direction"):
+                self.linked(node, groups, name, "the ray goes on where it is")
+        if node.type == "BSDF_TOON" and getattr(node, "component", "DIFFUSE") == "GLOSSY":
+            colour, size = self.value(node, groups, "Color"), self.value(node, groups, "Size")
+            made = core.ShaderNode("glossy", {"Color": colour, "Roughness": size}, name=node.name)
+            used = "a Glossy BSDF of its Color, Size as roughness"
+        self.note(f"{node_label(node)} is not modelled (used: {used})")
         self._normal(made, node, groups)
         return made
 
@@ -248,7 +276,8 @@ class GraphReader:
         are GGX's: noted when rough); a Sharp one (before 4.0) has no roughness, and
         Ashikhmin-Shirley is noted when rough (drawn as Multiscatter GGX)."""
         distribution = getattr(node, "distribution", "GGX")
-        if "Roughness" not in made.inputs:
+        settings = core.model.shader.SHADER_NODES[made.kind].get("settings", {})
+        if "Roughness" not in made.inputs or "distribution" not in settings:
             return
         rough = isinstance(made.inputs["Roughness"], core.Link) or made.inputs["Roughness"] > 0.0
         if distribution in core.model.shader.DISTRIBUTIONS:
@@ -295,6 +324,7 @@ class GraphReader:
             "Base Color": ("Base Color",),
             "Metallic": ("Metallic",),
             "Roughness": ("Roughness",),
+            "Diffuse Roughness": ("Diffuse Roughness",),
             "IOR": ("IOR",),
             "Alpha": ("Alpha",),
             "Transmission": ("Transmission Weight", "Transmission"),

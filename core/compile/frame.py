@@ -26,6 +26,7 @@ from ..kernels.options import (
     OPTION_PIXEL_PATTERN,
     OPTION_PIXEL_SAMPLES,
     OPTION_PROJECTION,
+    OPTION_ROUGH_DIFFUSE,
     OPTION_SEED,
     OPTION_SHADOW_ADAPTIVE,
     OPTION_SHADOW_CULLING,
@@ -42,7 +43,7 @@ from ..kernels.options import (
 )
 from ..model import RenderSettings, Scene
 from ..passes import MIST_FALLOFFS, layout
-from ..vocabulary import GLASS_SHADOWS
+from ..vocabulary import GLASS_SHADOWS, ROUGH_DIFFUSE_MODELS
 from .environment import environment_kind
 
 # Listing an area light's shapes costs about as much per shading point as tracing a few
@@ -98,6 +99,7 @@ def _options(scene: Scene, settings: RenderSettings) -> np.ndarray:
     options[OPTION_ENVIRONMENT_SAMPLES] = settings.environment_samples
     options[OPTION_GLOSSY_SAMPLES] = settings.glossy_samples
     options[OPTION_BUMP_TERMINATOR] = settings.bump_terminator
+    options[OPTION_ROUGH_DIFFUSE] = ROUGH_DIFFUSE_MODELS[settings.rough_diffuse]
     options[OPTION_GLASS_SHADOWS] = GLASS_SHADOWS[settings.glass_shadows]
     options[OPTION_ENVIRONMENT_CLOSEST] = (
         environment is not None and environment.interpolation == "closest"

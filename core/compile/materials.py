@@ -92,6 +92,7 @@ def pack_materials(shapes: list, attribute_names=()) -> tuple[Materials, dict[in
         mirror_dip=np.zeros((len(materials), 3)),
         absorption=rows([m.absorption for m, _ in materials]),
         translucent=rows([m.translucent for m, _ in materials]),
+        diffuse_roughness=np.array([m.diffuse_roughness for m, _ in materials], float),
         texture_alpha=concatenated([a.ravel() for _, a in textures.loaded], (0,), np.float32),
         **_program_tables(programs),
     )
@@ -174,7 +175,8 @@ def _fold_constant_programs(table: Materials, programs: list) -> None:
         table.clear_coat[k] = row[36 + GLOSS_COLUMNS : 36 + GLOSS_COLUMNS + CLEAR_COAT_COLUMNS]
         table.coat[k, 3:] = row[36 + GLOSS_COLUMNS + CLEAR_COAT_COLUMNS :][:3]
         table.mirror_dip[k] = row[39 + GLOSS_COLUMNS + CLEAR_COAT_COLUMNS :][:3]
-        table.translucent[k] = row[42 + GLOSS_COLUMNS + CLEAR_COAT_COLUMNS :]
+        table.translucent[k] = row[42 + GLOSS_COLUMNS + CLEAR_COAT_COLUMNS :][:3]
+        table.diffuse_roughness[k] = row[45 + GLOSS_COLUMNS + CLEAR_COAT_COLUMNS]
         table.shader_range[k] = (-1, -1)
 
 
@@ -221,7 +223,7 @@ def folded_row(table: Materials, k: int) -> dict:
         transparent=table.transparent[k], holdout=table.holdout[k],
         roughness=table.roughness[k], programmed=table.shader_range[k, 0] >= 0,
         gloss=table.gloss[k], clear_coat=table.clear_coat[k],
-        translucent=table.translucent[k],
+        translucent=table.translucent[k], diffuse_roughness=table.diffuse_roughness[k],
     )  # fmt: skip
 
 

@@ -191,8 +191,8 @@ class ProgramBuilder:
             return
         v = self.value
         if kind == "diffuse":
-            p.step(sp.OP_DIFFUSE, weight, v(node.input("Color"), "triple"), 0, 0, 0, 0,
-                   self._normal(node))  # fmt: skip
+            p.step(sp.OP_DIFFUSE, weight, v(node.input("Color"), "triple"),
+                   v(node.input("Roughness"), "value"), 0, 0, 0, self._normal(node))  # fmt: skip
         elif kind == "translucent":
             p.step(sp.OP_TRANSLUCENT, weight, v(node.input("Color"), "triple"), 0, 0, 0, 0,
                    self._normal(node))  # fmt: skip
@@ -227,6 +227,7 @@ class ProgramBuilder:
                     v(node.input("Specular Tint"), "triple"),
                     int(bool(node.setting("layered"))), _distribution(node))  # fmt: skip
             p.step_with_more(row, more)
+            p.step(sp.OP_DIFFUSE_ROUGHNESS, weight, v(node.input("Diffuse Roughness"), "value"))
             if coated(node):
                 coat_normal = node.input("Coat Normal")
                 op = sp.OP_CLEAR_COAT if node.setting("coat_albedo") == "LOBE" \

@@ -41,6 +41,7 @@ from .options import (
     EMITTER_SPHERE,
     EMITTER_SUN_CONE,
     EMITTER_SUN_DISK,
+    OPTION_ROUGH_DIFFUSE,
     OPTION_SHADOW_ADAPTIVE,
     OPTION_SHADOW_CULLING,
     OPTION_SHADOW_PATTERN,
@@ -48,6 +49,7 @@ from .options import (
     SHADOW_HALTON,
 )
 from .rng import PURPOSE_LIGHT_SHIFT, uniform2
+from .rough_diffuse import rough_response
 from .shading import AreaLight, add_falling, light_candidates, seen_through
 from .shadow_rays import PROBES, light_visibility, probe_square
 from .vec import add, dot, mul, row, scale, sub
@@ -120,6 +122,7 @@ def emitted_colour(frame, lights, geo, stacks, point, phong, key, event, split):
     targets, visibility, terms = stacks.light_targets, stacks.visibility, stacks.terms
     origin, n, to_viewer = point.origin, point.normal, point.to_viewer
     kd, ks, shininess, gloss = phong.kd, phong.ks, phong.shininess, phong.gloss
+    rough, model = phong.diffuse_roughness, frame.options[OPTION_ROUGH_DIFFUSE]
     glints = gloss.alpha > 0.0
     coat_glints = phong.coat_gloss.alpha > 0.0
     glossy = glints or coat_glints or ks[0] > 0.0 or ks[1] > 0.0 or ks[2] > 0.0
@@ -189,13 +192,16 @@ def emitted_colour(frame, lights, geo, stacks, point, phong, key, event, split):
             if n_dot_l <= 0.0:
                 continue
             factor = diffuse * n_dot_l * terminator_term(point.smooth_normal, n, light_dir)
+            reflectance = kd
+            if rough > 0.0:  # Oren-Nayar: kd's stand-in for this light and view
+                reflectance = rough_response(kd, rough, model, n, light_dir, to_viewer)
             if specular > 0.0 and not glints:  # the report's Phong highlight
                 reflected = sub(scale(n, 2.0 * n_dot_l), light_dir)
                 r_dot_v = min(dot(reflected, to_viewer), 1.0)
                 if r_dot_v > 0.0:
                     highlight = r_dot_v**shininess
                     total = add(total, mul(ks, scale(seen, highlight * weight)))
-            total = add(total, mul(kd, scale(seen, factor * weight)))
+            total = add(total, mul(reflectance, scale(seen, factor * weight)))
             if split and diffuse > 0.0:
                 falling = scale(radiance, weight / count)
                 add_falling(terms, light_dir, falling, seen, n, 1.0)

@@ -34,10 +34,12 @@ from .options import (
     OPTION_ENVIRONMENT_CLOSEST,
     OPTION_ENVIRONMENT_HIDDEN,
     OPTION_ENVIRONMENT_SAMPLES,
+    OPTION_ROUGH_DIFFUSE,
     OPTION_SHADOW_PATTERN,
     SHADOW_HALTON,
 )
 from .rng import PURPOSE_LIGHT_SHIFT, uniform2
+from .rough_diffuse import rough_response
 from .shading import add_falling, seen_through
 from .shadow_rays import shadow_visibility
 from .surface import bilinear, nearest
@@ -139,9 +141,11 @@ def sample_image(lights, a, b):
 
 
 @kernel
-def environment_light(frame, lights, geo, stacks, point, kd, key, event, split):
+def environment_light(frame, lights, geo, stacks, point, kd, rough, key, event, split):
     """The environment's diffuse light at a `ShadingPoint` of a surface of diffuse colour
-    kd (the module's formula). With `split`, stacks.terms gets the light falling too."""
+    kd (the module's formula), Oren-Nayar's of roughness `rough` where it is above 0
+    (core.kernels.rough_diffuse, each direction's stand-in for kd). With `split`,
+    stacks.terms gets the light falling too."""
     kind = frame.options[OPTION_ENVIRONMENT]
     samples = frame.options[OPTION_ENVIRONMENT_SAMPLES]
     if kind == ENVIRONMENT_NONE or samples == 0:
@@ -180,7 +184,11 @@ def environment_light(frame, lights, geo, stacks, point, kd, key, event, split):
         radiance = scale(environment_radiance(frame, lights, d), targets[j, 4] / samples)
         seen = seen_through(stacks, j)
         cos = dot(n, d) * terminator_term(point.smooth_normal, n, d)
-        total = add(total, mul(radiance, scale(seen, cos)))
+        reflectance = kd
+        if rough > 0.0:
+            model = frame.options[OPTION_ROUGH_DIFFUSE]
+            reflectance = rough_response(kd, rough, model, n, d, point.to_viewer)
+        total = add(total, mul(reflectance, mul(radiance, scale(seen, cos))))
         if split:
             add_falling(terms, d, radiance, seen, n, 1.0)
-    return mul(kd, total)
+    return total

@@ -420,11 +420,13 @@ def trace_ray(ps, o, d, key, ws):
             if coated:  # the coat's glint is not under the glass's share: the rest is
                 kd = scale(kd, opacity)
                 phong = Phong(kd, here.ks, here.shininess, here.gloss, n_shading,
-                              scale(under, opacity), coat_glint(coat), n_coat)  # fmt: skip
+                              scale(under, opacity), coat_glint(coat), n_coat,
+                              here.diffuse_roughness)  # fmt: skip
                 opacity = 1.0
             else:
                 phong = Phong(kd, here.ks, here.shininess, here.gloss, n_shading,
-                              (1.0, 1.0, 1.0), NO_GLINT, n_coat)  # fmt: skip
+                              (1.0, 1.0, 1.0), NO_GLINT, n_coat,
+                              here.diffuse_roughness)  # fmt: skip
             local = light_at_point(frame, lights, geo, surf, mats, ws, point, phong, p,
                                    n_geometric, key, event, first and split,
                                    refraction_passes)  # fmt: skip

@@ -142,6 +142,8 @@ class Materials(NamedTuple):
     absorption: np.ndarray
     # float64 (q, 3): Lambertian transmission (core.kernels.translucent)
     translucent: np.ndarray
+    # float64 (q,): the diffuse's Oren-Nayar roughness (core.kernels.rough_diffuse)
+    diffuse_roughness: np.ndarray
 
 
 class Lights(NamedTuple):

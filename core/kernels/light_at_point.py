@@ -18,12 +18,13 @@ from .emitters import emitted_colour
 from .environment import environment_light
 from .features import WITH_CAUSTICS, WITH_EMITTERS, WITH_ENVIRONMENT, WITH_VARYING_SHADOWS
 from .layout import ENVIRONMENT_NONE
-from .options import OPTION_ENVIRONMENT
+from .options import OPTION_ENVIRONMENT, OPTION_ROUGH_DIFFUSE
 from .pass_record import TERM_ROW_LIT, TERM_ROW_UNSHADOWED
+from .rough_diffuse import rough_albedo
 from .shading import local_colour
 from .shadow_crossing import answer_crossings
 from .shadow_log import begin_point
-from .vec import add, mul, scale
+from .vec import add, dot, mul, scale
 
 
 @inlined_kernel
@@ -43,7 +44,16 @@ def light_at_point(frame, lights, geo, surf, mats, ws, point, phong, p, n_geomet
             local = add(local, emitted)
         if WITH_ENVIRONMENT and frame.options[OPTION_ENVIRONMENT] != ENVIRONMENT_NONE:
             sky = environment_light(
-                frame, lights, geo, stacks, point, phong.kd, key, event, splitting
+                frame,
+                lights,
+                geo,
+                stacks,
+                point,
+                phong.kd,
+                phong.diffuse_roughness,
+                key,
+                event,
+                splitting,
             )
             local = add(local, sky)
         # shadow rays that crossed surfaces whose share varies: their shares, then the
@@ -53,7 +63,12 @@ def light_at_point(frame, lights, geo, surf, mats, ws, point, phong, p, n_geomet
         break
     if WITH_CAUSTICS and lights.photon_cells.shape[0] > 0:
         falling = scale(caustic_irradiance(lights, p, n_geometric), 1.0 / math.pi)
-        local = add(local, mul(phong.kd, falling))
+        kd = phong.kd
+        if phong.diffuse_roughness > 0.0:  # the photons' directions are not kept: the albedo
+            mu_v = dot(point.normal, point.to_viewer)
+            kd = rough_albedo(kd, phong.diffuse_roughness, frame.options[OPTION_ROUGH_DIFFUSE],
+                              mu_v)  # fmt: skip
+        local = add(local, mul(kd, falling))
         if splitting:  # the diffuse pass holds it, as light falling on the point
             for a in range(3):
                 stacks.terms[TERM_ROW_LIT, a] += falling[a]

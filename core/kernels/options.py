@@ -30,7 +30,8 @@ OPTION_GLASS_SHADOWS = 17
 # 1: a diffuse lit through a bent normal (Bump, Normal Map) is weighed by the shadow
 # terminator term (core.kernels.bent_normal.terminator_term); 0: not
 OPTION_BUMP_TERMINATOR = 18
-OPTION_COUNT = 19
+OPTION_ROUGH_DIFFUSE = 19  # core.kernels.rough_diffuse's ROUGH_EON or ROUGH_FON
+OPTION_COUNT = 20
 
 # OPTION_ENVIRONMENT_HIDDEN's bits (Blender's World > Settings > Ray Visibility, off)
 HIDDEN_FROM_CAMERA = 1

@@ -14,7 +14,7 @@ from .surface_terms import (
 )
 
 # The columns of a folded row (fold_surfaces' out), in Surface's order
-FOLDED_COLUMNS = 36 + GLOSS_COLUMNS + CLEAR_COAT_COLUMNS + 9
+FOLDED_COLUMNS = 36 + GLOSS_COLUMNS + CLEAR_COAT_COLUMNS + 10
 
 
 @kernel
@@ -28,7 +28,7 @@ def fold_surfaces(mats, rows, out):
     to a row of `out` (FOLDED_COLUMNS: kd, ks, shininess, reflectivity, transparency, outer
     and inner IOR, mirror normal and edge, hides lights, coat, coat IOR, coat hides, glass
     reflect and transmit, refraction Fresnel, emission, transparent, holdout, roughness,
-    gloss, clear coat, coat tint, mirror dip, translucent)."""
+    gloss, clear coat, coat tint, mirror dip, translucent, diffuse roughness)."""
     stack = np.zeros(SHADER_STACK)
     lobes = np.zeros(LOBE_COUNT)
     zero = (0.0, 0.0, 0.0)
@@ -63,3 +63,4 @@ def fold_surfaces(mats, rows, out):
         _three(o, 36 + GLOSS_COLUMNS + CLEAR_COAT_COLUMNS, s.coat_tint)
         _three(o, 39 + GLOSS_COLUMNS + CLEAR_COAT_COLUMNS, s.mirror_dip)
         _three(o, 42 + GLOSS_COLUMNS + CLEAR_COAT_COLUMNS, s.translucent)
+        o[45 + GLOSS_COLUMNS + CLEAR_COAT_COLUMNS] = s.diffuse_roughness

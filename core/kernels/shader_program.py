@@ -94,7 +94,7 @@ OP_MAGIC = 36  # out colour, out fac, vector, scale, distortion, depth
 OP_WAVE = 37
 OP_WHITE_NOISE = 38  # out colour, out value, vector, w, dimensions
 # Closures take their Normal input's slot in the last column (f), or -1 for the surface's
-OP_DIFFUSE = 20  # weight, colour
+OP_DIFFUSE = 20  # weight, colour, roughness
 OP_GLOSSY = 21  # weight, colour, roughness, distribution (microfacet.DIST_*)
 OP_METALLIC = 22  # weight, base, edge tint, roughness, distribution
 OP_GLASS = 23  # weight, colour, IOR, 1 glass / 0 refraction, roughness, distribution
@@ -114,6 +114,8 @@ OP_CLEAR_COAT_AT_NORMAL = 40
 OP_ATTRIBUTE = 41
 OP_TRANSLUCENT = 42  # weight, colour, the Normal's slot (f)
 OP_BLACKBODY = 43  # out, temperature (kelvin)
+# weight, roughness: a Principled BSDF's Diffuse Roughness, a step after its OP_PRINCIPLED
+OP_DIFFUSE_ROUGHNESS = 45
 # out, size, the slot of the hit's distances to its triangle's edges (an attribute's,
 # core.kernels.attributes: three distances and 1, or zeros off a mesh)
 OP_WIREFRAME = 44
@@ -195,7 +197,9 @@ L_GLOSS_COAT_TINT = 68
 L_DIP = 71
 L_GLOSS_DIP = 74
 L_TRANSLUCENT = 77  # RGB: Lambertian transmission (core.kernels.translucent)
-LOBE_COUNT = 80
+L_DIFFUSE_ROUGHNESS = 80  # the diffuse closures' roughness times their weights
+L_DIFFUSE_ROUGHNESS_WEIGHT = 81
+LOBE_COUNT = 82
 
 # Slots of a program's stack: constants first, then every node output (a triple each); a
 # program that reads colour attributes finds them at the top (`attribute_slot`)
@@ -663,6 +667,11 @@ def run_program(mats, material, stack, lobes, hit, frame, normal_rows, ray):
         elif op == OP_DIFFUSE:
             _add3(lobes, L_DIFFUSE, s[out], _nonnegative(_triple(s, a)))
             _add_normal(lobes, s, s[out], f)
+            lobes[L_DIFFUSE_ROUGHNESS] += s[out] * s[b]
+            lobes[L_DIFFUSE_ROUGHNESS_WEIGHT] += s[out]
+        elif op == OP_DIFFUSE_ROUGHNESS:
+            lobes[L_DIFFUSE_ROUGHNESS] += s[out] * s[a]
+            lobes[L_DIFFUSE_ROUGHNESS_WEIGHT] += s[out]
         elif op == OP_TRANSLUCENT:
             _add3(lobes, L_TRANSLUCENT, s[out], _nonnegative(_triple(s, a)))
             _add_normal(lobes, s, s[out], f)

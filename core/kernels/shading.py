@@ -63,7 +63,9 @@ class Phong(NamedTuple):
     `gloss_normal` (the shading normal kept from reflecting into the surface, which a bent
     one may be: core.kernels.bent_normal; the diffuse keeps the bent one, as in Cycles).
     Under a clear coat (core.kernels.clear_coat) the glints are times `under` (kd already
-    is), and the coat's own rough lobe glints about its normal (alpha 0: none)."""
+    is), and the coat's own rough lobe glints about its normal (alpha 0: none). A rough
+    diffuse (`diffuse_roughness` > 0) reflects Blender's lights and World by Oren-Nayar
+    (core.kernels.rough_diffuse) where kd stands for Lambert's."""
 
     kd: tuple
     ks: tuple
@@ -73,6 +75,7 @@ class Phong(NamedTuple):
     under: tuple
     coat_gloss: tuple
     coat_normal: tuple
+    diffuse_roughness: float
 
 
 class AreaLight(NamedTuple):

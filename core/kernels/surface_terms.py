@@ -21,6 +21,8 @@ from .shader_program import (
     L_COAT_IOR,
     L_COAT_TINT,
     L_DIFFUSE,
+    L_DIFFUSE_ROUGHNESS,
+    L_DIFFUSE_ROUGHNESS_WEIGHT,
     L_DIP,
     L_EDGE,
     L_EMISSION,
@@ -105,6 +107,7 @@ class Surface(NamedTuple):
     coat_tint: tuple  # the coat's Specular Tint (RGB; microfacet.tinted_fresnel), white: none
     mirror_dip: tuple  # F82's dip below the mirror's Schlick curve (microfacet.f82_dip)
     translucent: tuple  # RGB Lambertian transmission (core.kernels.translucent)
+    diffuse_roughness: float  # the diffuse's Oren-Nayar roughness (core.kernels.rough_diffuse)
 
 
 # Materials.gloss's columns: Gloss's fields, its triples as three
@@ -198,6 +201,7 @@ def table_surface(mats, material, kd):
         (mats.coat[material, 3], mats.coat[material, 4], mats.coat[material, 5]),
         row(mats.mirror_dip, material),
         row(mats.translucent, material),
+        mats.diffuse_roughness[material],
     )
 
 
@@ -254,7 +258,16 @@ def terms_from_lobes(lobes):
         _mean_tint(lobes, L_COAT_TINT, coat),
         _scaled(lobes, L_DIP, per_rest) if mirrors else (0.0, 0.0, 0.0),
         _scaled(lobes, L_TRANSLUCENT, per_rest),
+        _mean_diffuse_roughness(lobes),
     )
+
+
+@kernel
+def _mean_diffuse_roughness(lobes):
+    """The diffuse closures' roughness, weighted by their weights (one Oren-Nayar lobe
+    stands for a mix of them)."""
+    weight = lobes[L_DIFFUSE_ROUGHNESS_WEIGHT]
+    return min(max(lobes[L_DIFFUSE_ROUGHNESS] / weight, 0.0), 1.0) if weight > 0.0 else 0.0
 
 
 @kernel

@@ -31,6 +31,6 @@ def translucent_light(frame, lights, geo, surf, mats, ws, colour, p, n_shading, 
     turned = scale(n_shading, -1.0)
     point = ShadingPoint(spawn_point(p, back, o), turned, d, turned)
     phong = Phong(colour, (0.0, 0.0, 0.0), 1.0, NO_GLINT, turned, (1.0, 1.0, 1.0), NO_GLINT,
-                  turned)  # fmt: skip
+                  turned, 0.0)  # fmt: skip
     return light_at_point(frame, lights, geo, surf, mats, ws, point, phong, p, back, key,
                           event, False, refraction_passes)  # fmt: skip

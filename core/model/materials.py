@@ -95,6 +95,9 @@ class Material:
     translucent    -- RGB Lambertian transmission, each >= 0: the light falling on the
                       surface's other side, seen through it diffusely (Blender's Translucent
                       BSDF; core.kernels.translucent)
+    diffuse_roughness -- 0..1: the diffuse's Oren-Nayar roughness (Blender's Diffuse BSDF
+                      Roughness, Principled Diffuse Roughness; core.kernels.rough_diffuse),
+                      0 Lambert's
     """
 
     diffuse: Vec3 = (0.8, 0.8, 0.8)
@@ -124,6 +127,7 @@ class Material:
     surface: ShaderNode | None = None
     absorption: Vec3 = (0.0, 0.0, 0.0)
     translucent: Vec3 = (0.0, 0.0, 0.0)
+    diffuse_roughness: float = 0.0
 
     def validate(self, user: str) -> None:
         owner = f"material '{self.name}' (on {user})"
@@ -157,6 +161,7 @@ class Material:
             raise SceneError(owner, "transparent", f"got {self.transparent!r}; use 0..1 each")
         check_number(owner, "holdout", self.holdout, low=0.0, high=1.0)
         check_number(owner, "roughness", self.roughness, low=0.0, high=1.0)
+        check_number(owner, "diffuse_roughness", self.diffuse_roughness, low=0.0, high=1.0)
         if self.surface is not None:
             if not isinstance(self.surface, ShaderNode) or not self.surface.is_closure:
                 raise SceneError(owner, "surface", f"got {self.surface!r}; need a closure "

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 from ..checks import check_choice, check_count, check_flag, check_number, machine_memory
 from ..errors import SceneError
 from ..passes import DEFAULT_CRYPTO_LEVELS, MAX_CRYPTO_LEVELS, MIST_FALLOFFS, channels, check_passes
-from ..vocabulary import GLASS_SHADOWS, PIXEL_PATTERNS, SHADOW_PATTERNS
+from ..vocabulary import GLASS_SHADOWS, PIXEL_PATTERNS, ROUGH_DIFFUSE_MODELS, SHADOW_PATTERNS
 
 PIXEL_SAMPLINGS = tuple(PIXEL_PATTERNS)
 SHADOW_SAMPLINGS = tuple(SHADOW_PATTERNS)
@@ -91,6 +91,9 @@ class RenderSettings:
                         weighed by the shadow terminator term where the normal faces a light
                         the smooth surface faces away from (Chiang, Li and Burley; Cycles
                         before 4.5: core.kernels.bent_normal); False: not
+    rough_diffuse    -- the Oren-Nayar model of a diffuse's roughness: "EON", energy
+                        preserving (Cycles from 4.3), or "FON", Fujii's (Cycles before);
+                        core.kernels.rough_diffuse
     seed             -- selects the random numbers; the same seed gives the same picture
     transparent      -- camera rays that meet nothing are transparent: alpha 0 there and
                         fractional at edges, colour premultiplied (Blender's Film ›
@@ -142,6 +145,7 @@ class RenderSettings:
     environment_samples: int = DEFAULT_ENVIRONMENT_SAMPLES
     glossy_samples: int = 0
     bump_terminator: bool = True
+    rough_diffuse: str = "EON"
     seed: int = 0
     shadow_culling: bool = True
     glass_shadows: str = "attenuated"
@@ -167,6 +171,7 @@ class RenderSettings:
         # each waits on the ray stack (core.kernels.workspace): 4096 is a 64 x 64 lobe
         check_count(owner, "glossy_samples", self.glossy_samples, high=MAX_GLOSSY_SAMPLES)
         check_flag(owner, "bump_terminator", self.bump_terminator)
+        check_choice(owner, "rough_diffuse", self.rough_diffuse, tuple(ROUGH_DIFFUSE_MODELS))
         # Each bounce's ray waits on a stack of max_depth + 2 (core.kernels.workspace): past
         # this many, any light left is below what a pixel shows, and 1e12 asked for 21.8 TiB
         check_count(owner, "max_depth", self.max_depth, low=0, high=MAX_BOUNCES)

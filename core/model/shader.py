@@ -45,6 +45,7 @@ SHADER_NODES = {
             "Base Color": RGB,
             "Metallic": 0.0,
             "Roughness": 0.5,
+            "Diffuse Roughness": 0.0,
             "IOR": 1.5,
             "Alpha": 1.0,
             "Transmission": 0.0,
@@ -65,7 +66,8 @@ SHADER_NODES = {
         # coat_albedo (COAT_ALBEDOS): what dims the layers under a rough coat
         settings={"layered": True, "distribution": "GGX", "coat_albedo": "LOBE"},
     ),  # fmt: skip
-    "diffuse": dict(inputs={"Color": RGB, "Normal": None}, closure=True),
+    # Roughness: Oren-Nayar's (core.kernels.rough_diffuse), 0 Lambert's
+    "diffuse": dict(inputs={"Color": RGB, "Roughness": 0.0, "Normal": None}, closure=True),
     # Lambertian transmission: the light falling on the other side (core.kernels.translucent)
     "translucent": dict(inputs={"Color": RGB, "Normal": None}, closure=True),
     # A rough lobe's microfacet distribution (DISTRIBUTIONS; core.kernels.microfacet)

@@ -629,3 +629,37 @@ def test_ray_visibility_shadow_off_makes_an_object_cast_no_shadow(empty_scene, m
     scene, _, _ = exported(bpy, monkeypatch)
     casting = {shape.name.split(":")[0]: shape.casts_shadows for shape in scene.shapes}
     assert casting == {"Sphere": False, "Cube": True, "Cube.001": True}, casting
+
+
+@pytest.mark.parametrize(
+    ("node_type", "drawn_as"),
+    [
+        ("ShaderNodeSubsurfaceScattering", "diffuse"),
+        ("ShaderNodeBsdfToon", "diffuse"),
+        ("ShaderNodeBsdfHair", "diffuse"),
+        ("ShaderNodeBsdfHairPrincipled", "diffuse"),
+        ("ShaderNodeBsdfRayPortal", "transparent"),
+    ],
+)
+def test_a_shader_whitted_does_not_model_is_drawn_as_the_nearest_it_does_not_black(
+    empty_scene, monkeypatch, node_type, drawn_as
+):
+    """Subsurface Scattering, Toon, Hair and Ray Portal: drawn as a Diffuse (or Transparent)
+    BSDF of their Color, named in the material's warning with what is used instead."""
+    bpy = sys.modules["bpy"]
+    _, material = sphere_with_material(bpy, "Odd")
+    tree = material.node_tree
+    try:
+        shader = tree.nodes.new(node_type)
+    except RuntimeError:
+        pytest.skip(f"no {node_type} in this Blender")
+    if shader.inputs.get("Color") is not None:
+        shader.inputs["Color"].default_value = (0.7, 0.3, 0.1, 1.0)
+    output = next(n for n in tree.nodes if n.type == "OUTPUT_MATERIAL")
+    tree.links.new(shader.outputs[0], output.inputs["Surface"])
+    scene, _, warnings = exported(bpy, monkeypatch)
+    mine = [w for w in warnings if w.startswith(f"material '{material.name}'")]
+    assert len(mine) == 1 and shader.name in mine[0] and "used:" in mine[0], warnings
+    surface = scene.shapes[0].material.surface
+    assert surface.kind == drawn_as
+    assert surface.inputs["Color"] == pytest.approx((0.7, 0.3, 0.1), abs=1e-6)
