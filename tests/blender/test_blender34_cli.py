@@ -132,6 +132,7 @@ def test_the_in_process_blender_tests_pass_inside_blender_34_too():
         "test_cycles_value_nodes.py", "test_cycles_colour_attributes.py",
         "test_cycles_absorption.py", "test_cycles_translucent.py", "test_cycles_light_path.py",
         "test_cycles_geometry_node.py", "test_cycles_tangents.py",
+        "test_cycles_rough_diffuse.py",
     ]  # fmt: skip
     paths = [str(ROOT / "tests" / "blender" / name) for name in files]
     code = (

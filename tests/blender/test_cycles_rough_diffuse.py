@@ -5,7 +5,7 @@ Diffuse Roughness. Cycles draws Fujii's Oren-Nayar before 4.3 and the energy-pre
 one from 4.3; Whitted follows the Blender it runs in (blender_addon/compat.py).
 
 Before: Lambert's, with a warning naming the Roughness (the measure below: 0.55 in 4.2,
-0.34 in 5.0; now 0.003-0.005 in 4.2, 4.5, 5.0 and 5.2). The World's light is sampled 1024
+0.34 in 5.0; now 0.003-0.005 in 3.4, 4.2, 4.5, 5.0 and 5.2). The World's light is sampled 1024
 times a point: at the default 16 its grain alone reaches 0.08 in the dim blocks."""
 
 import pytest
