@@ -46,8 +46,9 @@ def convert(scene, depsgraph, settings: core.RenderSettings) -> core.Camera:
         )
     rotation = camera.matrix_world.to_3x3().normalized()
     eye, view = camera.matrix_world.translation, -rotation.col[2]
-    # Clip Start: camera rays start there, as in Cycles
-    lens = {**depth_of_field(scene, camera, eye, view), "clip_start": camera.data.clip_start}
+    # Clip Start and End: camera rays start and end there, as in Cycles
+    clipping = {"clip_start": camera.data.clip_start, "clip_end": camera.data.clip_end}
+    lens = {**depth_of_field(scene, camera, eye, view), **clipping}
     return from_projection(projection, eye, view, rotation.col[1], camera.name, lens,
                            orthographic=camera.data.type == "ORTHO")  # fmt: skip
 

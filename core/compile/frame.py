@@ -53,11 +53,12 @@ SHADOW_CULLING_MIN_SAMPLES = 8
 
 
 def _lens(camera) -> np.ndarray:
-    """Aperture radius, focal distance, blades (0: a disk), rotation, 1 / ratio, clip start."""
+    """Aperture radius, focal distance, blades (0: a disk), rotation, 1 / ratio, clip start,
+    clip end (inf: none)."""
     blades = camera.aperture_blades if camera.aperture_blades >= 3 else 0
     return np.array(
         [camera.aperture_radius, camera.focal_distance, blades, camera.aperture_rotation,
-         1.0 / camera.aperture_ratio, camera.clip_start],
+         1.0 / camera.aperture_ratio, camera.clip_start, camera.clip_end],
         float,
     )  # fmt: skip
 

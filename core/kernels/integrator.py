@@ -287,7 +287,7 @@ def trace_ray(ps, o, d, key, ws):
         clear(record, 0.0)
     # Camera › Clip Start, along the view axis (up x right: a lens shift tilts the forward
     # row, not the image plane) from the eye's plane
-    clip, eye = frame.lens[5], row(frame.camera, 0)
+    clip, clip_end, eye = frame.lens[5], frame.lens[6], row(frame.camera, 0)
     axis = normalize(cross(row(frame.camera, 3), row(frame.camera, 2)))
     colour = (0.0, 0.0, 0.0)
     alpha = 1.0
@@ -304,10 +304,17 @@ def trace_ray(ps, o, d, key, ws):
         crossed = rays.crossed[top]
         medium, refractions = rays.medium[top], rays.refractions[top]
         stacks.ray_counts[RAYS_TRACED] += 1
-        shape, t, part, b1, b2 = closest_hit(geo, o, d, math.inf, stacks)
+        reach = math.inf
+        if depth == 0 and clip_end < math.inf:
+            # Camera › Clip End, a plane across the view axis: a camera ray (or what passed
+            # straight through) ends there, and sees the World beyond, as in Cycles
+            toward = dot(d, axis)
+            if toward > 0.0:
+                reach = max((clip_end - dot(sub(o, eye), axis)) / toward, 0.0)
+        shape, t, part, b1, b2 = closest_hit(geo, o, d, reach, stacks)
         # what the medium it crossed let through (core.kernels.absorption)
-        w = absorbed(mats, medium, w, t if shape >= 0 else math.inf)
-        glimpse = _seen_emitters(lights, o, d, t if shape >= 0 else math.inf, came_through,
+        w = absorbed(mats, medium, w, t if shape >= 0 else reach)
+        glimpse = _seen_emitters(lights, o, d, t if shape >= 0 else reach, came_through,
                                  depth, refracted_before)  # fmt: skip
         if glimpse[0] > 0.0 or glimpse[1] > 0.0 or glimpse[2] > 0.0:
             seen = mul(w, glimpse)

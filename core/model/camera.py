@@ -3,6 +3,7 @@ field."""
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -40,6 +41,9 @@ class Camera:
     clip_start      -- camera rays start this far along the view direction, >= 0 (Blender's
                        Clip Start, as Cycles clips): nearer surfaces are not seen, and Light
                        Path's Ray Length of a camera ray counts from there
+    clip_end        -- camera rays end this far along the view direction, > 0 (Blender's
+                       Clip End, as Cycles clips; inf: they never end): what lies beyond is
+                       not seen, the World is (all of it, at or before clip_start)
     """
 
     eye: Vec3 = (0.0, 0.0, 0.0)
@@ -56,6 +60,7 @@ class Camera:
     projection: str = "perspective"
     ortho_height: float = 2.0
     clip_start: float = 0.0
+    clip_end: float = math.inf
 
     def validate(self) -> None:
         owner = f"camera '{self.name}'"
@@ -80,6 +85,8 @@ class Camera:
         check_number(owner, "aperture_ratio", self.aperture_ratio, low=0.0, low_open=True)
         check_number(owner, "focal_distance", self.focal_distance, low=0.0, low_open=True)
         check_number(owner, "clip_start", self.clip_start, low=0.0)
+        if self.clip_end != math.inf:
+            check_number(owner, "clip_end", self.clip_end, low=0.0, low_open=True)
         if len(self.shift) != 2:
             raise SceneError(owner, "shift", f"got {self.shift!r}; use two numbers (x, y)")
         for value in self.shift:

@@ -98,3 +98,32 @@ def test_a_round_aperture_does_not_pass_for_a_pentagon(bpy_with_whitted, tmp_pat
     )
     disk = covered(render_with(bpy, scene, "WHITTED", tmp_path / "whitted.exr"))
     assert overlap(pentagon, disk) < SAME_SHAPE
+
+
+@pytest.mark.parametrize("kind", ["ORTHO", "PERSP"])
+def test_clip_end_hides_what_lies_beyond_as_in_cycles(bpy_with_whitted, tmp_path, kind):
+    """Camera › Clip End 9.4, the camera 10 above the plane and a ball of radius 1 on it:
+    the plane is gone (the grey World in its place) and only the ball's cap above 0.6 is
+    seen, a disk whose edge both renderers put at the same pixels. (Before: the whole ball
+    and the plane were drawn, Clip End ignored.)"""
+    bpy = bpy_with_whitted
+    scene = new_scene(bpy)
+    scene.world.color = (0.3, 0.3, 0.3)
+    if scene.world.node_tree is not None:
+        background = scene.world.node_tree.nodes["Background"]
+        background.inputs[0].default_value = (0.3, 0.3, 0.3, 1.0)
+        background.inputs[1].default_value = 1.0
+    glow, _ = node_material(bpy, "Glow", "ShaderNodeEmission", Color=(1.0, 0.2, 0.1),
+                            Strength=1.0)  # fmt: skip
+    add_ball(bpy, scene, glow, location=(0.0, 0.0, 0.0), radius=1.0)
+    camera = scene.camera.data
+    camera.type, camera.lens, camera.clip_end = kind, 50.0, 9.4
+    if kind == "PERSP":
+        camera.sensor_width = 24.0  # a 2.8-unit view at the ball's top: its cap is 21 px across
+    cycles = render_with(bpy, scene, "CYCLES", tmp_path / "cycles.exr", 16)
+    whitted = render_with(bpy, scene, "WHITTED", tmp_path / "whitted.exr")
+    cap_cycles, cap_whitted = cycles[..., 1] < 0.25, whitted[..., 1] < 0.25  # red, not grey
+    print(f"{kind}: cap {cap_cycles.sum()} / {cap_whitted.sum()} px")
+    assert 10 < cap_cycles.sum() < 0.5 * cap_cycles.size  # the premise: a cap, no plane
+    assert np.abs(whitted[~cap_cycles & ~cap_whitted] - 0.3).max() < 1e-3  # the World, no plane
+    assert (cap_whitted != cap_cycles).mean() < 0.02

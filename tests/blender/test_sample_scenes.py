@@ -297,6 +297,7 @@ def test_soft_shadow_penumbra_has_the_width_geometry_predicts(bpy_with_whitted, 
         data = bpy.data.cameras.new("Top")
         data.sensor_fit = "VERTICAL"
         data.angle_y = 2.0 * math.atan(half_view / camera_height)
+        data.clip_end = 2.0 * camera_height  # (a new camera's 100 would end its rays midway)
         top = bpy.data.objects.new("Top", data)
         top.location = (0.0, 0.0, camera_height)
         scene.collection.objects.link(top)

@@ -6,9 +6,11 @@ bounce sets the ray's flags anew, a transparent surface keeps them (a camera ray
 one is still a camera ray), and Ray Length is the distance from the ray's last surface."""
 
 import numpy as np
+import pytest
 
 from core import (
     Box,
+    Environment,
     Link,
     Material,
     Mesh,
@@ -110,3 +112,21 @@ def test_a_camera_ray_through_a_transparent_sheet_is_still_a_camera_ray():
     _uniform(_seen([sheet, probe]), (1.0, 1.0, 0.75))
     never = _probe(_facing_camera(3.0), ("Is Diffuse Ray", "Diffuse Depth", "Ray Depth"))
     _uniform(_seen([sheet, never]), (0.0, 0.0, 0.0))
+
+
+@pytest.mark.parametrize("projection", ["orthographic", "perspective"])
+def test_a_camera_ray_ends_at_the_clip_end_plane_and_sees_the_world_beyond(projection):
+    """Camera › Clip End: a red square 12 along the view, before a green World. At Clip End
+    11 it is gone, the World shown in its place; at 12.5 it is seen whole, even at the
+    corners of a 60 degree view, 15.4 away along their rays (the limit is a plane across the
+    view axis, as Cycles' is, not a sphere)."""
+    square = Mesh("Square", Material(diffuse=(0.0, 0.0, 0.0), emission=(1.0, 0.0, 0.0)),
+                  np.eye(4), mesh=TriangleMesh(np.asarray(_facing_camera(2.0), float) * 1.6,
+                                               np.array([(0, 1, 2), (0, 2, 3)])))  # fmt: skip
+    square.world_from_object[1, 3] = 2.0 - 1.6 * 2.0  # x, z in -8..8, still at depth y = 2
+    for clip_end, expected in ((11.0, (0.0, 1.0, 0.0)), (12.5, (1.0, 0.0, 0.0))):
+        camera = look_at_ball()
+        camera.projection, camera.fovy, camera.clip_end = projection, 60.0, clip_end
+        scene = Scene(camera, [square], environment=Environment(colour=(0.0, 1.0, 0.0)))
+        seen = render(scene, RenderSettings(SIZE, SIZE, pixel_samples=1)).image[..., :3]
+        _uniform(seen.astype(float), expected)

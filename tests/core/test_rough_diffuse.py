@@ -119,3 +119,12 @@ def test_a_rough_ball_under_a_sharp_sun_follows_the_model_pixel_by_pixel(model):
     assert lit.mean() > 0.3
     np.testing.assert_allclose(seen[lit], expected[lit], rtol=3e-3, atol=1e-4)
     assert np.abs(seen[lit] - 2.0 * mu_l[lit, None] * kd / math.pi).max() > 0.02  # not Lambert
+
+
+def test_an_unknown_model_or_roughness_is_refused_by_name():
+    from core import SceneError
+
+    with pytest.raises(SceneError, match="rough_diffuse"):
+        RenderSettings(4, 4, rough_diffuse="Oren-Nayar").validate()
+    with pytest.raises(SceneError, match="diffuse_roughness"):
+        Material(diffuse_roughness=1.5).validate("a test")
