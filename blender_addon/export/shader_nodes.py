@@ -257,15 +257,14 @@ class GraphReader:
         """A shader Whitted does not model drawn as the nearest one it does (_STAND_INS),
         named in a warning: never black, as a missing shader would be."""
         core_kind, used = _STAND_INS[node.type]
-        made = core.ShaderNode(core_kind, name=node.name)
-        made.inputs["Color"] = self.value(node, groups, "Color")
+        inputs = {"Color": self.value(node, groups, "Color")}
+        if node.type == "BSDF_TOON" and getattr(node, "component", "DIFFUSE") == "GLOSSY":
+            core_kind, used = "glossy", "a Glossy BSDF of its Color, Size as roughness"
+            inputs["Roughness"] = self.value(node, groups, "Size")
         if node.type == "BSDF_RAY_PORTAL":
             for name in ("Position", "Direction"):
                 self.linked(node, groups, name, "the ray goes on where it is")
-        if node.type == "BSDF_TOON" and getattr(node, "component", "DIFFUSE") == "GLOSSY":
-            colour, size = self.value(node, groups, "Color"), self.value(node, groups, "Size")
-            made = core.ShaderNode("glossy", {"Color": colour, "Roughness": size}, name=node.name)
-            used = "a Glossy BSDF of its Color, Size as roughness"
+        made = core.ShaderNode(core_kind, inputs, name=node.name)
         self.note(f"{node_label(node)} is not modelled (used: {used})")
         self._normal(made, node, groups)
         return made

@@ -50,9 +50,9 @@ def _barycentric(geo, tri, p_object):
 
 
 @kernel
-def _to_world(geo, shape, v):
-    """Object-space direction v in world space: the inverse of the linear part of the
-    shape's object-from-world rows, by cofactors."""
+def _world_rows(geo, shape):
+    """Rows of the shape's object-to-world linear map (for directions): the inverse of its
+    object-from-world rows' linear part, by cofactors; the identity if it is singular."""
     m = geo.shape_object_from_world
     a, b, c = m[shape, 0, 0], m[shape, 0, 1], m[shape, 0, 2]
     d, e, f = m[shape, 1, 0], m[shape, 1, 1], m[shape, 1, 2]
@@ -60,20 +60,25 @@ def _to_world(geo, shape, v):
     ca, cb, cc = e * i - f * h, f * g - d * i, d * h - e * g
     det = a * ca + b * cb + c * cc
     if det == 0.0:
-        return v
+        return (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)
     return (
-        (ca * v[0] + (c * h - b * i) * v[1] + (b * f - c * e) * v[2]) / det,
-        (cb * v[0] + (a * i - c * g) * v[1] + (c * d - a * f) * v[2]) / det,
-        (cc * v[0] + (b * g - a * h) * v[1] + (a * e - b * d) * v[2]) / det,
+        (ca / det, (c * h - b * i) / det, (b * f - c * e) / det),
+        (cb / det, (a * i - c * g) / det, (c * d - a * f) / det),
+        (cc / det, (b * g - a * h) / det, (a * e - b * d) / det),
     )
 
 
 @kernel
-def _line_distance(geo, shape, a, b, p_object):
-    """World distance from the object-space point to the line through corners a and b:
-    |(p - a) x (b - a)| / |b - a|, as Cycles' Wireframe measures it."""
-    edge = _to_world(geo, shape, sub(b, a))
-    to_p = _to_world(geo, shape, sub(p_object, a))
+def _apply(rows, v):
+    return dot(rows[0], v), dot(rows[1], v), dot(rows[2], v)
+
+
+@kernel
+def _line_distance(rows, a, b, p_object):
+    """World distance from the object-space point to the line through corners a and b
+    (`rows`: _world_rows): |(p - a) x (b - a)| / |b - a|, as Cycles' Wireframe measures it."""
+    edge = _apply(rows, sub(b, a))
+    to_p = _apply(rows, sub(p_object, a))
     along = dot(edge, edge)
     if along == 0.0:
         return math.sqrt(dot(to_p, to_p))
@@ -85,11 +90,11 @@ def _line_distance(geo, shape, a, b, p_object):
 def edge_distances(geo, shape, tri, p_object):
     """World distances from the object-space point to the lines of mesh triangle slot
     `tri`'s edges 0-1, 1-2 and 2-0."""
-    corners = geo.tri_corners
+    corners, rows = geo.tri_corners, _world_rows(geo, shape)
     a, b, c = _corner(corners, tri, 0), _corner(corners, tri, 3), _corner(corners, tri, 6)
-    return (_line_distance(geo, shape, a, b, p_object),
-            _line_distance(geo, shape, b, c, p_object),
-            _line_distance(geo, shape, c, a, p_object))  # fmt: skip
+    return (_line_distance(rows, a, b, p_object),
+            _line_distance(rows, b, c, p_object),
+            _line_distance(rows, c, a, p_object))  # fmt: skip
 
 
 @kernel

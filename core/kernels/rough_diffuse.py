@@ -19,6 +19,7 @@ Roughness, from Blender 4.3), as Cycles draws it, in one of two models.
 import math
 
 from ..jit.decorators import kernel
+from .vec import dot
 
 # RenderSettings.rough_diffuse's models, in Options' numbering
 ROUGH_EON, ROUGH_FON = 0, 1
@@ -59,9 +60,8 @@ def _multiple(kd_c, e_avg, lost_l, lost_v):
 def rough_response(kd, sigma, model, n, to_light, v):
     """kd's stand-in for light from unit direction to_light seen from v, about normal n."""
     a, b = fon_terms(sigma)
-    mu_l = max(n[0] * to_light[0] + n[1] * to_light[1] + n[2] * to_light[2], 0.0)
-    mu_v = max(n[0] * v[0] + n[1] * v[1] + n[2] * v[2], 0.0)
-    s = to_light[0] * v[0] + to_light[1] * v[1] + to_light[2] * v[2] - mu_l * mu_v
+    mu_l, mu_v = max(dot(n, to_light), 0.0), max(dot(n, v), 0.0)
+    s = dot(to_light, v) - mu_l * mu_v
     if s > 0.0:
         s /= max(mu_l, mu_v) + 1e-30
     single = a + b * s

@@ -301,6 +301,19 @@ def _voronoi_smooth_f1(bpy, tree):
     return multiply.outputs["Vector"]
 
 
+def _object_x(tree, scale, offset):
+    """The socket of Object x times scale plus offset: a value across the picture's width
+    (Object x runs from -4 to 4 in view)."""
+    coords = tree.nodes.new("ShaderNodeTexCoord")
+    separate = tree.nodes.new("ShaderNodeSeparateXYZ")
+    tree.links.new(coords.outputs["Object"], separate.inputs[0])
+    across = tree.nodes.new("ShaderNodeMath")
+    across.operation = "MULTIPLY_ADD"
+    across.inputs[1].default_value, across.inputs[2].default_value = scale, offset
+    tree.links.new(separate.outputs["X"], across.inputs[0])
+    return across.outputs["Value"]
+
+
 def _wireframe(bpy, tree):
     """The Wireframe's Fac (Size 0.5) as Emission Strength: the plane's quad, triangulated
     by both renderers alike, shows its diagonal as a band 0.5 wide."""
@@ -312,28 +325,14 @@ def _wireframe(bpy, tree):
 def _blackbody_across(bpy, tree):
     """A Blackbody whose Temperature runs across the picture, 700 K to 13100 K (Object x):
     both of Cycles' held ends and the red-to-blue locus between them."""
-    coords = tree.nodes.new("ShaderNodeTexCoord")
-    separate = tree.nodes.new("ShaderNodeSeparateXYZ")
-    tree.links.new(coords.outputs["Object"], separate.inputs[0])
-    kelvin = tree.nodes.new("ShaderNodeMath")
-    kelvin.operation = "MULTIPLY_ADD"
-    kelvin.inputs[1].default_value, kelvin.inputs[2].default_value = 1550.0, 6900.0
-    tree.links.new(separate.outputs["X"], kelvin.inputs[0])
     blackbody = tree.nodes.new("ShaderNodeBlackbody")
-    tree.links.new(kelvin.outputs["Value"], blackbody.inputs["Temperature"])
+    tree.links.new(_object_x(tree, 1550.0, 6900.0), blackbody.inputs["Temperature"])
     return blackbody.outputs["Color"]
 
 
 def _ramp_across(tree, interpolation, mode="RGB"):
     """A four-stop Color Ramp over the picture's width (Object x / 8 + 1/2, 0 to 1): Cycles
     bakes it to 256 points of Blender's own curve (B-Spline, Cardinal; HSV, HSL)."""
-    coords = tree.nodes.new("ShaderNodeTexCoord")
-    separate = tree.nodes.new("ShaderNodeSeparateXYZ")
-    tree.links.new(coords.outputs["Object"], separate.inputs[0])
-    across = tree.nodes.new("ShaderNodeMath")
-    across.operation = "MULTIPLY_ADD"
-    across.inputs[1].default_value, across.inputs[2].default_value = 0.125, 0.5
-    tree.links.new(separate.outputs["X"], across.inputs[0])
     ramp = tree.nodes.new("ShaderNodeValToRGB")
     ramp.color_ramp.interpolation = interpolation
     ramp.color_ramp.color_mode = mode
@@ -341,7 +340,7 @@ def _ramp_across(tree, interpolation, mode="RGB"):
     elements[0].color, elements[1].color = (0.9, 0.1, 0.1, 1.0), (0.1, 0.3, 1.0, 1.0)
     for position, colour in ((0.3, (0.1, 0.9, 0.2, 1.0)), (0.65, (1.0, 0.9, 0.1, 1.0))):
         elements.new(position).color = colour
-    tree.links.new(across.outputs["Value"], ramp.inputs["Fac"])
+    tree.links.new(_object_x(tree, 0.125, 0.5), ramp.inputs["Fac"])
     return ramp.outputs["Color"]
 
 
