@@ -23,10 +23,9 @@ PRINCIPLED_LAYERED = bpy.app.version >= (4, 0, 0)
 # tests/blender/test_cycles_clear_coat.py; 4.3 and 4.4 not tested, taken as 4.2)
 COAT_ALBEDO = "LOBE" if bpy.app.version >= (4, 5, 0) else "NORMAL"
 # Cycles before 4.5 weighs a diffuse lit through a bent normal by Chiang, Li and Burley's
-# shadow terminator term; 4.5 changed its rule (Conty Estevez et al.'s microfacet shadowing,
-# not modelled): there Whitted leaves the term out, which plane reliefs match and a
-# normal-mapped ball's rim does not (measured by tests/blender/test_cycles_tangents.py)
-BUMP_TERMINATOR = bpy.app.version < (4, 5, 0)
+# shadow terminator term; 4.5 changed its rule to Conty Estevez et al.'s microfacet
+# shadowing (core.kernels.bent_normal; measured by tests/blender/test_cycles_tangents.py)
+BUMP_TERMINATOR = "chiang" if bpy.app.version < (4, 5, 0) else "conty"
 # A rough diffuse's Oren-Nayar: energy-preserving from 4.3, Fujii's before
 # (core.kernels.rough_diffuse; measured against 4.2 and 4.5 by test_cycles_rough_diffuse.py)
 ROUGH_DIFFUSE = "EON" if bpy.app.version >= (4, 3, 0) else "FON"

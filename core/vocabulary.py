@@ -43,6 +43,19 @@ GLASS_SHADOWS = {"attenuated": GLASS_SHADOWS_ATTENUATED, "blocked": GLASS_SHADOW
 # the energy-preserving one (Cycles from 4.3) or Fujii's (before)
 ROUGH_DIFFUSE_MODELS = {"EON": 0, "FON": 1}
 
+# The shadow terminator term of a diffuse lit through a bent normal (core.kernels.bent_normal):
+# none, Chiang, Li and Burley's (Cycles before 4.5), Conty Estevez, Lecocq and Stein's (from
+# 4.5), or only the latter's test that the light and the bent normal are on one side of the
+# smooth surface (a material without Bump Map Correction, from 4.5)
+TERMINATOR_NONE, TERMINATOR_CHIANG, TERMINATOR_CONTY, TERMINATOR_SIDES = 0, 1, 2, 3
+BUMP_TERMINATORS = {"none": TERMINATOR_NONE, "chiang": TERMINATOR_CHIANG,
+                    "conty": TERMINATOR_CONTY}  # fmt: skip
+# A material's bump rule (core.Material.bump_rule): the render's term, Bump Map Correction
+# off, or a bend that is the surface's own displacement (no term)
+BUMP_CORRECTED, BUMP_UNCORRECTED, BUMP_DISPLACED = 0, 1, 2
+BUMP_RULES = {"corrected": BUMP_CORRECTED, "uncorrected": BUMP_UNCORRECTED,
+              "displaced": BUMP_DISPLACED}  # fmt: skip
+
 # How camera rays leave the camera: from the eye through the image plane, or parallel to the
 # view from every point of the image plane
 PROJECTION_PERSPECTIVE, PROJECTION_ORTHOGRAPHIC = 0, 1

@@ -34,7 +34,9 @@ def convert(material, warn=None) -> core.Material:
         return core.Material(name="(no material)")
     if material.whitted.use_whitted:
         return _whitted_settings(material)
-    surface, problems, absorption = read_graph(material)
+    reader = _reader(material)
+    surface = reader.read(node_tree_in_use(material)) if reader is not None else None
+    problems = reader.problems if reader is not None else []
     if problems and warn is not None:
         warn(warning_text(material, problems))
     if surface is None:
@@ -44,7 +46,19 @@ def convert(material, warn=None) -> core.Material:
         return core.Material(diffuse=colour, name=material.name, pass_index=material.pass_index)
     return core.Material(name=material.name, pass_index=material.pass_index, surface=surface,
                          emission_lights=emission_lights(material),
-                         absorption=absorption)  # fmt: skip
+                         absorption=reader.absorption,
+                         bump_rule=bump_rule(material, reader.displaced is not None))  # fmt: skip
+
+
+def bump_rule(material, displaced: bool) -> str:
+    """core.Material.bump_rule: "displaced" where the Material Output's Displacement bends
+    the normal (Cycles makes it the surface's own: no shadow terminator term), else
+    Material › Settings › Bump Map Correction's "corrected" or "uncorrected"."""
+    if displaced:
+        return "displaced"
+    cycles = getattr(material, "cycles", None)
+    corrected = getattr(cycles, "use_bump_map_correction", True) if cycles is not None else True
+    return "corrected" if corrected else "uncorrected"
 
 
 def emission_lights(material) -> bool:
@@ -65,9 +79,16 @@ def read_graph(material, textures: bool = True):
     """(core closure node or None, what could not be honoured, the absorption of the medium
     it encloses) of the material's tree. Without `textures`, images are not read (the
     panel's quick look)."""
-    tree = node_tree_in_use(material)
-    if tree is None:
+    reader = _reader(material, textures)
+    if reader is None:
         return None, [], (0.0, 0.0, 0.0)
+    return reader.read(node_tree_in_use(material)), reader.problems, reader.absorption
+
+
+def _reader(material, textures: bool = True) -> GraphReader | None:
+    """A reader of the material's tree (None: no nodes), each image one core Texture."""
+    if node_tree_in_use(material) is None:
+        return None
     owner = f"material '{material.name}'"
     made: dict = {}  # one core Texture per image, however many nodes show it
 
@@ -77,8 +98,7 @@ def read_graph(material, textures: bool = True):
             made[image.as_pointer()] = texture
         return made[image.as_pointer()]
 
-    reader = GraphReader(material, make)
-    return reader.read(tree), reader.problems, reader.absorption
+    return GraphReader(material, make)
 
 
 def _placeholder(image):

@@ -89,9 +89,13 @@ def compile_scene(scene: Scene, settings: RenderSettings, on_photons=None,
                              meshes, mesh_of, lets_through[rows], powers[rows])  # fmt: skip
     owners = [scene.shapes[row] for row in owner_rows(csg, tree_of_row, len(scene.shapes))]
     surfaces = pack_surfaces(shapes, owners, material_of, meshes)
-    glowing = glowing_shapes(scene.shapes, materials, material_of)
+    # the emissive surfaces' lights last: a varying one's emission is the material's program
+    # run on its triangles (core.kernels.glow_bake), which needs the rest packed
+    unlit = kernel_ready(PackedScene(frame, geometry, surfaces, materials,
+                                     pack_lights(scene.lights, scene.environment)))  # fmt: skip
+    glowing = glowing_shapes(scene.shapes, unlit, material_of)
     lights = pack_lights(scene.lights, scene.environment, glowing)
-    packed = kernel_ready(PackedScene(frame, geometry, surfaces, materials, lights))
+    packed = kernel_ready(unlit._replace(lights=lights))
     packed, caustic_warnings, caustics = add_caustics(packed, settings, on_photons,
                                                       should_cancel, graphs)  # fmt: skip
     packed = kernel_ready(packed)

@@ -172,8 +172,8 @@ def light_centres(lights) -> np.ndarray:
     centres = np.array(lights.emitter_position, float).reshape(-1, 3)
     centres[(kinds >= EMITTER_SUN_CONE) & (kinds != EMITTER_MESH)] = np.nan
     for light in np.flatnonzero(kinds == EMITTER_MESH):
-        first, count = (int(v) for v in lights.emitter_param[light, :2])
-        corners = lights.glow_triangles[first : first + count].reshape(-1, 3)
+        first, count, _, level = (int(v) for v in lights.emitter_param[light])
+        corners = lights.glow_triangles[first : first + count * level**2].reshape(-1, 3)
         centres[light] = corners.mean(axis=0)
     suns = np.full((len(lights.sun_toward), 3), np.nan)
     return np.vstack([centres, lights.point_position.reshape(-1, 3),

@@ -43,7 +43,7 @@ from ..kernels.options import (
 )
 from ..model import RenderSettings, Scene
 from ..passes import MIST_FALLOFFS, layout
-from ..vocabulary import GLASS_SHADOWS, ROUGH_DIFFUSE_MODELS
+from ..vocabulary import BUMP_TERMINATORS, GLASS_SHADOWS, ROUGH_DIFFUSE_MODELS
 from .environment import environment_kind
 
 # Listing an area light's shapes costs about as much per shading point as tracing a few
@@ -99,7 +99,7 @@ def _options(scene: Scene, settings: RenderSettings) -> np.ndarray:
     options[OPTION_ENVIRONMENT] = environment_kind(environment)
     options[OPTION_ENVIRONMENT_SAMPLES] = settings.environment_samples
     options[OPTION_GLOSSY_SAMPLES] = settings.glossy_samples
-    options[OPTION_BUMP_TERMINATOR] = settings.bump_terminator
+    options[OPTION_BUMP_TERMINATOR] = BUMP_TERMINATORS[settings.bump_terminator]
     options[OPTION_ROUGH_DIFFUSE] = ROUGH_DIFFUSE_MODELS[settings.rough_diffuse]
     options[OPTION_GLASS_SHADOWS] = GLASS_SHADOWS[settings.glass_shadows]
     options[OPTION_ENVIRONMENT_CLOSEST] = (

@@ -51,7 +51,8 @@ def pack_lights(lights: list, environment=None, glowing=None) -> Lights:
         emitter_param=rows([e[4] for e in emitters], 4),
         emitter_radiance=rows([e[5] for e in emitters]),
         glow_triangles=concatenated(glowing.triangles if glowing else [], (0, 9), np.float64),
-        glow_cdf=concatenated(glowing.cdfs if glowing else [], (0,), np.float64),
+        glow_cdf=concatenated(glowing.cdfs if glowing else [], (0, 3), np.float64),
+        glow_tint=concatenated(glowing.tints if glowing else [], (0, 3), np.float64),
         **pack_environment(environment),
         **no_photons(),
     )

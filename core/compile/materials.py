@@ -18,6 +18,7 @@ from ..kernels.surface_terms import CLEAR_COAT_COLUMNS, GLOSS_COLUMNS, NO_CLEAR_
 from ..model.shader import passes_light
 from ..passes import crypto_id
 from ..textures import load_texture
+from ..vocabulary import BUMP_RULES
 from .arrays import concatenated, rows
 from .shader_program import ProgramBuilder
 
@@ -93,6 +94,7 @@ def pack_materials(shapes: list, attribute_names=()) -> tuple[Materials, dict[in
         absorption=rows([m.absorption for m, _ in materials]),
         translucent=rows([m.translucent for m, _ in materials]),
         diffuse_roughness=np.array([m.diffuse_roughness for m, _ in materials], float),
+        bump_rule=np.array([BUMP_RULES[m.bump_rule] for m, _ in materials], np.uint8),
         texture_alpha=concatenated([a.ravel() for _, a in textures.loaded], (0,), np.float32),
         **_program_tables(programs),
     )

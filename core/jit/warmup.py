@@ -63,18 +63,23 @@ BESIDE = "--beside"
 CACHE_LINE = "Whitted: kernel cache "
 
 
-def warmup_scene():
+def warmup_scene(glowing_texture: bool = True):
     """A small scene with one of everything a packed scene can hold. Its node material is
     constant: the compile folds it into the table with a kernel of its own (`fold_surfaces`),
     which every variant's warm-up compiles, since a scene the variant without node programs
     renders may still hold constant node materials, as most of Blender's do (a default
     Principled BSDF, a Glass BSDF): without it, such a scene's first render compiled the
-    fold itself, 8 s after the warm-up said the kernels were ready."""
+    fold itself, 8 s after the warm-up said the kernels were ready.
+
+    `glowing_texture`: a mesh whose emission is a texture, which lights the scene: its
+    emission is baked by a kernel of its own (core.kernels.glow_bake), which only a variant
+    with node programs and emitters needs."""
     from .. import (
         AreaLight,
         Box,
         Csg,
         Cylinder,
+        Link,
         Material,
         Mesh,
         PanelLight,
@@ -101,6 +106,12 @@ def warmup_scene():
     glass = Material(transparency=0.5, reflectivity=0.3)
     # A node material (folded by the compile, whose fold kernel it compiles)
     node_material = Material(surface=ShaderNode("diffuse", {"Color": (0.8, 0.2, 0.2)}))
+    glowing = []
+    if glowing_texture:
+        pattern = Link(ShaderNode("checker", {"Scale": 2.0}), "Color")
+        emission = Material(surface=ShaderNode("emission", {"Color": pattern}))
+        glowing.append(Mesh("Glowing texture", emission, world_from_object=moved(10),
+                            mesh=TriangleMesh(vertices, triangles)))  # fmt: skip
     return Scene(
         shapes=[
             Sphere("Sphere", glass, world_from_object=moved(-2)),
@@ -109,6 +120,7 @@ def warmup_scene():
             Csg("Csg", operation="difference", left=Box("Box"), right=Cylinder("Cylinder")),
             Sphere("Textured", Material(texture=Texture(pixels=checker)), moved(6)),
             Sphere("Node material", node_material, moved(8)),
+            *glowing,
         ],
         lights=[
             PointLight((0.0, -4.0, 4.0), (1.0, 1.0, 1.0)),
@@ -143,7 +155,7 @@ def warmup_steps(
     o, d = (0.0, -5.0, 0.5), (0.0, 1.0, 0.0)
 
     def pack():
-        packed.append(_packed_warmup_scene())
+        packed.append(_packed_warmup_scene(without))
 
     def geometry():
         return packed[0].geometry
@@ -313,16 +325,18 @@ class Beside:
 
 def compile_beside(without: frozenset[str]) -> None:
     """What `Beside` compiles: the warm-up scene packed, and its photons traced."""
-    packed = _packed_warmup_scene()
+    packed = _packed_warmup_scene(without)
     if "caustics" not in without:
         warm_photon_kernels(packed)
 
 
-def _packed_warmup_scene():
+def _packed_warmup_scene(without: frozenset[str] = frozenset()):
+    """The warm-up scene packed, with a glowing texture where the variant draws its light."""
     from .. import RenderSettings
     from ..compile import compile_scene
 
-    return compile_scene(warmup_scene(), RenderSettings(8, 8)).packed
+    glowing_texture = not ({"nodes", "emitters"} & without)
+    return compile_scene(warmup_scene(glowing_texture), RenderSettings(8, 8)).packed
 
 
 def own_core() -> str:

@@ -24,6 +24,14 @@ root; else the smaller. (Derived here; the rule and the threshold are Cycles'.)
 import math
 
 from ..jit.decorators import kernel
+from ..vocabulary import (
+    BUMP_DISPLACED,
+    BUMP_UNCORRECTED,
+    TERMINATOR_CHIANG,
+    TERMINATOR_CONTY,
+    TERMINATOR_NONE,
+    TERMINATOR_SIDES,
+)
 from .vec import dot, normalize, scale, sub
 
 
@@ -61,20 +69,68 @@ def kept_above(n_geometric, d, n):
 
 
 @kernel
-def terminator_term(smooth, bent, light_dir):
+def terminator_model(render_rule, material_rule):
+    """The TERMINATOR_* a material's diffuse is lit by: the render's (OPTION_BUMP_TERMINATOR),
+    none where its bend is its displacement, and without Bump Map Correction none (Chiang's)
+    or only the side test (Conty's)."""
+    if material_rule == BUMP_DISPLACED:
+        return TERMINATOR_NONE
+    if material_rule == BUMP_UNCORRECTED:
+        return TERMINATOR_SIDES if render_rule == TERMINATOR_CONTY else TERMINATOR_NONE
+    return render_rule
+
+
+@kernel
+def on_smooth_side(smooth, bent, light_dir, model):
+    """Whether a glossy lobe about the bent normal is lit along light_dir: Conty's side
+    test (below), which Cycles from 4.5 applies to every closure's light, not its
+    softening; always under Chiang's rule or none."""
+    if model != TERMINATOR_CONTY and model != TERMINATOR_SIDES:
+        return True
+    if bent[0] == smooth[0] and bent[1] == smooth[1] and bent[2] == smooth[2]:
+        return True
+    return dot(smooth, light_dir) * dot(smooth, bent) * dot(bent, light_dir) >= 0.0
+
+
+@kernel
+def terminator_term(smooth, bent, light_dir, model):
     """The share of a diffuse surface's light kept where a bent normal (Bump, Normal Map)
-    turns it towards a light its own smooth normal faces away from: Chiang, Li and
-    Burley's shadow terminator term ("Taming the Shadow Terminator", 2019), as Cycles
-    weighs its diffuse closures by it. g = (S.L) / ((B.L)(S.B)), S the smooth normal and B
-    the bent one; all the light where g >= 1, none where g < 0, else -g^3 + g^2 + g, which
-    meets both ends smoothly. 1 where the normal is not bent."""
+    meets a light near the smooth surface's shadow terminator, by rule `model`
+    (TERMINATOR_*); 1 where the normal is not bent, or under TERMINATOR_NONE.
+
+    Chiang, Li and Burley's ("Taming the Shadow Terminator", 2019; Cycles before 4.5):
+    g = (S.L) / ((B.L)(S.B)), S the smooth normal and B the bent one; all the light where
+    g >= 1, none where g < 0, else -g^3 + g^2 + g, which meets both ends smoothly.
+
+    Conty Estevez, Lecocq and Stein's ("A Microfacet-Based Shadowing Function to Solve the
+    Bump Terminator Problem", 2019; Cycles from 4.5): none where L and B lie on different
+    sides of the smooth surface ((S.L)(S.B)(B.L) < 0), else the GGX masking G1 of the
+    direction's angle to S, for a roughness alpha^2 = tan^2(d) / 8 of the bend d between S
+    and B: 2 / (1 + sqrt(1 + alpha^2 tan^2 i)). TERMINATOR_SIDES keeps its side test only."""
+    if model == TERMINATOR_NONE:
+        return 1.0
     if bent[0] == smooth[0] and bent[1] == smooth[1] and bent[2] == smooth[2]:
         return 1.0
-    cos_bent = dot(bent, light_dir)
-    across = cos_bent * dot(smooth, bent)
+    cos_si = dot(smooth, light_dir)
+    cos_sb = dot(smooth, bent)
+    cos_bl = dot(bent, light_dir)
+    if model != TERMINATOR_CHIANG:
+        if cos_si * cos_sb * cos_bl < 0.0:
+            return 0.0
+        if model == TERMINATOR_SIDES:
+            return 1.0
+        cos_i, cos_d = abs(cos_si), abs(cos_sb)
+        if cos_d >= 1.0 or cos_i >= 1.0:
+            return 1.0
+        if cos_i < 1e-6:
+            return 0.0
+        alpha2 = min(max(0.125 * (1.0 / (cos_d * cos_d) - 1.0), 0.0), 1.0)
+        tan2 = 1.0 / (cos_i * cos_i) - 1.0
+        return 2.0 / (1.0 + math.sqrt(1.0 + alpha2 * tan2))
+    across = cos_bl * cos_sb
     if across == 0.0:
         return 1.0
-    g = dot(smooth, light_dir) / across
+    g = cos_si / across
     if g >= 1.0:
         return 1.0
     if g < 0.0:

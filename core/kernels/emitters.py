@@ -17,7 +17,7 @@ without angle) gets one, whatever the render's shadow samples.
 import math
 
 from ..jit.decorators import kernel
-from .bent_normal import terminator_term
+from .bent_normal import on_smooth_side, terminator_term
 from .layout import (
     EMITS_DIFFUSE,
     EMITS_FROM_SURFACE,
@@ -83,9 +83,11 @@ def samples_needed(lights, light, samples):
 
 @kernel
 def emitter_sample(lights, light, origin, normal, a, b):
-    """(unit direction, distance, weight) of light `light`'s sample (a, b) from `origin`;
-    distance 0 or weight 0 for a sample that brings nothing."""
+    """(unit direction, distance, weight, RGB tint) of light `light`'s sample (a, b) from
+    `origin`; distance 0 or weight 0 for a sample that brings nothing. The tint is 1 but
+    for an emissive surface whose emission varies (core.kernels.light_mesh)."""
     kind = lights.emitter_kind[light]
+    white = (1.0, 1.0, 1.0)
     if kind == EMITTER_MESH:
         return mesh_sample(lights, light, origin, a, b)
     position = row(lights.emitter_position, light)
@@ -94,10 +96,13 @@ def emitter_sample(lights, light, origin, normal, a, b):
         toward = sun_sample(
             position, param[light, 0], param[light, 1], kind == EMITTER_SUN_DISK, a, b
         )
-        return toward, math.inf, 1.0
+        return toward, math.inf, 1.0, white
     if EMITTER_RECTANGLE <= kind <= EMITTER_ELLIPSE:
         edge_u, edge_v, facing = _frame_rows(lights.emitter_frame, light)
-        return panel_sample(position, edge_u, edge_v, facing, kind == EMITTER_ELLIPSE, origin, a, b)
+        direction, t, weight = panel_sample(
+            position, edge_u, edge_v, facing, kind == EMITTER_ELLIPSE, origin, a, b
+        )
+        return direction, t, weight, white
     radius = param[light, 0]
     if kind == EMITTER_SPHERE:
         direction, t, weight = sphere_sample(position, radius, origin, normal, a, b)
@@ -111,7 +116,7 @@ def emitter_sample(lights, light, origin, normal, a, b):
             to_light_frame, scale(direction, -1.0), param[light, 1], param[light, 2], with_cosine
         )
         weight *= mask
-    return direction, t, weight
+    return direction, t, weight, white
 
 
 @kernel
@@ -147,10 +152,11 @@ def emitted_colour(frame, lights, geo, stacks, point, phong, key, event, split):
                 a, b = square_point(pattern, count, j, key, stream, shift, spread)
             else:
                 a, b = probe_square(kind, j - count)
-            direction, t, weight = emitter_sample(lights, light, origin, n, a, b)
+            direction, t, weight, tint = emitter_sample(lights, light, origin, n, a, b)
             targets[j, 0], targets[j, 1], targets[j, 2] = direction
             targets[j, 3] = t * short if weight > 0.0 else 0.0
             targets[j, 4] = weight
+            targets[j, 5], targets[j, 6], targets[j, 7] = tint
         flags = lights.emitter_flags[light]
         if flags & EMITS_SHADOW:
             listed = TRAVERSE_ALL
@@ -182,16 +188,23 @@ def emitted_colour(frame, lights, geo, stacks, point, phong, key, event, split):
             if visibility[j] == 0.0:
                 continue
             seen = seen_through(stacks, j)
+            if kind == EMITTER_MESH:  # a varying emitter's sample's own colour
+                seen = mul(seen, (targets[j, 5], targets[j, 6], targets[j, 7]))
             # the glints about their own normals (a bent diffuse normal may face away)
-            if specular > 0.0 and coat_glints:
+            coat_lit = on_smooth_side(point.smooth_normal, phong.coat_normal, light_dir,
+                                      point.terminator)  # fmt: skip
+            if specular > 0.0 and coat_glints and coat_lit:
                 glint = gloss_lit(phong.coat_gloss, phong.coat_normal, to_viewer, light_dir)
                 total = add(total, mul(glint, scale(seen, weight)))
-            if specular > 0.0 and glints:
+            gloss_lit_here = on_smooth_side(point.smooth_normal, phong.gloss_normal, light_dir,
+                                            point.terminator)  # fmt: skip
+            if specular > 0.0 and glints and gloss_lit_here:
                 glint = gloss_lit(gloss, phong.gloss_normal, to_viewer, light_dir)
                 total = add(total, mul(mul(glint, phong.under), scale(seen, weight)))
             if n_dot_l <= 0.0:
                 continue
-            factor = diffuse * n_dot_l * terminator_term(point.smooth_normal, n, light_dir)
+            term = terminator_term(point.smooth_normal, n, light_dir, point.terminator)
+            factor = diffuse * n_dot_l * term
             reflectance = kd
             if rough > 0.0:  # Oren-Nayar: kd's stand-in for this light and view
                 reflectance = rough_response(kd, rough, model, n, light_dir, to_viewer)

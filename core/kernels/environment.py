@@ -43,20 +43,10 @@ from .rough_diffuse import rough_response
 from .shading import add_falling, seen_through
 from .shadow_rays import shadow_visibility
 from .surface import bilinear, nearest
-from .vec import add, as_tuple, dot, mul, row, scale
+from .vec import add, affine, as_tuple, dot, mul, row, scale
 
 # The environment's random stream at each shading event, apart from every light's
 ENVIRONMENT_STREAM = 65535
-
-
-@kernel
-def _mapped(transform, d):
-    """The affine rows `transform` (3, 4) applied to d as a point (Blender's Mapping)."""
-    return (
-        transform[0, 0] * d[0] + transform[0, 1] * d[1] + transform[0, 2] * d[2] + transform[0, 3],
-        transform[1, 0] * d[0] + transform[1, 1] * d[1] + transform[1, 2] * d[2] + transform[1, 3],
-        transform[2, 0] * d[0] + transform[2, 1] * d[1] + transform[2, 2] * d[2] + transform[2, 3],
-    )
 
 
 @kernel
@@ -94,7 +84,7 @@ def environment_radiance(frame, lights, d):
     tint = as_tuple(lights.env_colour)
     if kind == ENVIRONMENT_UNIFORM:
         return tint
-    u, v = equirectangular_uv(_mapped(lights.env_transform, d))
+    u, v = equirectangular_uv(affine(lights.env_transform, d))
     width, height = lights.env_size[0], lights.env_size[1]
     if frame.options[OPTION_ENVIRONMENT_CLOSEST]:
         return mul(tint, nearest(lights.env_pixels, 0, width, height, u, v))
@@ -183,7 +173,7 @@ def environment_light(frame, lights, geo, stacks, point, kd, rough, key, event, 
         d = row(targets, j)
         radiance = scale(environment_radiance(frame, lights, d), targets[j, 4] / samples)
         seen = seen_through(stacks, j)
-        cos = dot(n, d) * terminator_term(point.smooth_normal, n, d)
+        cos = dot(n, d) * terminator_term(point.smooth_normal, n, d, point.terminator)
         reflectance = kd
         if rough > 0.0:
             model = frame.options[OPTION_ROUGH_DIFFUSE]

@@ -30,6 +30,7 @@ import math
 from ..jit.decorators import inlined_kernel, kernel
 from ..vocabulary import GLASS_SHADOWS_ATTENUATED
 from .absorption import NO_MEDIUM, absorbed, medium_beyond
+from .bent_normal import terminator_model
 from .clear_coat import NO_GLINT, coat_glint, coat_normal, coat_reflectance, under_coat
 from .emitters_seen import emitters_seen
 from .environment import environment_seen
@@ -420,9 +421,9 @@ def trace_ray(ps, o, d, key, ws):
             elif WITH_PASSES and recording:
                 add_to(record, branch, seen)
         if tau < 1.0 or (coated and coat.roughness > SHARP_ROUGHNESS):  # a coat's glint
-            # (the smooth normal given as the bent one: no shadow terminator term)
-            smooth = n_smooth if frame.options[OPTION_BUMP_TERMINATOR] else n_diffuse
-            point = ShadingPoint(outside, n_diffuse, scale(d, -1.0), smooth)
+            model = terminator_model(frame.options[OPTION_BUMP_TERMINATOR],
+                                     mats.bump_rule[material])  # fmt: skip
+            point = ShadingPoint(outside, n_diffuse, scale(d, -1.0), n_smooth, model)
             opacity = 1.0 - tau
             if coated:  # the coat's glint is not under the glass's share: the rest is
                 kd = scale(kd, opacity)

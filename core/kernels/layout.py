@@ -144,6 +144,8 @@ class Materials(NamedTuple):
     translucent: np.ndarray
     # float64 (q,): the diffuse's Oren-Nayar roughness (core.kernels.rough_diffuse)
     diffuse_roughness: np.ndarray
+    # uint8 (q,): BUMP_* (core.vocabulary): how its bent normals meet the terminator term
+    bump_rule: np.ndarray
 
 
 class Lights(NamedTuple):
@@ -168,11 +170,17 @@ class Lights(NamedTuple):
     # blend in cos; a sun's 1 - cos and tan of its half angle
     emitter_param: np.ndarray
     emitter_radiance: np.ndarray  # float64 (e, 3): see core.kernels.emitters
-    # emissive surfaces as lights (EMITTER_MESH rows; emitter_param: first triangle, count,
-    # total area): world-space corners of each triangle, and the running share of its
-    # emitter's area up to and including it
+    # emissive surfaces as lights (EMITTER_MESH rows; emitter_param: first sub-triangle,
+    # triangles, total area times strength, level: core.kernels.light_mesh): world-space
+    # corners of each sub-triangle (level^2 a triangle, in the order of core.kernels.glow_bake)
     glow_triangles: np.ndarray  # float64 (t, 9)
-    glow_cdf: np.ndarray  # float64 (t,)
+    # running shares (light_mesh's SUB_SHARES, ROW_SHARES, TRIANGLE_SHARES): column 0 per
+    # sub-triangle, column 1 per row of a triangle's grid, column 2 per triangle, each from
+    # its emitter's first row
+    glow_cdf: np.ndarray  # float64 (t, 3)
+    # each sub-triangle's colour, times the row's radiance (1 for a constant emitter; a
+    # varying one's radiance over its strength)
+    glow_tint: np.ndarray  # float64 (t, 3)
     # the environment (core.compile.environment, core.kernels.environment); its kind is
     # OPTION_ENVIRONMENT
     env_colour: np.ndarray  # float64 (3,): the uniform radiance, or the image's tint

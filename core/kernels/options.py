@@ -27,8 +27,8 @@ OPTION_GLOSSY_SAMPLES = 15
 OPTION_SHADOW_ADAPTIVE = 16
 # one of GLASS_SHADOWS_* (core.vocabulary): whether a shadow ray passes a refracting surface
 OPTION_GLASS_SHADOWS = 17
-# 1: a diffuse lit through a bent normal (Bump, Normal Map) is weighed by the shadow
-# terminator term (core.kernels.bent_normal.terminator_term); 0: not
+# the shadow terminator term of a diffuse lit through a bent normal (Bump, Normal Map): one of
+# TERMINATOR_* (core.vocabulary; core.kernels.bent_normal.terminator_term)
 OPTION_BUMP_TERMINATOR = 18
 OPTION_ROUGH_DIFFUSE = 19  # core.kernels.rough_diffuse's ROUGH_EON or ROUGH_FON
 OPTION_COUNT = 20

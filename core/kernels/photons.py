@@ -64,7 +64,6 @@ import numpy as np
 
 from ..jit.decorators import kernel
 from .absorption import NO_MEDIUM, absorbed, medium_beyond
-from .attributes import READS_ATTRIBUTES, READS_FRAME, put_attributes
 from .bent_normal import kept_above
 from .caster_hulls import hull_centre, hull_point, hull_start, hulls_entered, start_density
 from .emitters import emitter_sample
@@ -74,6 +73,7 @@ from .integrator import channel_mean, mirror_tint, refract
 from .layout import EMITS_FROM_SURFACE
 from .light_mesh import SHORT_OF_SURFACE
 from .light_pyramid import TRAVERSE_ALL
+from .material_at_hit import run_program_at
 from .options import (
     EMITTER_FACING_DISK,
     EMITTER_MESH,
@@ -82,10 +82,10 @@ from .options import (
     EMITTER_SUN_DISK,
 )
 from .rng import PURPOSE_PHOTON, chain, uniform2
-from .shader_program import ray_at, run_program
+from .shader_program import ray_at
 from .shading import AreaLight, square_to_light
 from .shadow_log import begin_point
-from .surface import hit_frame, normal_rows, surface_at
+from .surface import surface_at
 from .surface_terms import table_surface, terms_from_lobes
 from .trace import closest_hit, spawn_point, transmittance
 from .vec import add, dot, mul, normalize, row, scale, sub
@@ -216,8 +216,8 @@ def photon_start(geo, lights, casters, containing, light, k, key, photons, stack
     a, b = uniform2(key, PURPOSE_PHOTON, 1, 0)
     short = 1.0
     if light < lights.emitter_kind.shape[0]:
-        to_light, t, weight = emitter_sample(lights, light, x, n, a, b)
-        radiance, falloff = row(lights.emitter_radiance, light), NO_FALLOFF
+        to_light, t, weight, tint = emitter_sample(lights, light, x, n, a, b)
+        radiance, falloff = mul(row(lights.emitter_radiance, light), tint), NO_FALLOFF
         if lights.emitter_flags[light] & EMITS_FROM_SURFACE:
             short = 1.0 - SHORT_OF_SURFACE
     else:  # the irradiance pi R w of a point source of physical falloff, pi I / t^2
@@ -293,14 +293,9 @@ def trace_photons(geo, surf, mats, lights, casters, containing, plan, seed, bran
                     # a node material varying over the surface: its program's terms here, as
                     # a camera ray's (core.kernels.integrator); Light Path: neither a camera
                     # nor a shadow ray, `bounce` bounces
-                    reads = mats.shader_frame[material]
-                    hit, across = hit_frame(geo, surf, shape, part, p, n_shading, u, v,
-                                            (reads & READS_FRAME) != 0)  # fmt: skip
-                    if reads & READS_ATTRIBUTES:
-                        put_attributes(geo, surf, shape, part, p, shader_stack)
-                    rows = normal_rows(geo.shape_object_from_world, shape)
                     ray = ray_at(0.0, 0.0, bounce, p, d, n_geometric)
-                    run_program(mats, material, shader_stack, lobes, hit, across, rows, ray)
+                    run_program_at(geo, surf, mats, shape, material, part, p, n_shading, u, v,
+                                   shader_stack, lobes, ray)  # fmt: skip
                     here = terms_from_lobes(lobes)
                     if here.normal[0] != 0.0 or here.normal[1] != 0.0 or here.normal[2] != 0.0:
                         n_shading = kept_above(n_geometric, d, here.normal)  # Bump, Normal Map

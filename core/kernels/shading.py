@@ -48,12 +48,14 @@ class ShadingPoint(NamedTuple):
     """Where a surface is lit: shadow rays start at `origin` (the hit point lifted off the
     surface); `normal` is the unit shading normal of its diffuse (and of the report's Phong
     highlight), facing `to_viewer`; `smooth_normal` the surface's own before a Bump or
-    Normal Map bent it (the diffuse's shadow terminator term, bent_normal.terminator_term)."""
+    Normal Map bent it, and `terminator` the TERMINATOR_* rule (core.vocabulary) of the
+    diffuse's shadow terminator term (bent_normal.terminator_term)."""
 
     origin: tuple
     normal: tuple
     to_viewer: tuple
     smooth_normal: tuple
+    terminator: int
 
 
 class Phong(NamedTuple):
@@ -149,7 +151,9 @@ def _phong_lit(light_dir, radiance, visible, point, phong):
     n_dot_l = dot(n, light_dir)
     if n_dot_l <= 0.0 or visible[0] == visible[1] == visible[2] == 0.0:
         return 0.0, 0.0, 0.0
-    reflectance = scale(kd, n_dot_l * terminator_term(point.smooth_normal, n, light_dir))
+    reflectance = scale(
+        kd, n_dot_l * terminator_term(point.smooth_normal, n, light_dir, point.terminator)
+    )
     if ks[0] > 0.0 or ks[1] > 0.0 or ks[2] > 0.0:
         # Unit length already: n and light_dir are unit vectors
         reflected = sub(scale(n, 2.0 * n_dot_l), light_dir)

@@ -11,6 +11,7 @@ normals turned. A call of its own behind the `translucent` feature, as every cop
 """
 
 from ..jit.decorators import kernel
+from ..vocabulary import TERMINATOR_NONE
 from .clear_coat import NO_GLINT
 from .features import WITH_TRANSLUCENT
 from .light_at_point import light_at_point
@@ -29,7 +30,7 @@ def translucent_light(frame, lights, geo, surf, mats, ws, colour, p, n_shading, 
         return 0.0, 0.0, 0.0
     back = scale(n_geometric, -1.0)
     turned = scale(n_shading, -1.0)
-    point = ShadingPoint(spawn_point(p, back, o), turned, d, turned)
+    point = ShadingPoint(spawn_point(p, back, o), turned, d, turned, TERMINATOR_NONE)
     phong = Phong(colour, (0.0, 0.0, 0.0), 1.0, NO_GLINT, turned, (1.0, 1.0, 1.0), NO_GLINT,
                   turned, 0.0)  # fmt: skip
     return light_at_point(frame, lights, geo, surf, mats, ws, point, phong, p, back, key,

@@ -64,6 +64,17 @@ def cross(a, b):
 
 
 @kernel
+def affine(m, p):
+    """The affine rows of m (its first 3 rows, 4 columns: a (3, 4) or (4, 4) matrix)
+    applied to point p."""
+    return (
+        m[0, 0] * p[0] + m[0, 1] * p[1] + m[0, 2] * p[2] + m[0, 3],
+        m[1, 0] * p[0] + m[1, 1] * p[1] + m[1, 2] * p[2] + m[1, 3],
+        m[2, 0] * p[0] + m[2, 1] * p[1] + m[2, 2] * p[2] + m[2, 3],
+    )
+
+
+@kernel
 def affine_point(matrices, i, p):
     """matrices[i] (3, 4 affine rows) applied to point p, without making a view of it."""
     return (

@@ -157,7 +157,8 @@ def new_workspace(
             np.zeros(MAX_CANDIDATES, np.int32),
             np.full(2, -1, np.int64),
             # the samples' rows, then adaptive soft shadows' probes (core.kernels.shadow_rays)
-            np.zeros((max(shadow_samples, 1) + PROBES, 5)),
+            # (direction, distance, weight, an emissive surface's tint: core.kernels.emitters)
+            np.zeros((max(shadow_samples, 1) + PROBES, 8)),
             np.zeros(max(shadow_samples, 1) + PROBES),
             np.ones((max(shadow_samples, 1) + PROBES, 3)),
             np.zeros((TERM_ROWS, 3)),

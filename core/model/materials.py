@@ -7,8 +7,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..checks import Vec3, check_count, check_flag, check_number, check_vec3
+from ..checks import Vec3, check_choice, check_count, check_flag, check_number, check_vec3
 from ..errors import SceneError
+from ..vocabulary import BUMP_RULES
 from .shader import ShaderNode
 
 
@@ -98,6 +99,12 @@ class Material:
     diffuse_roughness -- 0..1: the diffuse's Oren-Nayar roughness (Blender's Diffuse BSDF
                       Roughness, Principled Diffuse Roughness; core.kernels.rough_diffuse),
                       0 Lambert's
+    bump_rule      -- the shadow terminator term (RenderSettings.bump_terminator) of a normal
+                      its graph bends: "corrected" (Blender's Material › Settings › Bump Map
+                      Correction on), "uncorrected" (off: no term, but from Cycles 4.5 its
+                      test that the light and the bent normal are on one side of the smooth
+                      surface), "displaced" (the bend is the Material Output's Displacement,
+                      which Cycles makes the surface's own normal: no term)
     """
 
     diffuse: Vec3 = (0.8, 0.8, 0.8)
@@ -128,6 +135,7 @@ class Material:
     absorption: Vec3 = (0.0, 0.0, 0.0)
     translucent: Vec3 = (0.0, 0.0, 0.0)
     diffuse_roughness: float = 0.0
+    bump_rule: str = "corrected"
 
     def validate(self, user: str) -> None:
         owner = f"material '{self.name}' (on {user})"
@@ -162,6 +170,7 @@ class Material:
         check_number(owner, "holdout", self.holdout, low=0.0, high=1.0)
         check_number(owner, "roughness", self.roughness, low=0.0, high=1.0)
         check_number(owner, "diffuse_roughness", self.diffuse_roughness, low=0.0, high=1.0)
+        check_choice(owner, "bump_rule", self.bump_rule, tuple(BUMP_RULES))
         if self.surface is not None:
             if not isinstance(self.surface, ShaderNode) or not self.surface.is_closure:
                 raise SceneError(owner, "surface", f"got {self.surface!r}; need a closure "

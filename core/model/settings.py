@@ -7,7 +7,13 @@ from dataclasses import dataclass
 from ..checks import check_choice, check_count, check_flag, check_number, machine_memory
 from ..errors import SceneError
 from ..passes import DEFAULT_CRYPTO_LEVELS, MAX_CRYPTO_LEVELS, MIST_FALLOFFS, channels, check_passes
-from ..vocabulary import GLASS_SHADOWS, PIXEL_PATTERNS, ROUGH_DIFFUSE_MODELS, SHADOW_PATTERNS
+from ..vocabulary import (
+    BUMP_TERMINATORS,
+    GLASS_SHADOWS,
+    PIXEL_PATTERNS,
+    ROUGH_DIFFUSE_MODELS,
+    SHADOW_PATTERNS,
+)
 
 PIXEL_SAMPLINGS = tuple(PIXEL_PATTERNS)
 SHADOW_SAMPLINGS = tuple(SHADOW_PATTERNS)
@@ -87,10 +93,12 @@ class RenderSettings:
                         spreads up to n rays over its GGX lobe (n times the share of the
                         light its lobes send on; later hits one each), blurring them as
                         Cycles does; 0 to 4096 (Blender's default: DEFAULT_GLOSSY_SAMPLES)
-    bump_terminator  -- True: a diffuse lit through a bent normal (Bump, Normal Map) is
-                        weighed by the shadow terminator term where the normal faces a light
-                        the smooth surface faces away from (Chiang, Li and Burley; Cycles
-                        before 4.5: core.kernels.bent_normal); False: not
+    bump_terminator  -- the shadow terminator term a diffuse lit through a bent normal (Bump,
+                        Normal Map) is weighed by (core.kernels.bent_normal): "chiang"
+                        (Chiang, Li and Burley's, Cycles before 4.5: the light kept where
+                        the bent normal faces a light the smooth surface faces away from),
+                        "conty" (Conty Estevez, Lecocq and Stein's microfacet shadowing,
+                        Cycles from 4.5), or "none"
     rough_diffuse    -- the Oren-Nayar model of a diffuse's roughness: "EON", energy
                         preserving (Cycles from 4.3), or "FON", Fujii's (Cycles before);
                         core.kernels.rough_diffuse
@@ -144,7 +152,7 @@ class RenderSettings:
     adaptive_threshold: float = 0.0
     environment_samples: int = DEFAULT_ENVIRONMENT_SAMPLES
     glossy_samples: int = 0
-    bump_terminator: bool = True
+    bump_terminator: str = "chiang"
     rough_diffuse: str = "EON"
     seed: int = 0
     shadow_culling: bool = True
@@ -170,7 +178,7 @@ class RenderSettings:
         check_count(owner, "environment_samples", self.environment_samples, high=MAX_SHADOW_SAMPLES)
         # each waits on the ray stack (core.kernels.workspace): 4096 is a 64 x 64 lobe
         check_count(owner, "glossy_samples", self.glossy_samples, high=MAX_GLOSSY_SAMPLES)
-        check_flag(owner, "bump_terminator", self.bump_terminator)
+        check_choice(owner, "bump_terminator", self.bump_terminator, tuple(BUMP_TERMINATORS))
         check_choice(owner, "rough_diffuse", self.rough_diffuse, tuple(ROUGH_DIFFUSE_MODELS))
         # Each bounce's ray waits on a stack of max_depth + 2 (core.kernels.workspace): past
         # this many, any light left is below what a pixel shows, and 1e12 asked for 21.8 TiB

@@ -10,10 +10,13 @@ where the mapped normal faces a light the smooth one faces away from.
 Measured over the 2 x 2 blocks lit above a quarter of the brightest (the rim's blocks
 straddle the silhouette, where Cycles' 0.01-pixel samples and Whitted's pixel centre see
 different sides): 0.36 of the brightest before, in Blender 4.2; now 0.004. Cycles 4.5 changed
-its terminator rule (Conty Estevez, Lecocq and Stein's microfacet shadowing of the bump,
-which plane reliefs barely show): Whitted leaves the term out there (blender_addon.compat.
-BUMP_TERMINATOR), 0.125 off at the rim, and the test is skipped until it is modelled; so it
-is in Blender 3.4, whose Cycles bends the diffuse's normal too (0.35 off, measured)."""
+its terminator rule to Conty Estevez, Lecocq and Stein's microfacet shadowing of the bump
+(blender_addon.compat.BUMP_TERMINATOR, core.kernels.bent_normal): 0.125 off at the rim
+without it, 0.004 with it in 4.5 and 5.2. The test is skipped in Blender 3.4, whose Cycles
+bends the diffuse's normal too (0.35 off, measured).
+
+Material › Settings › Bump Map Correction off leaves the softening out in both renderers
+(from 4.5 the side test stays): the rim then matches Cycles' darker one as well."""
 
 import numpy as np
 import pytest
@@ -83,9 +86,6 @@ def test_a_normal_mapped_low_poly_ball_shades_as_in_cycles(bpy_with_whitted, tmp
     if bpy.app.version < (4, 0, 0):
         pytest.skip("Cycles 3.4 bends the diffuse's mapped normal too, and weighs it by no "
                     "term: the ball is 35% off (measured), a known gap")  # fmt: skip
-    if bpy.app.version >= (4, 5, 0):
-        pytest.skip("Cycles 4.5 weighs bent normals by a rule Whitted does not model yet "
-                    "(Conty Estevez et al.): the rim is 12% off")  # fmt: skip
     scene = new_scene(bpy)
     bpy.data.objects.remove(bpy.data.objects["Plane"])
     _low_poly_ball(bpy, scene, _tilted_diffuse(bpy, in_group))
@@ -104,3 +104,72 @@ def lit_disagreement(cycles, whitted, block=2):
     brightest = c.max()
     lit = c.max(axis=-1) > LIT * brightest
     return float(np.abs(w - c)[lit].max() / brightest)
+
+
+def _tilted_by_displacement(bpy):
+    """A Diffuse BSDF over a Displacement (Bump Only) of height -0.577 x in object space: a
+    30-degree tilt towards +x, which Cycles makes the surface's own normal (no terminator
+    term: core.Material.bump_rule "displaced")."""
+    material = bpy.data.materials.new("Displaced")
+    material.use_nodes = True
+    tree = material.node_tree
+    tree.nodes.clear()
+    diffuse = tree.nodes.new("ShaderNodeBsdfDiffuse")
+    diffuse.inputs["Color"].default_value = (0.8, 0.8, 0.8, 1.0)
+    coordinates = tree.nodes.new("ShaderNodeTexCoord")
+    split = tree.nodes.new("ShaderNodeSeparateXYZ")
+    tree.links.new(coordinates.outputs["Object"], split.inputs[0])
+    displacement = tree.nodes.new("ShaderNodeDisplacement")
+    displacement.inputs["Midlevel"].default_value = 0.0
+    displacement.inputs["Scale"].default_value = -0.577
+    tree.links.new(split.outputs["X"], displacement.inputs["Height"])
+    output = tree.nodes.new("ShaderNodeOutputMaterial")
+    tree.links.new(diffuse.outputs[0], output.inputs["Surface"])
+    tree.links.new(displacement.outputs[0], output.inputs["Displacement"])
+    if hasattr(material, "displacement_method"):
+        material.displacement_method = "BUMP"
+    else:
+        material.cycles.displacement_method = "BUMP"
+    return material
+
+
+def test_bump_map_correction_off_shades_as_in_cycles(bpy_with_whitted, tmp_path):
+    """Material › Settings › Bump Map Correction off: no softening (from 4.5 the side test
+    stays). The rim then differs from the corrected map's (0.10-0.14 of the brightest, had
+    the correction been kept) and matches Cycles'."""
+    bpy = bpy_with_whitted
+    if bpy.app.version < (4, 0, 0):
+        pytest.skip("Cycles 3.4 bends the diffuse's mapped normal too (see above)")
+    scene = new_scene(bpy)
+    bpy.data.objects.remove(bpy.data.objects["Plane"])
+    material = _tilted_diffuse(bpy, in_group=False)
+    material.cycles.use_bump_map_correction = False
+    _low_poly_ball(bpy, scene, material)
+    add_light(bpy, scene, "SUN", (0.0, 0.0, 5.0), turned(35.0, -20.0), energy=3.0, angle=0.0)
+    cycles, whitted = side_by_side(bpy, scene, tmp_path, samples=16)
+    error = lit_disagreement(cycles, whitted)
+    print(f"uncorrected: {error:.4f}")
+    assert cycles.max() > 0.2  # the premise: a lit ball
+    assert error < TOLERANCE, error
+
+
+def test_a_displacements_bend_is_the_surfaces_own_normal_as_in_cycles(bpy_with_whitted,
+                                                                       tmp_path):  # fmt: skip
+    """The plane tilted 30 degrees towards a sun 80 degrees from straight down by its
+    Displacement: Cycles lights it by the tilted normal alone, 0.64 of the sun's
+    irradiance, where a terminator term would take 21% (Conty's) or 62% (Chiang's) off."""
+    import math
+
+    bpy = bpy_with_whitted
+    scene = new_scene(bpy)
+    plane = bpy.data.objects["Plane"]
+    plane.data.materials.clear()
+    plane.data.materials.append(_tilted_by_displacement(bpy))
+    add_light(bpy, scene, "SUN", (0.0, 0.0, 5.0), (0.0, math.radians(80.0), 0.0), energy=3.0,
+              angle=0.0)  # fmt: skip
+    cycles, whitted = side_by_side(bpy, scene, tmp_path, samples=16)
+    expected = 0.8 * 3.0 * math.cos(math.radians(50.0)) / math.pi
+    print(f"displaced: Cycles {cycles.mean():.4f}, Whitted {whitted.mean():.4f}, "
+          f"closed form {expected:.4f}")  # fmt: skip
+    np.testing.assert_allclose(cycles.mean(axis=(0, 1)), expected, rtol=0.01)  # the premise
+    np.testing.assert_allclose(whitted, cycles, rtol=0.01)

@@ -475,12 +475,14 @@ def test_bump_displacement_and_normal_maps_shade_as_in_cycles(bpy_with_whitted, 
     # Whitted with the Bump node's formula: they differ in the second order. Cycles before
     # 4.5 (whose Bump has no Filter Width) took its differences a whole pixel's footprint
     # apart, which flattens a relief this fine (measured in 3.4 and 4.2: 7% at most for
-    # Bump, 12% for Displacement; 3% and 0.7% at a quarter of the frequency), and its normal
-    # map's tangents differ by up to 3%: Whitted takes the slope itself, as Cycles 4.5 on
-    # does with its default Filter Width. A known gap before 4.5, bounded here
+    # Bump, 12% for Displacement; 3% and 0.7% at a quarter of the frequency): Whitted takes
+    # the slope itself, as Cycles 4.5 on does with its default Filter Width. A known gap
+    # before 4.5, bounded here. The normal map (Strength 0.8) is Cycles' to 1e-4 in every
+    # version since its strength mixes the mapped vector before it is made unit (1-3% off
+    # before, in the texels' tilt)
     close = 0.02 if kind == "displacement_as_bump" else 0.01
-    if bpy.app.version < (4, 5, 0):
-        close = {"bump": 0.08, "displacement_as_bump": 0.14, "normal_map": 0.04}[kind]
+    if bpy.app.version < (4, 5, 0) and kind != "normal_map":
+        close = {"bump": 0.08, "displacement_as_bump": 0.14}[kind]
     off = np.abs(whitted - cycles).max(axis=-1) > close * cycles.max()
     flat = np.ptp(cycles[..., 0])
     print(f"{kind}: {off.mean():.4f} of pixels off by {close:.0%}, largest "

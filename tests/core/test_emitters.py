@@ -41,14 +41,16 @@ def pixel_points():
     return np.stack([x, y, np.zeros_like(x)], axis=-1)
 
 
-def rendered(lights, shadow_samples=64, pattern="stratified", shapes=()) -> np.ndarray:
+def rendered(lights, shadow_samples=64, pattern="stratified", shapes=(), channels=1):
     """The plane under `lights` (and any `shapes`, which the camera should not see), times
-    pi: the irradiance each pixel's point receives."""
+    pi: the irradiance each pixel's point receives (red, or RGB with `channels` 3)."""
     camera = Camera(eye=(0.0, 0.0, 10.0), view=(0.0, 0.0, -1.0), up=(0.0, 1.0, 0.0),
                     projection="orthographic", ortho_height=VIEW)  # fmt: skip
     settings = RenderSettings(SIZE, SIZE, pixel_samples=1, shadow_samples=shadow_samples,
                               shadow_sampling=pattern)  # fmt: skip
     image = render(Scene(camera, [plane(), *shapes], lights), settings).image
+    if channels == 3:
+        return image[..., :3].astype(float) * math.pi
     return image[..., 0].astype(float) * math.pi
 
 

@@ -286,7 +286,8 @@ def test_bump_on_a_linear_height_tilts_the_normal_by_its_slope():
 
 def test_a_tangent_space_normal_map_turns_the_normal_in_the_uv_frame():
     """A constant normal-map colour c on a plane whose u runs along x and v along y: the
-    normal is 2c - 1 in (x, y, z), normalised, and at Strength 0.5 halfway to (0, 0, 1)."""
+    normal is 2c - 1 in (x, y, z), normalised, and at Strength 0.5 that vector as it is
+    (not unit) mixed halfway with (0, 0, 1), then normalised, as Cycles mixes it."""
     colour = (0.8, 0.35, 0.9)
     m = 2.0 * np.array(colour) - 1.0
     for strength in (1.0, 0.5):
@@ -296,7 +297,7 @@ def test_a_tangent_space_normal_map_turns_the_normal_in_the_uv_frame():
         image = _lit_plane(white)  # lit straight down: the pixel is n.z
         n = m / np.linalg.norm(m)
         if strength != 1.0:
-            n = np.array([0.0, 0.0, 1.0]) + (n - (0.0, 0.0, 1.0)) * strength
+            n = np.array([0.0, 0.0, 1.0]) + (m - (0.0, 0.0, 1.0)) * strength
             n /= np.linalg.norm(n)
         np.testing.assert_allclose(image, n[2], rtol=1e-6)
 

@@ -231,7 +231,7 @@ def test_the_packing_kernels_compile_beside_and_here_if_that_fails(tmp_path, mon
     monkeypatch.setattr(child_process, "_launcher", launcher)
     compiled_here = []
     monkeypatch.setattr(kernel_warmup, "warm_photon_kernels", compiled_here.append)
-    monkeypatch.setattr(kernel_warmup, "_packed_warmup_scene", lambda: "packed")
+    monkeypatch.setattr(kernel_warmup, "_packed_warmup_scene", lambda without: "packed")
     without = frozenset({"nodes"})
     kernel_warmup.Beside(without).finish()
     assert said.read_text().split()[-3:] == [kernel_warmup.BESIDE, "--without", tag(without)]
