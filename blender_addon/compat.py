@@ -26,6 +26,9 @@ COAT_ALBEDO = "LOBE" if bpy.app.version >= (4, 5, 0) else "NORMAL"
 # shadow terminator term; 4.5 changed its rule to Conty Estevez et al.'s microfacet
 # shadowing (core.kernels.bent_normal; measured by tests/blender/test_cycles_tangents.py)
 BUMP_TERMINATOR = "chiang" if bpy.app.version < (4, 5, 0) else "conty"
+# A Normal Map's Strength mixes the mapped vector as it is in Cycles 4 (measured in 4.2 and
+# 4.5), made unit first in Cycles 3 (measured in 3.4): core.model.shader's strength_mix
+NORMAL_MAP_MIX = "VECTOR" if bpy.app.version >= (4, 0, 0) else "UNIT"
 # A rough diffuse's Oren-Nayar: energy-preserving from 4.3, Fujii's before
 # (core.kernels.rough_diffuse; measured against 4.2 and 4.5 by test_cycles_rough_diffuse.py)
 ROUGH_DIFFUSE = "EON" if bpy.app.version >= (4, 3, 0) else "FON"

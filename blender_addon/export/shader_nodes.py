@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import core
-from ..compat import COAT_ALBEDO, PRINCIPLED_LAYERED, VORONOI_CELL_HASH
+from ..compat import COAT_ALBEDO, NORMAL_MAP_MIX, PRINCIPLED_LAYERED, VORONOI_CELL_HASH
 from .shader_graph import Feed, feed_of, node_label, output_node
 
 # Principled BSDF inputs that change the look but are not modelled, with the value that
@@ -540,6 +540,7 @@ class GraphReader:
             if node.space != space:
                 self.note(f"{node_label(node)}'s {node.space.title()} space (used: Object)")
             made.settings["space"] = space
+            made.settings["strength_mix"] = NORMAL_MAP_MIX
             for name in ("Strength", "Color"):
                 made.inputs[name] = v(node, groups, name)
         return made

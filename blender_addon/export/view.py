@@ -29,6 +29,7 @@ class View:
     perspective: str  # RegionView3D.view_perspective: "PERSP", "ORTHO" or "CAMERA"
     clip_end: float  # SpaceView3D.clip_end: orthographic views see half of it behind the eye
     border: tuple[int, int, int, int] | None  # (x, y, width, height), y from the region's top
+    clip_start: float = 0.0  # SpaceView3D.clip_start (a perspective view's)
 
 
 def read_view(context) -> View:
@@ -43,18 +44,23 @@ def read_view(context) -> View:
         perspective=view3d.view_perspective,
         clip_end=float(space.clip_end),
         border=_border(context, width, height),
+        clip_start=float(space.clip_start),
     )
 
 
 def camera(view: View, depsgraph) -> core.Camera:
     """The view as a camera: eye and axes from the inverse view matrix; the field of view (or
     the view's height) and the off-centre shift from the projection matrix, read as
-    export.camera reads a camera's. Through the scene camera, its depth of field too."""
+    export.camera reads a camera's. Through the scene camera, its depth of field and Clip
+    Start and End too; otherwise the View's Clip Start and End, as Cycles' viewport clips
+    (an orthographic view: clip_end across, half of it behind the view's centre)."""
     world_from_view = np.linalg.inv(np.array(view.view_matrix, float))
     projection = view.window_matrix
     axes = world_from_view[:3, :3] / np.linalg.norm(world_from_view[:3, :3], axis=0)
     eye, forward, up = world_from_view[:3, 3], -axes[:, 2], axes[:, 1]
-    lens = dict(PINHOLE)
+    orthographic = projection[3][3] == 1.0
+    lens = {**PINHOLE, "clip_start": 0.0 if orthographic else view.clip_start,
+            "clip_end": view.clip_end}  # fmt: skip
     scene_camera = depsgraph.scene.camera
     if view.perspective == "CAMERA" and scene_camera is not None:
         evaluated = scene_camera.evaluated_get(depsgraph)
@@ -62,10 +68,12 @@ def camera(view: View, depsgraph) -> core.Camera:
             lens = depth_of_field(
                 depsgraph.scene, evaluated, Vector(tuple(eye)), Vector(tuple(forward))
             )
-    orthographic = projection[3][3] == 1.0
+            lens["clip_start"] = evaluated.data.clip_start
+            lens["clip_end"] = evaluated.data.clip_end
     if orthographic and view.perspective != "CAMERA":
         # Blender's orthographic views clip half the clip distance behind the eye; rays start
-        # on the image plane, so it moves back that far (the picture stays put)
+        # on the image plane, so it moves back that far (the picture stays put) and they end
+        # clip_end beyond it
         eye = eye - forward * (view.clip_end / 2.0)
     return from_projection(projection, eye, forward, up, "3D Viewport", lens, orthographic)
 

@@ -27,6 +27,7 @@ from ..model.shader import (
     MAPPING_TYPES,
     MATH_OPERATIONS,
     MIX_BLENDS,
+    NORMAL_MAP_MIXES,
     NORMAL_MAP_SPACES,
     RAMP_INTERPOLATIONS,
     SHADER_NODES,
@@ -334,7 +335,8 @@ class ProgramBuilder:
                 p.attributes = len(self.attribute_names)
             p.step(sp.OP_NORMAL_MAP, slots["Normal"], v(node.input("Color"), "triple"),
                    v(node.input("Strength"), "value"),
-                   NORMAL_MAP_SPACES.index(node.setting("space")), tangents)  # fmt: skip
+                   NORMAL_MAP_SPACES.index(node.setting("space")), tangents,
+                   NORMAL_MAP_MIXES.index(node.setting("strength_mix")))  # fmt: skip
             p.varying = p.needs_frame = True
         elif kind == "mapping":
             p.step(sp.OP_MAPPING, slots["Vector"], v(node.input("Vector"), "triple"),

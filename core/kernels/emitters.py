@@ -49,7 +49,7 @@ from .options import (
     SHADOW_HALTON,
 )
 from .rng import PURPOSE_LIGHT_SHIFT, uniform2
-from .rough_diffuse import rough_response
+from .rough_diffuse import beyond_kd, rough_response
 from .shading import AreaLight, add_falling, light_candidates, seen_through
 from .shadow_rays import PROBES, light_visibility, probe_square
 from .vec import add, dot, mul, row, scale, sub
@@ -217,6 +217,6 @@ def emitted_colour(frame, lights, geo, stacks, point, phong, key, event, split):
             total = add(total, mul(reflectance, scale(seen, factor * weight)))
             if split and diffuse > 0.0:
                 falling = scale(radiance, weight / count)
-                add_falling(terms, light_dir, falling, seen, n, 1.0)
+                add_falling(terms, light_dir, falling, seen, n, beyond_kd(kd, reflectance, term))
         colour = add(colour, scale(mul(total, radiance), 1.0 / count))
     return colour

@@ -39,7 +39,7 @@ from .options import (
     SHADOW_HALTON,
 )
 from .rng import PURPOSE_LIGHT_SHIFT, uniform2
-from .rough_diffuse import rough_response
+from .rough_diffuse import beyond_kd, rough_response
 from .shading import add_falling, seen_through
 from .shadow_rays import shadow_visibility
 from .surface import bilinear, nearest
@@ -173,12 +173,13 @@ def environment_light(frame, lights, geo, stacks, point, kd, rough, key, event, 
         d = row(targets, j)
         radiance = scale(environment_radiance(frame, lights, d), targets[j, 4] / samples)
         seen = seen_through(stacks, j)
-        cos = dot(n, d) * terminator_term(point.smooth_normal, n, d, point.terminator)
+        term = terminator_term(point.smooth_normal, n, d, point.terminator)
+        cos = dot(n, d) * term
         reflectance = kd
         if rough > 0.0:
             model = frame.options[OPTION_ROUGH_DIFFUSE]
             reflectance = rough_response(kd, rough, model, n, d, point.to_viewer)
         total = add(total, mul(reflectance, mul(radiance, scale(seen, cos))))
         if split:
-            add_falling(terms, d, radiance, seen, n, 1.0)
+            add_falling(terms, d, radiance, seen, n, beyond_kd(kd, reflectance, term))
     return total

@@ -76,6 +76,18 @@ def rough_response(kd, sigma, model, n, to_light, v):
 
 
 @kernel
+def beyond_kd(kd, response, term):
+    """`response` (rough_response's, or kd) over kd, channel by channel, times `term` (the
+    shadow terminator's): the light's weight in the Diffuse Direct pass, 0 where kd is
+    (Cycles divides by the colour safely)."""
+    return (
+        response[0] / kd[0] * term if kd[0] > 0.0 else 0.0,
+        response[1] / kd[1] * term if kd[1] > 0.0 else 0.0,
+        response[2] / kd[2] * term if kd[2] > 0.0 else 0.0,
+    )
+
+
+@kernel
 def rough_albedo(kd, sigma, model, mu_v):
     """kd's stand-in for light falling evenly from every direction (the caustic photons,
     whose directions are not kept): the lobes' directional albedo seen at mu_v."""

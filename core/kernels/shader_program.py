@@ -72,7 +72,8 @@ OP_COPY = 17  # out, a: a triple
 OP_AVERAGE = 18  # out, vector: (x + y + z) / 3 (a vector used as a value)
 OP_BUMP = 19  # out, height here, height a step along u, along v, strength, distance; f invert
 # out, colour, strength, space (NORMAL_MAP_*), the slot of the mesh's tangents (an
-# attribute's, core.kernels.attributes) or -1
+# attribute's, core.kernels.attributes) or -1, 1 to make the mapped vector unit before
+# Strength mixes it (core.model.shader's strength_mix "UNIT")
 OP_NORMAL_MAP = 29
 # out colour, out fac, vector, colour 1, colour 2, mortar colour, scale; its next row
 # (OP_MORE): mortar size, mortar smooth, bias, brick width, row height, (offset, squash, 0),
@@ -421,7 +422,8 @@ def _bump(stack, out, h0, hx, hy, strength, distance, invert, frame):
 
 
 @kernel
-def _normal_map(stack, out, colour, strength, space, frame, normal_rows, tangents, n_object):
+def _normal_map(stack, out, colour, strength, space, frame, normal_rows, tangents, n_object,
+                unit_first):  # fmt: skip
     """Cycles' Normal Map: a tangent-space colour (2c - 1 in the frame of the tangent, the
     bitangent and the normal), or an object- or world-space one, mixed with the normal by
     strength. The tangent frame: the mesh's MikkTSpace tangent and bitangent sign at the
@@ -446,9 +448,12 @@ def _normal_map(stack, out, colour, strength, space, frame, normal_rows, tangent
     else:
         mapped = normalize(m)
     # Strength mixes the mapped vector as it is, unit or not (a tangent-space colour's 2c - 1
-    # is rarely unit), with the normal, as Cycles does for an object whose transform it has
-    # applied to the mesh (any object not instanced): measured in 4.2 and 4.5, a tilt of
-    # 0.78 long at strength 0.8 comes out as Cycles' to 1e-4, and 2% off mixed unit
+    # is rarely unit), with the normal, as Cycles 4 does for an object whose transform it
+    # has applied to the mesh (any object not instanced): measured in 4.2 and 4.5, a tilt
+    # 0.78 long at strength 0.8 comes out as Cycles' to 1e-4, 2% off mixed unit. Cycles 3
+    # made it unit first (`unit_first`, measured in 3.4)
+    if unit_first:
+        mapped = normalize(mapped)
     if strength != 1.0:
         mapped = add(n, scale(sub(mapped, n), max(strength, 0.0)))
     _put(stack, out, normalize(mapped))
@@ -542,7 +547,7 @@ def run_program(mats, material, stack, lobes, hit, frame, normal_rows, ray):
         elif op == OP_BUMP:
             _bump(s, out, s[a], s[b], s[c], s[d], s[e], f != 0, frame)
         elif op == OP_NORMAL_MAP:
-            _normal_map(s, out, _triple(s, a), s[b], c, frame, normal_rows, d, hit[0][3])
+            _normal_map(s, out, _triple(s, a), s[b], c, frame, normal_rows, d, hit[0][3], e)
         elif op == OP_FACING:
             normal = frame[2] if b < 0 else _triple(s, b)
             towards = (-ray[RAY_DIRECTION], -ray[RAY_DIRECTION + 1], -ray[RAY_DIRECTION + 2])

@@ -132,12 +132,14 @@ def _radiance(intensity, attenuation, distance):
 @inlined_kernel
 def add_falling(terms, light_dir, radiance, visible, n, weight):
     """Add to `terms` (core.kernels.pass_record) the light falling on the point (times N.L
-    and `weight`) with and without what its shadow ray let through (`visible`, RGB). For the
-    shadow and diffuse passes of a first hit only: the colour itself is `_phong_lit`'s."""
+    and `weight`, RGB: what the diffuse makes of it beyond kd, as Cycles' Diffuse Direct
+    holds the diffuse's light over its colour) with and without what its shadow ray let
+    through (`visible`, RGB). For the shadow and diffuse passes of a first hit only: the
+    colour itself is `_phong_lit`'s."""
     n_dot_l = dot(n, light_dir)
     if n_dot_l > 0.0:
         for a in range(3):
-            falling = radiance[a] * n_dot_l * weight
+            falling = radiance[a] * n_dot_l * weight[a]
             terms[TERM_ROW_UNSHADOWED, a] += falling
             terms[TERM_ROW_LIT, a] += falling * visible[a]
 
@@ -207,7 +209,7 @@ def local_colour(frame, lights, geo, stacks, point, phong, key, event, split):
         seen = seen_through(stacks, 0)
         colour = add(colour, _phong_lit(toward, radiance, seen, point, phong))
         if split:
-            add_falling(terms, toward, radiance, seen, n, 1.0)
+            add_falling(terms, toward, radiance, seen, n, (1.0, 1.0, 1.0))
     for light in range(lights.point_position.shape[0]):
         _aim(targets, 0, row(lights.point_position, light), origin)
         shadow_visibility(geo, stacks, TRAVERSE_ALL, origin, n, 0, 1)
@@ -216,7 +218,8 @@ def local_colour(frame, lights, geo, stacks, point, phong, key, event, split):
         colour = add(colour, _lit_by(targets, stacks, 0, intensity, attenuation, point, phong))
         if split and targets[0, 3] != 0.0:
             radiance = _radiance(intensity, attenuation, targets[0, 3])
-            add_falling(terms, row(targets, 0), radiance, seen_through(stacks, 0), n, 1.0)
+            add_falling(terms, row(targets, 0), radiance, seen_through(stacks, 0), n,
+                        (1.0, 1.0, 1.0))  # fmt: skip
     samples = frame.options[OPTION_SHADOW_SAMPLES]
     pattern = frame.options[OPTION_SHADOW_PATTERN]
     adaptive = frame.options[OPTION_SHADOW_ADAPTIVE] != 0
@@ -254,5 +257,6 @@ def local_colour(frame, lights, geo, stacks, point, phong, key, event, split):
                     radiance = _radiance(intensity, attenuation, distance)
                     light_dir = row(targets, j)
                     seen = seen_through(stacks, j)
-                    add_falling(terms, light_dir, radiance, seen, n, 1.0 / samples)
+                    share = 1.0 / samples
+                    add_falling(terms, light_dir, radiance, seen, n, (share, share, share))
     return colour

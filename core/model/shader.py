@@ -291,10 +291,13 @@ SHADER_NODES = {
     "normal_map": dict(
         inputs={"Strength": 1.0, "Color": (0.5, 0.5, 1.0)},
         outputs={"Normal": "triple"},
-        settings={"space": "TANGENT"},
+        # strength_mix: Strength mixes the mapped vector as it is ("VECTOR", Cycles from 4.0
+        # for an object not instanced) or made unit first ("UNIT", Cycles 3)
+        settings={"space": "TANGENT", "strength_mix": "VECTOR"},
     ),  # fmt: skip
 }
 NORMAL_MAP_SPACES = ("TANGENT", "OBJECT", "WORLD")
+NORMAL_MAP_MIXES = ("VECTOR", "UNIT")
 # The attribute name a tangent-space Normal Map reads a mesh's corner_tangents by
 # (core.kernels.attributes carries them as it does colours; no Blender attribute starts with
 # a NUL)
@@ -442,6 +445,7 @@ def _check_settings(owner, label, node) -> None:
         ("image", "extension"): EXTENSIONS,
         ("color_ramp", "interpolation"): RAMP_INTERPOLATIONS,
         ("normal_map", "space"): NORMAL_MAP_SPACES,
+        ("normal_map", "strength_mix"): NORMAL_MAP_MIXES,
         ("voronoi", "feature"): VORONOI_FEATURES,
         ("voronoi", "distance"): VORONOI_METRICS,
         ("voronoi", "cell_hash"): VORONOI_HASHES,

@@ -478,8 +478,8 @@ def test_bump_displacement_and_normal_maps_shade_as_in_cycles(bpy_with_whitted, 
     # Bump, 12% for Displacement; 3% and 0.7% at a quarter of the frequency): Whitted takes
     # the slope itself, as Cycles 4.5 on does with its default Filter Width. A known gap
     # before 4.5, bounded here. The normal map (Strength 0.8) is Cycles' to 1e-4 in every
-    # version since its strength mixes the mapped vector before it is made unit (1-3% off
-    # before, in the texels' tilt)
+    # version since its strength mixes the mapped vector before it is made unit from 4.0
+    # (1-3% off before, in the texels' tilt), after it in 3.4
     close = 0.02 if kind == "displacement_as_bump" else 0.01
     if bpy.app.version < (4, 5, 0) and kind != "normal_map":
         close = {"bump": 0.08, "displacement_as_bump": 0.14}[kind]

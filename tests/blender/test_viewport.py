@@ -162,6 +162,21 @@ def test_an_orthographic_view_of_an_orthographic_camera_is_the_camera(
     free = export.view.camera(camera_view(bpy, sample_scene, "ORTHO", clip_end=40.0), depsgraph)
     offset = np.subtract(final.eye, free.eye)
     np.testing.assert_allclose(offset, np.multiply(final.view, 20.0), atol=1e-4)
+    # ... and its rays end clip_end past that eye: half of it beyond the view's centre
+    assert (free.clip_start, free.clip_end) == (0.0, 40.0)
+    # through the camera, the camera's own Clip Start and End, as a final render's
+    assert (view.clip_start, view.clip_end) == (final.clip_start, final.clip_end)
+
+
+def test_a_perspective_view_clips_at_the_views_clip_start_and_end(sample_scene, bpy_with_whitted):
+    """View › Clip Start and End, as Cycles' viewport clips (before, its rays never ended)."""
+    bpy = bpy_with_whitted
+    _, export = modules()
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    through = camera_view(bpy, sample_scene, "PERSP", clip_end=7.5)
+    free = export.view.camera(type(through)(**{**through.__dict__, "clip_start": 0.25}), depsgraph)
+    assert free.projection == "perspective"
+    assert (free.clip_start, free.clip_end) == (0.25, 7.5)
 
 
 def test_a_scene_error_shows_in_the_view_and_is_not_raised(session, sample_scene, bpy_with_whitted):

@@ -128,12 +128,14 @@ def test_conty_lights_nothing_through_a_bent_normal_across_the_smooth_surface():
 def test_strength_mixes_the_mapped_vector_before_it_is_unit():
     """A tangent-space colour whose 2c - 1 is 0.78 long, at Strength 0.6, in World space
     (made unit first, as Cycles' World space is) and, through an object of identity
-    transform, in Object space (mixed as it is)."""
+    transform, in Object space (mixed as it is, as Cycles 4 mixes it; made unit first, as
+    Cycles 3 did: strength_mix "UNIT")."""
     raw = np.array([0.25, 0.53, 0.51])  # 2c - 1, not unit
     colour = tuple((raw + 1.0) / 2.0)
-    for space, mapped in (("WORLD", _unit(raw)), ("OBJECT", raw)):
+    for space, mix, mapped in (("WORLD", "VECTOR", _unit(raw)), ("OBJECT", "VECTOR", raw),
+                               ("OBJECT", "UNIT", _unit(raw))):  # fmt: skip
         node = ShaderNode("normal_map", {"Color": colour, "Strength": 0.6},
-                          settings={"space": space})  # fmt: skip
+                          settings={"space": space, "strength_mix": mix})  # fmt: skip
         shifted = ShaderNode("vector_math", {"A": Link(node, "Normal"), "B": (1.0, 1.0, 1.0)})
         half = ShaderNode("vector_math", {"A": Link(shifted, "Vector"), "Scale": 0.5},
                           settings={"operation": "SCALE"})  # fmt: skip

@@ -279,6 +279,24 @@ def test_lights_in_blenders_units_and_the_world_split_into_terms_that_sum_to_com
     assert passes["environment"].max() == pytest.approx(0.4, rel=1e-6)
 
 
+@pytest.mark.parametrize("model", ["EON", "FON"])
+def test_a_rough_diffuse_lit_by_lights_and_the_world_is_all_diffuse(model):
+    """A node material's Oren-Nayar diffuse (its light is not kd's Lambert) under a sphere
+    light and a World: the Diffuse pass holds all of it, no Specular is left over, and the
+    terms sum to Combined, in either model. Before, the Diffuse pass was Lambert's and the
+    difference was lost."""
+    rough = core.ShaderNode("diffuse", {"Color": (0.7, 0.4, 0.2), "Roughness": 0.9})
+    scene = lit_sphere(Material(surface=rough))
+    scene.lights = [core.SphereLight(position=(2.0, 3.0, 5.0), power=(90.0, 80.0, 70.0))]
+    scene.environment = core.Environment(colour=(0.2, 0.3, 0.4))
+    output = core.render(scene, settings(rough_diffuse=model, environment_samples=16))
+    passes = output.passes
+    total = sum(passes[name] for name in TERMS)
+    np.testing.assert_allclose(total, output.image[..., :3], rtol=1e-5, atol=1e-6)
+    assert passes["diffuse"].max() > 0.1
+    assert passes["specular"].max() == 0.0
+
+
 def test_the_shadow_pass_is_one_where_lit_and_zero_in_the_balls_shadow():
     floor = Box("Floor", Material(), np.diag([6.0, 6.0, 0.5, 1.0]))
     floor.world_from_object[2, 3] = -2.0  # its top at z = -1.5
