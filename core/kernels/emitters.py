@@ -190,15 +190,15 @@ def emitted_colour(frame, lights, geo, stacks, point, phong, key, event, split):
             seen = seen_through(stacks, j)
             if kind == EMITTER_MESH:  # a varying emitter's sample's own colour
                 seen = mul(seen, (targets[j, 5], targets[j, 6], targets[j, 7]))
-            # the glints about their own normals (a bent diffuse normal may face away)
-            coat_lit = on_smooth_side(point.smooth_normal, phong.coat_normal, light_dir,
-                                      point.terminator)  # fmt: skip
-            if specular > 0.0 and coat_glints and coat_lit:
+            # the glints about their own normals (a bent diffuse normal may face away); the
+            # side test only for a surface that glints
+            smooth, rule = point.smooth_normal, point.terminator
+            if (specular > 0.0 and coat_glints
+                    and on_smooth_side(smooth, phong.coat_normal, light_dir, rule)):  # fmt: skip
                 glint = gloss_lit(phong.coat_gloss, phong.coat_normal, to_viewer, light_dir)
                 total = add(total, mul(glint, scale(seen, weight)))
-            gloss_lit_here = on_smooth_side(point.smooth_normal, phong.gloss_normal, light_dir,
-                                            point.terminator)  # fmt: skip
-            if specular > 0.0 and glints and gloss_lit_here:
+            if (specular > 0.0 and glints
+                    and on_smooth_side(smooth, phong.gloss_normal, light_dir, rule)):  # fmt: skip
                 glint = gloss_lit(gloss, phong.gloss_normal, to_viewer, light_dir)
                 total = add(total, mul(mul(glint, phong.under), scale(seen, weight)))
             if n_dot_l <= 0.0:
