@@ -73,6 +73,10 @@ def test_sample_counts_and_seed_past_what_the_kernels_count_are_refused(field, v
             lambda s: setattr(s.shapes[0], "casts_shadows", "no"),
             r"sphere 'Ball': casts_shadows: got 'no'; need True or False",
         ),
+        (
+            lambda s: setattr(s.shapes[0].material, "bump_rule", True),
+            r"material 'ball' \(on sphere 'Ball'\): bump_rule: .*corrected, uncorrected, displaced",
+        ),
     ],
 )
 def test_bad_fields_are_named(change, message):
@@ -89,6 +93,13 @@ def test_nan_in_transform_and_non_affine_rows():
     scene.shapes[0].world_from_object = np.ones((4, 4))
     with pytest.raises(SceneError, match="bottom row"):
         render_tiny(scene)
+
+
+def test_the_bump_terminator_must_be_a_rule_by_name():
+    """RenderSettings.bump_terminator was a flag before it named Cycles' rules: an old True
+    is refused, naming the field and the rules."""
+    with pytest.raises(SceneError, match=r"bump_terminator: .*chiang, conty"):
+        render_tiny(ball_on_ground(), RenderSettings(4, 4, bump_terminator=True))
 
 
 def test_shadow_culling_must_be_a_flag():
